@@ -1,0 +1,58 @@
+"""Exception types users see.
+
+Every error a user can cause is a :class:`FloorslideError` carrying the file, line or key at
+fault; the command line turns it into one line and an exit code (DESIGN §3, §9).
+"""
+
+from __future__ import annotations
+
+
+class FloorslideError(Exception):
+    """Base class of the errors floorslide reports to its users.
+
+    Parameters
+    ----------
+    message
+        What is wrong and what was expected.
+    where
+        The file, ``file:line``, or scene key path at fault (optional).
+    """
+
+    exit_code = 1
+
+    def __init__(self, message: str, where: str | None = None):
+        self.message = message
+        self.where = where
+        super().__init__(f"{where}: {message}" if where else message)
+
+
+class RecordError(FloorslideError):
+    """A record cannot be read or is not a valid accelerogram (exit code 3)."""
+
+    exit_code = 3
+
+
+class UnitsError(RecordError):
+    """The units of a record are unknown or not supported."""
+
+
+class SceneError(FloorslideError):
+    """A scene file is invalid; holds every problem found (exit code 2)."""
+
+    exit_code = 2
+
+    def __init__(self, problems: list[str] | str, where: str | None = None):
+        self.problems = [problems] if isinstance(problems, str) else list(problems)
+        super().__init__("; ".join(self.problems), where)
+
+
+class ModelError(FloorslideError):
+    """Invalid building, object or solver parameters given through the API or CLI (exit code 2)."""
+
+    exit_code = 2
+
+
+class ResultFileError(FloorslideError):
+    """A result file is missing, corrupt or not a floorslide result file."""
+
+    exit_code = 1
