@@ -4,6 +4,14 @@ buildings under recorded earthquakes.
 The public API (DESIGN §3) is re-exported here; nothing else lives in this module.
 """
 
+from floorslide.building import (
+    IsolatedBuilding,
+    Rayleigh,
+    ShearBuilding,
+    floor_motions,
+    peak_floor_acceleration,
+)
+from floorslide.constants import G
 from floorslide.errors import (
     FloorslideError,
     ModelError,
@@ -13,11 +21,13 @@ from floorslide.errors import (
     UnitsError,
 )
 
-G = 9.80665
-"""Standard gravity, m/s² (DESIGN §2)."""
-
 __all__ = [
     "G",
+    "IsolatedBuilding",
+    "Rayleigh",
+    "ShearBuilding",
+    "floor_motions",
+    "peak_floor_acceleration",
     "FloorslideError",
     "ModelError",
     "RecordError",

@@ -1,1 +1,24 @@
-"""."""
+"""Buildings: fixed-base and isolated shear buildings as state space, exact floor motions."""
+
+from floorslide.building.exact import ExactStepper, foh_matrices
+from floorslide.building.model import (
+    IsolatedBuilding,
+    LinearBuilding,
+    ModalProperties,
+    Rayleigh,
+    ShearBuilding,
+)
+from floorslide.building.motions import Peaks, floor_motions, peak_floor_acceleration
+
+__all__ = [
+    "ExactStepper",
+    "IsolatedBuilding",
+    "LinearBuilding",
+    "ModalProperties",
+    "Peaks",
+    "Rayleigh",
+    "ShearBuilding",
+    "floor_motions",
+    "foh_matrices",
+    "peak_floor_acceleration",
+]

@@ -1,0 +1,255 @@
+"""Floor motions: the exact response of a building to a piecewise-linear ground record.
+
+The default method samples the exact response (first-order hold, :mod:`floorslide.building.exact`)
+and finds the true peak floor acceleration, including peaks inside steps. Approximate methods
+are kept for the accuracy-versus-cost study (DESIGN §6).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import control
+import numpy as np
+from numba import njit
+
+from floorslide.building._kernels import foh_outputs, foh_peaks
+from floorslide.building.exact import ExactStepper, foh_matrices
+from floorslide.building.model import LinearBuilding
+from floorslide.errors import ModelError
+
+METHODS = ("exact", "zoh", "newmark", "forced_response")
+
+
+def check_record(acc, dt, name: str = "acc") -> tuple[np.ndarray, float]:
+    """A ground record as a finite 1-D float64 array and a positive time step."""
+    a = np.ascontiguousarray(acc, dtype=float)
+    if a.ndim != 1 or a.size == 0:
+        raise ModelError(f"{name} must be a non-empty 1-D array of samples", name)
+    if not np.all(np.isfinite(a)):
+        raise ModelError(f"{name} has NaN or infinite samples", name)
+    dt = float(dt)
+    if not np.isfinite(dt) or dt <= 0:
+        raise ModelError(f"dt must be > 0, got {dt}", "dt")
+    return a, dt
+
+
+_STEPPERS: dict = {}
+
+
+def stepper(building: LinearBuilding, dt: float, substeps: int | None = None) -> ExactStepper:
+    """The exact stepper of `building` for record step `dt` (memoised per building object)."""
+    key = (id(building), float(dt), substeps)
+    hit = _STEPPERS.get(key)
+    if hit is not None and hit[0] is building:
+        return hit[1]
+    A, B = building.state_matrices()
+    st = ExactStepper.build(A, B[:, 0], dt, substeps)
+    if len(_STEPPERS) > 64:
+        _STEPPERS.clear()
+    _STEPPERS[key] = (building, st)
+    return st
+
+
+def floor_motions(
+    building: LinearBuilding,
+    ground_acc,
+    dt: float,
+    floors: Sequence[int] | int | None = None,
+    output: str | Sequence[str] = "acceleration",
+    oversample: int = 1,
+    method: str = "exact",
+    substeps: int = 1,
+):
+    """Samples of the building's response to the piecewise-linear ground record.
+
+    Parameters
+    ----------
+    building
+        A :class:`~floorslide.ShearBuilding` or :class:`~floorslide.IsolatedBuilding`.
+    ground_acc
+        Ground acceleration samples, m/s².
+    dt
+        Time step of the record, s.
+    floors
+        Floors (0..N, any order, repeats allowed); default all.
+    output
+        ``"acceleration"`` (absolute, default), ``"displacement"``, ``"velocity"``, ``"drift"``,
+        ``"isolator"`` — or a list of them, in which case a dict name → array is returned.
+    oversample
+        Return samples at ``dt/oversample`` (of the same exact response).
+    method
+        ``"exact"`` (first-order hold, default); approximate: ``"zoh"`` (zero-order hold of the
+        record), ``"newmark"`` (average acceleration on ``dt/substeps``), ``"forced_response"``
+        (python-control's ``forced_response`` as is).
+    substeps
+        Sub-steps per record step for ``"newmark"``.
+
+    Returns
+    -------
+    ndarray or dict
+        ``(len(floors), npts)`` per output kind (``npts = (n−1)·oversample + 1``).
+
+    References
+    ----------
+    Van Loan (1978); Chopra (2012), §5.4 (Newmark's method).
+    """
+    a, dt = check_record(ground_acc, dt, "ground_acc")
+    if method not in METHODS:
+        raise ModelError(f"unknown method {method!r}; expected one of {', '.join(METHODS)}")
+    if int(oversample) != oversample or oversample < 1:
+        raise ModelError(f"oversample must be an integer ≥ 1, got {oversample!r}", "oversample")
+    oversample = int(oversample)
+    kinds = [output] if isinstance(output, str) else list(output)
+    floors = building.check_floors(floors)
+    C, D, _ = building.output_matrices(floors, kinds)
+    if oversample > 1:
+        t_old = np.arange(a.size)
+        a = np.interp(np.arange((a.size - 1) * oversample + 1) / oversample, t_old, a)
+        dt = dt / oversample
+    if method == "exact":
+        st = stepper(building, dt, 1)
+        p, q = st.input_weights()
+        Y = np.empty((C.shape[0], a.size))
+        foh_outputs(st.phi, p, q, C, D[:, 0], a, 1, np.zeros(st.n), Y)
+    elif method == "zoh":
+        A, B = building.state_matrices()
+        phi, g0, _ = foh_matrices(A, B[:, 0], dt)
+        Y = np.empty((C.shape[0], a.size))
+        foh_outputs(phi, g0, np.zeros_like(g0), C, D[:, 0], a, 1, np.zeros(A.shape[0]), Y)
+    elif method == "newmark":
+        Y = _newmark_outputs(building, a, dt, int(substeps), C, D[:, 0])
+    else:
+        ss = building.state_space(floors, kinds)
+        t = np.arange(a.size) * dt
+        Y = np.atleast_2d(control.forced_response(ss, t, a).outputs)
+    if isinstance(output, str):
+        return Y
+    per = len(floors)
+    out, row = {}, 0
+    for kind in kinds:
+        rows = 1 if kind == "isolator" else per
+        out[kind] = Y[row : row + rows]
+        row += rows
+    return out
+
+
+@dataclass(frozen=True)
+class Peaks:
+    """True peaks of building outputs over a record, including peaks inside steps.
+
+    Attributes
+    ----------
+    floors
+        Floors, in the order requested.
+    peak
+        ``max_t |y(t)|`` per floor (m/s² for accelerations).
+    time
+        Time of each peak, s.
+    """
+
+    floors: tuple[int, ...]
+    peak: np.ndarray
+    time: np.ndarray
+
+
+def peak_floor_acceleration(
+    building: LinearBuilding | None,
+    ground_acc,
+    dt: float,
+    floors: Sequence[int] | int | None = None,
+    output: str = "acceleration",
+) -> Peaks:
+    """The true peak floor acceleration (PFA) of each floor, including peaks inside steps.
+
+    Without a building the ground record itself is the motion, whose peak (piecewise linear)
+    is at a sample.
+    """
+    a, dt = check_record(ground_acc, dt, "ground_acc")
+    if building is None:
+        k = int(np.argmax(np.abs(a)))
+        return Peaks((0,), np.array([abs(a[k])]), np.array([k * dt]))
+    floors = building.check_floors(floors)
+    C, D, _ = building.output_matrices(floors, output)
+    st = stepper(building, dt)
+    p, q = st.input_weights()
+    R, beta = st.taylor_rows(C, D[:, 0])
+    peak = np.empty(C.shape[0])
+    tpk = np.empty(C.shape[0])
+    foh_peaks(st.phi, p, q, R, beta, a, st.substeps, st.h, np.zeros(st.n), peak, tpk)
+    return Peaks(tuple(floors), peak, tpk)
+
+
+def _newmark_outputs(building, a, dt, substeps, C, D):
+    if substeps < 1:
+        raise ModelError(f"substeps must be ≥ 1, got {substeps}", "substeps")
+    M = np.diag(building.mass)
+    h = dt / substeps
+    Keff = building.stiffness_matrix + 2.0 / h * building.damping_matrix + 4.0 / h**2 * M
+    Kinv = np.linalg.inv(Keff)
+    Y = np.empty((C.shape[0], a.size))
+    _newmark_kernel(
+        building.mass,
+        building.damping_matrix,
+        building.stiffness_matrix,
+        Kinv,
+        a,
+        h,
+        substeps,
+        C,
+        D,
+        Y,
+    )
+    return Y
+
+
+@njit(cache=True)
+def _newmark_kernel(m, Cd, K, Kinv, acc, h, substeps, C, D, Y):
+    """Newmark average acceleration (γ = 1/2, β = 1/4) on sub-steps, incremental form
+    (Chopra 2012, Table 5.4.2); ground acceleration interpolated linearly."""
+    n = m.size
+    u = np.zeros(n)
+    v = np.zeros(n)
+    acc_rel = np.zeros(n)
+    # initial relative acceleration: M ü = -M a_g - C v - K u
+    for i in range(n):
+        acc_rel[i] = -acc[0]
+    rhs = np.empty(n)
+    du = np.empty(n)
+    npts = acc.size
+    for k in range(npts):
+        ag = acc[k]
+        for r in range(C.shape[0]):
+            s = D[r] * ag
+            for j in range(n):
+                s += C[r, j] * u[j] + C[r, n + j] * v[j]
+            Y[r, k] = s
+        if k == npts - 1:
+            break
+        a1 = acc[k + 1]
+        for sub in range(substeps):
+            ga = ag + (a1 - ag) * (sub / substeps)
+            gb = ag + (a1 - ag) * ((sub + 1) / substeps) if sub + 1 < substeps else a1
+            dp = -(gb - ga)
+            for i in range(n):
+                rhs[i] = m[i] * dp + m[i] * (4.0 / h * v[i] + 2.0 * acc_rel[i])
+                s = 0.0
+                for j in range(n):
+                    s += Cd[i, j] * (2.0 * v[j])
+                rhs[i] += s
+            for i in range(n):
+                s = 0.0
+                for j in range(n):
+                    s += Kinv[i, j] * rhs[j]
+                du[i] = s
+            for i in range(n):
+                dv = 2.0 / h * du[i] - 2.0 * v[i]
+                u[i] += du[i]
+                v[i] += dv
+            # equilibrium acceleration at the end of the sub-step
+            for i in range(n):
+                s = 0.0
+                for j in range(n):
+                    s += Cd[i, j] * v[j] + K[i, j] * u[j]
+                acc_rel[i] = -gb - s / m[i]
