@@ -44,27 +44,41 @@ def foh_outputs(phi, p, q, C, D, acc, substeps, x0, out):
     return x
 
 
+@njit(cache=True, inline="always")
+def _value_and_slope(R, beta, i, x, a, slope):
+    """``y`` and ``y'`` of output ``i`` at a (sub-)step boundary from its Taylor rows."""
+    y = beta[i, 0] * a
+    d = beta[i, 1] * a + beta[i, 0] * slope
+    for j in range(x.size):
+        y += R[i, 0, j] * x[j]
+        d += R[i, 1, j] * x[j]
+    return y, d
+
+
 @njit(cache=True)
 def foh_peaks(phi, p, q, R, beta, acc, substeps, h, x0, peak, t_peak):
     """True peaks ``max |y(t)|`` over the whole record, including inside steps, for outputs
     whose Taylor rows are ``R, beta`` (see :meth:`ExactStepper.taylor_rows`).
 
-    ``peak[i]`` and ``t_peak[i]`` receive the peak of output ``i`` and its time."""
+    ``peak[i]`` and ``t_peak[i]`` receive the peak of output ``i`` and its time. Values and
+    slopes are evaluated at the sub-step boundaries; where the slope changes sign inside a
+    sub-step, the full Taylor polynomial locates the extremum.
+    """
     n = x0.size
     m = R.shape[0]
     K = R.shape[1] - 1
     npts = acc.size
     x = x0.copy()
+    x_prev = x0.copy()
     y = np.empty(n)
     c = np.empty(K + 1)
+    y0 = np.empty(m)
+    d0 = np.empty(m)
+    slope = (acc[1] - acc[0]) / (substeps * h) if npts > 1 else 0.0
     for i in range(m):
-        peak[i] = -1.0
+        y0[i], d0[i] = _value_and_slope(R, beta, i, x, acc[0], slope)
+        peak[i] = abs(y0[i])
         t_peak[i] = 0.0
-    if npts == 1:
-        for i in range(m):
-            taylor_coefficients(R[i], beta[i], x, acc[0], 0.0, c)
-            peak[i] = abs(c[0])
-        return
     for k in range(npts - 1):
         a = acc[k]
         a1 = acc[k + 1]
@@ -73,19 +87,30 @@ def foh_peaks(phi, p, q, R, beta, acc, substeps, h, x0, peak, t_peak):
             aa = a + (a1 - a) * (r / substeps)
             ab = a + (a1 - a) * ((r + 1) / substeps) if r + 1 < substeps else a1
             t0 = (k * substeps + r) * h
-            for i in range(m):
-                taylor_coefficients(R[i], beta[i], x, aa, slope, c)
-                vmin, tmin, vmax, tmax = extreme_values(c, K, 0.0, h)
-                if -vmin > peak[i]:
-                    peak[i] = -vmin
-                    t_peak[i] = t0 + tmin
-                if vmax > peak[i]:
-                    peak[i] = vmax
-                    t_peak[i] = t0 + tmax
+            for i in range(n):
+                x_prev[i] = x[i]
             for i in range(n):
                 s = p[i] * aa + q[i] * ab
                 for j in range(n):
-                    s += phi[i, j] * x[j]
+                    s += phi[i, j] * x_prev[j]
                 y[i] = s
             for i in range(n):
                 x[i] = y[i]
+            for i in range(m):
+                if r == 0:  # the slope of the record changes at samples: recompute y'(0)
+                    y0[i], d0[i] = _value_and_slope(R, beta, i, x_prev, aa, slope)
+                y1, d1 = _value_and_slope(R, beta, i, x, ab, slope)
+                if abs(y1) > peak[i]:
+                    peak[i] = abs(y1)
+                    t_peak[i] = t0 + h
+                if (d0[i] > 0.0 and d1 < 0.0) or (d0[i] < 0.0 and d1 > 0.0):
+                    taylor_coefficients(R[i], beta[i], x_prev, aa, slope, c)
+                    vmin, tmin, vmax, tmax = extreme_values(c, K, 0.0, h)
+                    if -vmin > peak[i]:
+                        peak[i] = -vmin
+                        t_peak[i] = t0 + tmin
+                    if vmax > peak[i]:
+                        peak[i] = vmax
+                        t_peak[i] = t0 + tmax
+                y0[i] = y1
+                d0[i] = d1
