@@ -12,6 +12,7 @@ from floorslide.building import (
     peak_floor_acceleration,
 )
 from floorslide.constants import G
+from floorslide.contents import SlideResult, slide
 from floorslide.errors import (
     FloorslideError,
     ModelError,
@@ -26,8 +27,10 @@ __all__ = [
     "IsolatedBuilding",
     "Rayleigh",
     "ShearBuilding",
+    "SlideResult",
     "floor_motions",
     "peak_floor_acceleration",
+    "slide",
     "FloorslideError",
     "ModelError",
     "RecordError",

@@ -1,0 +1,387 @@
+"""Compiled event-driven kernel of rigid blocks sliding with Coulomb friction on one floor.
+
+One loop over (sub-)steps advances the floor's exact state once and every object on it. The
+floor's absolute acceleration inside a sub-step is the Taylor polynomial of the exact response
+(:mod:`floorslide.building.exact`); on the ground it is the record's own linear segment (a
+"building" with no states). Per object and sub-step, cheap exact tests decide most cases (a
+sticking block whose floor stays below its breakaway level; a slipping block whose relative
+velocity provably keeps its sign); only the rest go through the event search on polynomials.
+
+Object modes: 0 stick, +1 / −1 slip with relative velocity of that sign, 2 flight (lift-off:
+no normal force, no friction).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from floorslide.building._instep import extreme_values, first_rise, poly_val, taylor_coefficients
+
+STICK = 0
+FLIGHT = 2
+
+
+@njit(cache=True, inline="always")
+def _dot_state(row, x):
+    s = 0.0
+    for j in range(x.size):
+        s += row[j] * x[j]
+    return s
+
+
+@njit(cache=True)
+def _general(
+    c,
+    K,
+    h,
+    n0,
+    sn,
+    has_vert,
+    g,
+    mub,
+    muk,
+    allow_pos,
+    allow_neg,
+    t0,
+    state,
+    work,
+):
+    """Advance one object through a sub-step by events, exactly.
+
+    ``c`` holds the Taylor coefficients (degree ``K``) of the floor's absolute acceleration in
+    the sub-step; the normal acceleration is ``n0 + sn·τ`` (``g`` without vertical motion).
+    ``state`` = [mode, v, u, peak_u, t_peak, slide_time, n_slips, peak_abs].
+    ``work`` is scratch of length ≥ 2K + 8.
+    """
+    mode = int(state[0])
+    v = state[1]
+    u = state[2]
+    tau = 0.0
+    if not has_vert:
+        n0 = g
+        sn = 0.0
+    deg_v = K + 1
+    deg_u = K + 2
+    pa = work[0 : K + 1]
+    pv = work[K + 1 : K + 3 + K]
+    pu = work[2 * K + 3 : 3 * K + 6]
+    guard = 0
+    while tau < h and guard < 10000:
+        guard += 1
+        # normal-force interval [tau, tau_end]
+        tau_end = h
+        if has_vert and sn != 0.0:
+            tz = -n0 / sn
+            if tau < tz < h:
+                tau_end = tz
+        n_mid = n0 + sn * 0.5 * (tau + tau_end)
+        airborne = has_vert and n_mid <= 0.0
+        if airborne:
+            # flight: v' = -A, no friction, no events
+            for j in range(deg_v + 1):
+                pv[j] = 0.0
+            for j in range(K + 1):
+                pv[j + 1] = -c[j] / (j + 1)
+            pv[0] = v - poly_val(pv, deg_v, tau)
+            for j in range(deg_u + 1):
+                pu[j] = 0.0
+            for j in range(deg_v + 1):
+                pu[j + 1] = pv[j] / (j + 1)
+            u = u + poly_val(pu, deg_u, tau_end) - poly_val(pu, deg_u, tau)
+            v = poly_val(pv, deg_v, tau_end)
+            mode = FLIGHT
+            tau = tau_end
+            if abs(u) > state[3]:
+                state[3] = abs(u)
+                state[4] = t0 + tau
+            continue
+        if mode == FLIGHT:
+            if v > 0.0:
+                mode = 1
+                state[6] += 1
+            elif v < 0.0:
+                mode = -1
+                state[6] += 1
+            else:
+                mode = STICK
+        if mode == STICK:
+            # first instant the floor acceleration leaves [-mub N, mub N] in an allowed way
+            t_up = -1.0
+            t_lo = -1.0
+            if allow_neg:
+                for j in range(K + 1):
+                    pa[j] = c[j]
+                pa[0] -= mub * n0
+                if K >= 1:
+                    pa[1] -= mub * sn
+                t_up = first_rise(pa, K, tau, tau_end, 0.0)
+            if allow_pos:
+                for j in range(K + 1):
+                    pa[j] = -c[j]
+                pa[0] -= mub * n0
+                if K >= 1:
+                    pa[1] -= mub * sn
+                t_lo = first_rise(pa, K, tau, tau_end, 0.0)
+            t_ev = -1.0
+            new_mode = STICK
+            if t_up >= 0.0 and (t_lo < 0.0 or t_up <= t_lo):
+                t_ev = t_up
+                new_mode = -1
+            elif t_lo >= 0.0:
+                t_ev = t_lo
+                new_mode = 1
+            t_stop = tau_end if t_ev < 0.0 else t_ev
+            # the object moves with its floor on [tau, t_stop]
+            amin, _, amax, _ = extreme_values(c, K, tau, t_stop)
+            a_abs = max(amax, -amin)
+            if a_abs > state[7]:
+                state[7] = a_abs
+            if t_ev < 0.0:
+                tau = tau_end
+            else:
+                tau = t_ev
+                mode = new_mode
+                v = 0.0
+                state[6] += 1
+            continue
+        # slipping in direction s
+        s = float(mode)
+        for j in range(deg_v + 1):
+            pv[j] = 0.0
+        for j in range(K + 1):
+            pv[j + 1] = -c[j] / (j + 1)
+        pv[1] -= s * muk * n0
+        pv[2] -= s * muk * sn * 0.5
+        pv[0] = v - poly_val(pv, deg_v, tau)
+        # stop: first τ where -s·v(τ) rises above 0
+        for j in range(deg_v + 1):
+            pa_j = -s * pv[j]
+            work[3 * K + 6 + j] = pa_j
+        pstop = work[3 * K + 6 : 3 * K + 7 + deg_v]
+        t_s = first_rise(pstop, deg_v, tau, tau_end, 0.0)
+        t_stop = tau_end if t_s < 0.0 else t_s
+        for j in range(deg_u + 1):
+            pu[j] = 0.0
+        for j in range(deg_v + 1):
+            pu[j + 1] = pv[j] / (j + 1)
+        u = u + poly_val(pu, deg_u, t_stop) - poly_val(pu, deg_u, tau)
+        fk = muk * max(n0 + sn * tau, n0 + sn * t_stop)
+        if fk > state[7]:
+            state[7] = fk
+        state[5] += t_stop - tau
+        if abs(u) > state[3]:
+            state[3] = abs(u)
+            state[4] = t0 + t_stop
+        if t_s < 0.0:
+            v = poly_val(pv, deg_v, tau_end)
+            tau = tau_end
+            continue
+        # the relative velocity reached zero: stick, or slip on the other way (Westermo &
+        # Udwadia 1983) if the floor acceleration exceeds the breakaway level right now
+        v = 0.0
+        tau = t_s
+        a_now = poly_val(c, K, tau)
+        fb = mub * (n0 + sn * tau)
+        if a_now > fb and allow_neg:
+            mode = -1
+            state[6] += 1
+        elif a_now < -fb and allow_pos:
+            mode = 1
+            state[6] += 1
+        else:
+            mode = STICK
+    state[0] = mode
+    state[1] = v
+    state[2] = u
+
+
+@njit(cache=True)
+def slide_kernel(
+    phi,
+    p,
+    q,
+    R,
+    beta,
+    rv,
+    rd,
+    acc,
+    vert,
+    has_vert,
+    substeps,
+    h,
+    g,
+    mub,
+    muk,
+    allow_pos,
+    allow_neg,
+    states,
+    hist_u,
+    hist_v,
+    hist_a,
+    want_hist,
+    liftoff,
+):
+    """Rigid blocks on one floor, exact for the piecewise-linear ground record.
+
+    Parameters
+    ----------
+    phi, p, q
+        Exact sub-step recurrence of the building (``x_{j+1} = Φ x_j + p a_j + q a_{j+1}``);
+        empty for the ground.
+    R, beta
+        Taylor rows of the floor's absolute acceleration (``(K+1, n)``, ``(K+1,)``).
+    rv, rd
+        Rows of the floor's velocity and displacement relative to the ground.
+    acc
+        Ground acceleration samples, m/s².
+    vert
+        Vertical ground acceleration samples (used when ``has_vert``), m/s².
+    substeps, h
+        Sub-steps per record step and their length, s.
+    g
+        Gravity, m/s².
+    mub, muk
+        Breakaway ``max(mu_s, mu_k)`` and kinetic friction coefficients, one per object.
+    allow_pos, allow_neg
+        Whether slip with positive / negative relative velocity is allowed.
+    states
+        ``(n_obj, 8)`` in/out: mode, v, u, peak |u|, time of peak, slide time, slip phases,
+        peak object absolute acceleration.
+    hist_u, hist_v, hist_a
+        ``(n_obj, npts)`` histories at the samples when ``want_hist``.
+    liftoff
+        ``[lift-off time, number of lift-off intervals]`` out.
+    """
+    n = phi.shape[0]
+    K = R.shape[0] - 1
+    nobj = muk.size
+    npts = acc.size
+    x = np.zeros(n)
+    x_prev = np.zeros(n)
+    y = np.empty(n)
+    c = np.empty(K + 1)
+    work = np.empty(4 * K + 16)
+    st = np.empty(8)
+    in_lift = False
+    # floor values at the very start
+    a_start = beta[0] * acc[0]
+    for i in range(nobj):
+        if abs(a_start) > states[i, 7]:
+            states[i, 7] = abs(a_start)
+        if want_hist:
+            hist_u[i, 0] = states[i, 2]
+            hist_v[i, 0] = states[i, 1]
+            hist_a[i, 0] = a_start
+    for k in range(npts - 1):
+        a = acc[k]
+        a1 = acc[k + 1]
+        slope = (a1 - a) / (substeps * h)
+        if has_vert:
+            va = vert[k]
+            vslope = (vert[k + 1] - va) / (substeps * h)
+        else:
+            va = 0.0
+            vslope = 0.0
+        for r in range(substeps):
+            aa = a + (a1 - a) * (r / substeps)
+            ab = a + (a1 - a) * ((r + 1) / substeps) if r + 1 < substeps else a1
+            t0 = (k * substeps + r) * h
+            for i in range(n):
+                x_prev[i] = x[i]
+            for i in range(n):
+                s = p[i] * aa + q[i] * ab
+                for j in range(n):
+                    s += phi[i, j] * x_prev[j]
+                y[i] = s
+            for i in range(n):
+                x[i] = y[i]
+            # shared floor quantities of this sub-step
+            A0 = _dot_state(R[0], x_prev) + beta[0] * aa
+            J0 = _dot_state(R[1], x_prev) + beta[1] * aa + beta[0] * slope
+            A1 = _dot_state(R[0], x) + beta[0] * ab
+            J1 = _dot_state(R[1], x) + beta[1] * ab + beta[0] * slope
+            have_c = False
+            if (J0 > 0.0 and J1 < 0.0) or (J0 < 0.0 and J1 > 0.0):
+                taylor_coefficients(R, beta, x_prev, aa, slope, c)
+                have_c = True
+                amin, _, amax, _ = extreme_values(c, K, 0.0, h)
+            else:
+                amin = min(A0, A1)
+                amax = max(A0, A1)
+            vr0 = _dot_state(rv, x_prev)
+            dV = _dot_state(rv, x) - vr0 + 0.5 * h * (aa + ab)
+            dD = _dot_state(rd, x) - _dot_state(rd, x_prev) - vr0 * h
+            dD += aa * h * h / 2.0 + slope * h * h * h / 6.0
+            if has_vert:
+                n0 = g + va + vslope * (r * h)
+                sn = vslope
+                n1 = n0 + sn * h
+                nmin = min(n0, n1)
+                nmax = max(n0, n1)
+                if nmin <= 0.0:
+                    if not in_lift:
+                        liftoff[1] += 1
+                    in_lift = True
+                    liftoff[0] += h if nmax <= 0.0 else h * (-min(n0, n1)) / (nmax - nmin)
+                    if nmax > 0.0:
+                        in_lift = n1 <= 0.0
+                else:
+                    in_lift = False
+                nint = 0.5 * (n0 + n1) * h
+                nint2 = n0 * h * h / 2.0 + sn * h * h * h / 6.0
+            else:
+                n0 = g
+                sn = 0.0
+                nmin = g
+                nmax = g
+                nint = g * h
+                nint2 = g * h * h / 2.0
+            for i in range(nobj):
+                mode = states[i, 0]
+                if mode == 0.0 and nmin > 0.0:
+                    fb = mub[i] * nmin
+                    if (amax <= fb or not allow_neg) and (amin >= -fb or not allow_pos):
+                        ab_abs = max(amax, -amin)
+                        if ab_abs > states[i, 7]:
+                            states[i, 7] = ab_abs
+                        continue
+                elif (mode == 1.0 or mode == -1.0) and nmin > 0.0:
+                    sgn = mode
+                    v = states[i, 1]
+                    v_end = v - dV - sgn * muk[i] * nint
+                    fk = muk[i] * nmin
+                    monotone = (amin > -fk) if sgn > 0.0 else (amax < fk)
+                    if monotone and sgn * v_end > 0.0:
+                        u = states[i, 2] + v * h - dD - sgn * muk[i] * nint2
+                        states[i, 1] = v_end
+                        states[i, 2] = u
+                        states[i, 5] += h
+                        if abs(u) > states[i, 3]:
+                            states[i, 3] = abs(u)
+                            states[i, 4] = t0 + h
+                        if muk[i] * nmax > states[i, 7]:
+                            states[i, 7] = muk[i] * nmax
+                        continue
+                if not have_c:
+                    taylor_coefficients(R, beta, x_prev, aa, slope, c)
+                    have_c = True
+                for j in range(8):
+                    st[j] = states[i, j]
+                _general(
+                    c, K, h, n0, sn, has_vert, g, mub[i], muk[i], allow_pos, allow_neg, t0, st, work
+                )
+                for j in range(8):
+                    states[i, j] = st[j]
+            if want_hist and r == substeps - 1:
+                for i in range(nobj):
+                    hist_u[i, k + 1] = states[i, 2]
+                    hist_v[i, k + 1] = states[i, 1]
+                    m = states[i, 0]
+                    if m == 0.0:
+                        hist_a[i, k + 1] = A1
+                    elif m == FLIGHT:
+                        hist_a[i, k + 1] = 0.0
+                    else:
+                        nn = n0 + sn * h
+                        hist_a[i, k + 1] = -m * muk[i] * (nn if nn > 0.0 else 0.0)
