@@ -134,7 +134,9 @@ def _general(
             t_stop = tau_end if t_ev < 0.0 else t_ev
             # the object moves with its floor on [tau, t_stop]
             amin, _, amax, _ = extreme_values(c, K, tau, t_stop)
-            a_abs = max(amax, -amin)
+            # friction transmits at most mub·N (this only trims the rounding-level overshoot at
+            # a breakaway and a floor already beyond breakaway at t = 0)
+            a_abs = min(max(amax, -amin), mub * max(n0 + sn * tau, n0 + sn * t_stop))
             if a_abs > state[7]:
                 state[7] = a_abs
             if t_ev < 0.0:
@@ -266,9 +268,13 @@ def slide_kernel(
     in_lift = False
     # floor values at the very start
     a_start = beta[0] * acc[0]
+    n_start = g + vert[0] if has_vert else g
     for i in range(nobj):
-        if abs(a_start) > states[i, 7]:
-            states[i, 7] = abs(a_start)
+        # friction transmits at most mub·N: a block on a floor already beyond it at t = 0
+        # slides from the start
+        a_obj = min(abs(a_start), mub[i] * max(n_start, 0.0))
+        if a_obj > states[i, 7]:
+            states[i, 7] = a_obj
         if want_hist:
             hist_u[i, 0] = states[i, 2]
             hist_v[i, 0] = states[i, 1]
