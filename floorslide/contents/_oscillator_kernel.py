@@ -1,0 +1,220 @@
+"""Compiled event-driven kernel of the 2-DOF sliding oscillator (Westermo & Udwadia 1983;
+Brochard & Gantenbein 1989).
+
+Per unit top mass: a top mass on a spring (circular frequency ``w``, damping ratio ``xi``) over a
+base of mass ratio ``r = m_base/m_top`` that slides on its floor with Coulomb friction under the
+normal force ``(1 + r)·g``. State ``y = [u, v, z, zd]``: base slide relative to the floor and its
+velocity, spring deformation (top relative to base) and its rate.
+
+Stick (``v = 0``): ``z'' = −a_f − 2ξw z' − w² z``; the friction force needed is
+``F = r a_f − 2ξw z' − w² z`` (per unit top mass), admissible while ``|F| ≤ mu_s (1+r) g``.
+Slip with sign ``s``: ``v' = −a_f + q/r − s mu_k (1+r) g / r`` and
+``z'' = −q (1 + 1/r) + s mu_k (1+r) g / r`` with ``q = 2ξw z' + w² z``.
+
+Inside each sub-step the state is the Taylor polynomial of the exact solution of the linear
+system of the current phase, driven by the floor's Taylor polynomial; events (breakaway, stop,
+reversal) are roots of polynomials; no penalty stiffness anywhere.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from floorslide.building._instep import extreme_values, first_rise, poly_val, taylor_coefficients
+
+
+@njit(cache=True)
+def _shift(c, K, tau, out):
+    """Coefficients of ``p(tau + σ)`` in σ (Taylor shift, Horner scheme)."""
+    for j in range(K + 1):
+        out[j] = c[j]
+    for i in range(K):
+        for j in range(K - 1, i - 1, -1):
+            out[j] += tau * out[j + 1]
+
+
+@njit(cache=True)
+def _phase_series(y, mode, cs, K, w, xi, r, fk, start, Y):
+    """Taylor coefficients ``Y[4, K+1]`` of the state in the current phase, driven by the floor
+    acceleration polynomial ``cs`` (local time).
+
+    A slip phase that `start`s from rest at a breakaway has ``v'(0) = 0`` exactly when the
+    friction force sits at its limit; rounding must not give ``v'(0)`` the sign opposite to the
+    slip, which would stop it at once and chatter (Zeno) — such a slope is set to 0.
+    """
+    for i in range(4):
+        Y[i, 0] = y[i]
+    c2 = 2.0 * xi * w
+    w2 = w * w
+    for j in range(K):
+        v, z, zd = Y[1, j], Y[2, j], Y[3, j]
+        q = c2 * zd + w2 * z
+        const = 1.0 if j == 0 else 0.0
+        if mode == 0:
+            du = 0.0
+            dv = 0.0
+            dzd = -cs[j] - q
+        else:
+            s = float(mode)
+            du = v
+            dv = -cs[j] + q / r - const * s * fk * (1.0 + r) / r
+            dzd = -q * (1.0 + 1.0 / r) + const * s * fk * (1.0 + r) / r
+            if start and j == 0 and s * dv < 0.0:
+                dv = 0.0
+        Y[0, j + 1] = du / (j + 1)
+        Y[1, j + 1] = dv / (j + 1)
+        Y[2, j + 1] = zd / (j + 1)
+        Y[3, j + 1] = dzd / (j + 1)
+
+
+@njit(cache=True)
+def _update_peak(poly, K, lo, hi, peaks, idx):
+    vmin, _, vmax, _ = extreme_values(poly, K, lo, hi)
+    m = max(vmax, -vmin)
+    if m > peaks[idx]:
+        peaks[idx] = m
+
+
+@njit(cache=True)
+def oscillator_kernel(
+    phi, p, q, R, beta, acc, substeps, h, K, w, xi, r, g, mub, muk, states, hist, want_hist
+):
+    """Advance 2-DOF sliding oscillators (one per friction pair) through the record.
+
+    ``states[i]`` = [mode, u, v, z, zd, peak|u|, peak|z|, peak|a_top|, peak|a_base|, slide time,
+    slip phases]; ``hist[i, k]`` = [u, z, a_top, a_base] at the samples when ``want_hist``.
+    """
+    n = phi.shape[0]
+    nobj = muk.size
+    npts = acc.size
+    x = np.zeros(n)
+    x_prev = np.zeros(n)
+    xn = np.empty(n)
+    c = np.zeros(K + 1)
+    cs = np.zeros(K + 1)
+    Y = np.zeros((4, K + 1))
+    poly = np.zeros(K + 1)
+    y = np.zeros(4)
+    pk = np.zeros(4)
+    c2 = 2.0 * xi * w
+    w2 = w * w
+    kr = R.shape[0] - 1
+    for k in range(npts - 1):
+        a = acc[k]
+        a1 = acc[k + 1]
+        slope = (a1 - a) / (substeps * h)
+        for sub in range(substeps):
+            aa = a + (a1 - a) * (sub / substeps)
+            ab = a + (a1 - a) * ((sub + 1) / substeps) if sub + 1 < substeps else a1
+            for i in range(n):
+                x_prev[i] = x[i]
+            for i in range(n):
+                s_ = p[i] * aa + q[i] * ab
+                for j in range(n):
+                    s_ += phi[i, j] * x_prev[j]
+                xn[i] = s_
+            for i in range(n):
+                x[i] = xn[i]
+            for j in range(K + 1):
+                c[j] = 0.0
+            taylor_coefficients(R, beta, x_prev, aa, slope, c[: kr + 1])
+            for o in range(nobj):
+                mode = int(states[o, 0])
+                for i in range(4):
+                    y[i] = states[o, 1 + i]
+                for i in range(4):
+                    pk[i] = states[o, 5 + i]
+                fb = mub[o] * (1.0 + r) * g
+                fk = muk[o]
+                tau = 0.0
+                guard = 0
+                start = False
+                while tau < h and guard < 1000:
+                    guard += 1
+                    _shift(c, K, tau, cs)
+                    _phase_series(y, mode, cs, K, w, xi, r, fk * g, start, Y)
+                    start = False
+                    span = h - tau
+                    t_ev = -1.0
+                    new_mode = mode
+                    if mode == 0:
+                        # F(σ) = r a_f − 2ξw z' − w² z
+                        for j in range(K + 1):
+                            poly[j] = r * cs[j] - c2 * Y[3, j] - w2 * Y[2, j]
+                        poly[0] -= fb
+                        t_up = first_rise(poly, K, 0.0, span, 0.0)
+                        for j in range(K + 1):
+                            poly[j] = -(r * cs[j] - c2 * Y[3, j] - w2 * Y[2, j])
+                        poly[0] -= fb
+                        t_lo = first_rise(poly, K, 0.0, span, 0.0)
+                        if t_up >= 0.0 and (t_lo < 0.0 or t_up <= t_lo):
+                            t_ev, new_mode = t_up, -1
+                        elif t_lo >= 0.0:
+                            t_ev, new_mode = t_lo, 1
+                    else:
+                        sgn = float(mode)
+                        for j in range(K + 1):
+                            poly[j] = -sgn * Y[1, j]
+                        t_ev = first_rise(poly, K, 0.0, span, 0.0)
+                    t_end = span if t_ev < 0.0 else t_ev
+                    # peaks on [0, t_end]
+                    for j in range(K + 1):
+                        poly[j] = Y[0, j]
+                    _update_peak(poly, K, 0.0, t_end, pk, 0)
+                    for j in range(K + 1):
+                        poly[j] = Y[2, j]
+                    _update_peak(poly, K, 0.0, t_end, pk, 1)
+                    for j in range(K + 1):
+                        poly[j] = -(c2 * Y[3, j] + w2 * Y[2, j])
+                    _update_peak(poly, K, 0.0, t_end, pk, 2)
+                    if mode == 0:
+                        for j in range(K + 1):
+                            poly[j] = cs[j]
+                        vmin, _, vmax, _ = extreme_values(poly, K, 0.0, t_end)
+                        m = max(vmax, -vmin)
+                        if m > pk[3]:
+                            pk[3] = m
+                    else:
+                        sgn = float(mode)
+                        for j in range(K + 1):
+                            poly[j] = (c2 * Y[3, j] + w2 * Y[2, j]) / r
+                        poly[0] -= sgn * fk * g * (1.0 + r) / r
+                        _update_peak(poly, K, 0.0, t_end, pk, 3)
+                        states[o, 9] += t_end
+                    for i in range(4):
+                        y[i] = poly_val(Y[i], K, t_end)
+                    tau += t_end
+                    if t_ev < 0.0:
+                        break
+                    if mode != 0:
+                        y[1] = 0.0
+                        # stop: stick, or reverse at once if friction cannot hold the base
+                        fnow = r * poly_val(cs, K, t_end) - c2 * y[3] - w2 * y[2]
+                        if fnow > fb:
+                            new_mode = -1
+                        elif fnow < -fb:
+                            new_mode = 1
+                        else:
+                            new_mode = 0
+                    else:
+                        y[1] = 0.0
+                    if new_mode != 0:
+                        states[o, 10] += 1
+                        start = True
+                    mode = new_mode
+                states[o, 0] = mode
+                for i in range(4):
+                    states[o, 1 + i] = y[i]
+                for i in range(4):
+                    states[o, 5 + i] = pk[i]
+                if want_hist and sub == substeps - 1:
+                    af_end = poly_val(c, K, h)
+                    q_ = c2 * y[3] + w2 * y[2]
+                    hist[o, k + 1, 0] = y[0]
+                    hist[o, k + 1, 1] = y[2]
+                    hist[o, k + 1, 2] = -q_
+                    if mode == 0:
+                        hist[o, k + 1, 3] = af_end
+                    else:
+                        hist[o, k + 1, 3] = q_ / r - float(mode) * fk * g * (1.0 + r) / r
