@@ -104,7 +104,7 @@ def sliding_oscillator(acc, dt, mu, f, xi, r, g=9.80665, rtol=1e-12, max_step=No
             lo_, hi_ = ts[max(i - 1, 0)], ts[min(i + 1, ts.size - 1)]
             if hi_ > lo_:  # refine the in-segment extremum of |z| on the dense output
                 best = minimize_scalar(
-                    lambda tt: -abs(sol.sol(tt)[2]),
+                    lambda tt, sol=sol: -abs(sol.sol(tt)[2]),
                     bounds=(lo_, hi_),
                     method="bounded",
                     options={"xatol": 1e-14},
