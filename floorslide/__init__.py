@@ -21,6 +21,7 @@ from floorslide.errors import (
     SceneError,
     UnitsError,
 )
+from floorslide.records import measures, process, read_catalog, read_record
 
 __all__ = [
     "G",
@@ -37,4 +38,8 @@ __all__ = [
     "ResultFileError",
     "SceneError",
     "UnitsError",
+    "measures",
+    "process",
+    "read_catalog",
+    "read_record",
 ]

@@ -1,1 +1,23 @@
-"""."""
+"""Records: reading accelerograms (formats as ObsPy plugins), catalogs, processing, measures.
+
+DESIGN §1 steps 1–2: any accelerogram file becomes an :class:`obspy.Trace` in m/s² with its
+metadata (:func:`read_record`, :func:`read_catalog`), processed only as asked (:func:`process`),
+and described by exact intensity measures (:func:`measures`).
+"""
+
+from floorslide.records.catalog import RecordFailure, load_catalog, read_catalog
+from floorslide.records.measures import measures
+from floorslide.records.process import process
+from floorslide.records.read import read_record
+from floorslide.records.units import canonical_units, to_si_factor
+
+__all__ = [
+    "RecordFailure",
+    "canonical_units",
+    "load_catalog",
+    "measures",
+    "process",
+    "read_catalog",
+    "read_record",
+    "to_si_factor",
+]

@@ -1,0 +1,386 @@
+"""Record catalogs (flatfiles): a CSV with one row per record.
+
+A catalog has at least the columns ``file``, ``dt`` and ``units``; every other column (event,
+station, magnitude, distance, set, ...) is metadata, kept with the record. For example the
+bundled ``data/records/slammer/index.csv``::
+
+    file,set,event,magnitude,station,station_id,...,dt,npts,units,pga_g
+    ImperialValley_1979_EMO-270.txt,pulse-like,Imperial Valley 1979,6.5,Meloland Overpass,...
+
+Rules:
+
+- ``file`` is relative to the catalog's folder (an absolute path is used as is);
+- ``dt`` (s) and ``units`` may be left empty for a self-describing format (AT2, COSMOS, text
+  with a header), and must agree with the file when both are given;
+- optional columns ``format`` and ``component`` are passed to
+  :func:`~floorslide.records.read.read_record`;
+- column names are matched case-insensitively, values are kept as the strings of the CSV
+  (standard CSV quoting, so ``"Saratoga, Aloha Ave."`` is one field); rows starting with ``#``
+  are comments;
+- every column of the row is kept in ``trace.stats.catalog`` (strings), the catalog and line in
+  ``trace.stats.catalog_file`` / ``trace.stats.catalog_line``, and the ``event``, ``station``
+  and ``component`` columns fill ``stats.record.event`` / ``.station`` / ``.component`` where
+  the file itself does not name them.
+
+:func:`read_catalog` reads the records; :func:`load_catalog` returns the rows as
+:class:`CatalogEntry` objects without reading them (for progress bars, dry runs, or reading
+one at a time). The same rows serve as *sidecar* for :func:`~floorslide.records.read.read_record`
+when it reads a bare text file listed in an ``index.csv`` next to it.
+"""
+
+from __future__ import annotations
+
+import csv
+import os
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Literal, overload
+
+import numpy as np
+from obspy import Stream, Trace
+from obspy.core import AttribDict
+
+from floorslide.errors import RecordError, UnitsError
+from floorslide.records.units import canonical_units
+
+REQUIRED_COLUMNS = ("file", "dt", "units")
+
+
+@dataclass(frozen=True, eq=False)
+class CatalogEntry:
+    """One row of a record catalog.
+
+    Attributes
+    ----------
+    catalog
+        The catalog file.
+    line
+        1-based line of the row in the catalog.
+    path
+        The record file (resolved against the catalog's folder).
+    row
+        All columns of the row, as strings, keyed by lower-case column name.
+    """
+
+    catalog: Path
+    line: int
+    path: Path
+    row: dict[str, str] = field(default_factory=dict)
+
+    @property
+    def where(self) -> str:
+        """``catalog:line`` for messages."""
+        return f"{self.catalog}:{self.line}"
+
+    @property
+    def dt(self) -> float | None:
+        """Time step in s from the ``dt`` column (None if empty)."""
+        text = self.row.get("dt", "").strip()
+        if not text:
+            return None
+        try:
+            value = float(text)
+        except ValueError:
+            raise RecordError(f"dt {text!r} is not a number of seconds", self.where) from None
+        if not np.isfinite(value) or value <= 0:
+            raise RecordError(f"dt {text}: the time step must be > 0 s", self.where)
+        return value
+
+    @property
+    def units(self) -> str | None:
+        """Canonical units from the ``units`` column (None if empty)."""
+        text = self.row.get("units", "").strip()
+        if not text:
+            return None
+        try:
+            return canonical_units(text)
+        except UnitsError as exc:
+            raise UnitsError(exc.message, self.where) from None
+
+    @property
+    def format(self) -> str | None:
+        """The ``format`` column, if present and not empty."""
+        return self.row.get("format", "").strip() or None
+
+    @property
+    def component(self) -> str | None:
+        """The ``component`` column, if present and not empty."""
+        return self.row.get("component", "").strip() or None
+
+    def read(self) -> Stream:
+        """Read the record of this row (with its metadata attached).
+
+        Raises
+        ------
+        RecordError
+            Naming the record file, with the catalog line appended.
+        """
+        from floorslide.records.read import _read_record
+
+        try:
+            stream = _read_record(
+                self.path, self.format, self.units, self.dt, self.component, sidecar=False
+            )
+        except RecordError as exc:
+            raise type(exc)(
+                f"{exc.message} (listed in {self.catalog.name} line {self.line})",
+                where=exc.where or str(self.path),
+            ) from None
+        for trace in stream:
+            self.attach(trace)
+        return stream
+
+    def attach(self, trace: Trace) -> None:
+        """Keep this row's columns in ``trace.stats`` (see the module notes)."""
+        stats = trace.stats
+        stats.catalog = AttribDict(dict(self.row))
+        stats.catalog_file = str(self.catalog)
+        stats.catalog_line = self.line
+        record = stats.setdefault("record", AttribDict())
+        for key in ("event", "station", "component"):
+            value = self.row.get(key, "").strip()
+            if value and not record.get(key):
+                record[key] = value
+
+
+@dataclass(frozen=True)
+class RecordFailure:
+    """A catalog row whose record could not be read (``errors="collect"``).
+
+    Attributes
+    ----------
+    entry
+        The catalog row.
+    error
+        What went wrong; ``str(error)`` is the one-line message naming the file.
+    """
+
+    entry: CatalogEntry
+    error: RecordError
+
+    @property
+    def path(self) -> Path:
+        """The record file of the failed row."""
+        return self.entry.path
+
+    def __str__(self) -> str:
+        return str(self.error)
+
+
+def _header(path: Path) -> list[str] | None:
+    """The lower-cased column names of a CSV file's first line, or None if unreadable."""
+    try:
+        with open(path, newline="", encoding="utf-8-sig") as fh:
+            first = fh.readline(65536)
+    except (OSError, UnicodeDecodeError):
+        return None
+    if not first.strip():
+        return None
+    try:
+        cells = next(csv.reader([first], skipinitialspace=True))
+    except csv.Error:
+        return None
+    return [c.strip().lower() for c in cells]
+
+
+def is_catalog(path: str | os.PathLike) -> bool:
+    """True if ``path`` is a CSV whose header has the columns ``file``, ``dt`` and ``units``.
+
+    Cheap (reads the first line) and never raises.
+    """
+    path = Path(path)
+    if not path.is_file():
+        return False
+    columns = _header(path)
+    return columns is not None and all(c in columns for c in REQUIRED_COLUMNS)
+
+
+def _matches(row: Mapping[str, str], where: Mapping[str, object]) -> bool:
+    for key, wanted in where.items():
+        value = row.get(key, "").strip()
+        if isinstance(wanted, str) or not isinstance(wanted, Iterable):
+            if value != str(wanted).strip():
+                return False
+        elif value not in {str(w).strip() for w in wanted}:
+            return False
+    return True
+
+
+def load_catalog(
+    path: str | os.PathLike, where: Mapping[str, object] | None = None
+) -> list[CatalogEntry]:
+    """The rows of a record catalog, filtered, without reading the records.
+
+    Parameters
+    ----------
+    path
+        The catalog CSV file.
+    where
+        Filter on columns: ``{"set": "pulse-like"}`` keeps the rows whose ``set`` is
+        ``pulse-like``; a list value keeps any of its values (``{"station_id": ["EMO-270",
+        "EDA-270"]}``). Values are compared as strings (``6.5`` matches ``"6.5"``, not
+        ``"6.50"``); several keys must all match.
+
+    Returns
+    -------
+    list of CatalogEntry
+        In the order of the file.
+
+    Raises
+    ------
+    RecordError
+        If the catalog is missing, unreadable, lacks a required column, has a malformed row
+        (wrong number of fields, empty ``file``), or ``where`` names a column it does not have.
+    """
+    path = Path(path)
+    where_str = str(path)
+    if not path.exists():
+        raise RecordError("no such catalog file", where=where_str)
+    if path.is_dir():
+        raise RecordError("is a directory, not a catalog CSV file", where=where_str)
+    try:
+        with open(path, newline="", encoding="utf-8-sig") as fh:
+            rows = list(_rows(fh, path))
+    except UnicodeDecodeError:
+        raise RecordError("not a text CSV file", where=where_str) from None
+    except OSError as exc:
+        raise RecordError(f"cannot read catalog: {exc.strerror or exc}", where_str) from None
+    except csv.Error as exc:
+        raise RecordError(f"malformed CSV: {exc}", where=where_str) from None
+    if not rows:
+        raise RecordError("empty catalog (no header line)", where=where_str)
+    columns = rows[0][1]
+    if where:
+        unknown = [key for key in where if key.lower() not in columns]
+        if unknown:
+            raise RecordError(
+                f"where: no column {unknown[0]!r} in the catalog (columns: {', '.join(columns)})",
+                where=where_str,
+            )
+        where = {key.lower(): value for key, value in where.items()}
+    entries = []
+    for line, cells in rows[1:]:
+        if len(cells) != len(columns):
+            raise RecordError(
+                f"{len(cells)} fields where the header has {len(columns)}",
+                where=f"{path}:{line}",
+            )
+        row = dict(zip(columns, (c.strip() for c in cells), strict=True))
+        if where and not _matches(row, where):
+            continue
+        if not row["file"]:
+            raise RecordError("empty 'file' column", where=f"{path}:{line}")
+        entries.append(CatalogEntry(path, line, path.parent / row["file"], row))
+    return entries
+
+
+def _rows(fh, path: Path):
+    """(line, cells) of the header and the data rows; checks the required columns."""
+    reader = csv.reader(fh, skipinitialspace=True)
+    header_seen = False
+    for cells in reader:
+        if not cells or not "".join(cells).strip() or cells[0].lstrip().startswith("#"):
+            continue
+        if not header_seen:
+            columns = [c.strip().lower() for c in cells]
+            missing = [c for c in REQUIRED_COLUMNS if c not in columns]
+            if missing:
+                raise RecordError(
+                    f"not a record catalog: no column {', '.join(map(repr, missing))} "
+                    f"(a catalog needs the columns {', '.join(REQUIRED_COLUMNS)})",
+                    where=str(path),
+                )
+            duplicated = sorted({c for c in columns if columns.count(c) > 1})
+            if duplicated:
+                raise RecordError(f"duplicated column {duplicated[0]!r}", where=str(path))
+            header_seen = True
+            yield reader.line_num, columns
+            continue
+        yield reader.line_num, cells
+
+
+def find_entry(catalog: str | os.PathLike, record: str | os.PathLike) -> CatalogEntry | None:
+    """The row of ``catalog`` that lists the file ``record``, or None (never raises for a
+    catalog that is not one: a sidecar is optional)."""
+    target = Path(record).resolve()
+    try:
+        entries = load_catalog(catalog)
+    except RecordError:
+        return None
+    for entry in entries:
+        if entry.path.resolve() == target:
+            return entry
+    return None
+
+
+@overload
+def read_catalog(
+    path: str | os.PathLike,
+    where: Mapping[str, object] | None = None,
+    errors: Literal["raise"] = "raise",
+) -> list[Trace]: ...
+
+
+@overload
+def read_catalog(
+    path: str | os.PathLike,
+    where: Mapping[str, object] | None = None,
+    *,
+    errors: Literal["collect"],
+) -> tuple[list[Trace], list[RecordFailure]]: ...
+
+
+def read_catalog(
+    path: str | os.PathLike,
+    where: Mapping[str, object] | None = None,
+    errors: Literal["raise", "collect"] = "raise",
+) -> list[Trace] | tuple[list[Trace], list[RecordFailure]]:
+    """Read the records a catalog lists.
+
+    Parameters
+    ----------
+    path
+        The catalog CSV (see the module notes for its columns).
+    where
+        Filter on catalog columns, e.g. ``{"set": "pulse-like"}`` (see :func:`load_catalog`).
+    errors
+        ``"raise"`` (default): the first unreadable record raises its RecordError.
+        ``"collect"``: unreadable records are skipped and returned as :class:`RecordFailure`
+        objects, so that a batch keeps going (DESIGN §9).
+
+    Returns
+    -------
+    list of obspy.Trace
+        With ``errors="raise"``: the traces, in catalog order (a multi-trace file without a
+        ``component`` column gives all its traces), data in m/s² as from
+        :func:`~floorslide.records.read.read_record`, and the row in ``stats.catalog``.
+    tuple of (list of obspy.Trace, list of RecordFailure)
+        With ``errors="collect"``.
+
+    Raises
+    ------
+    RecordError
+        For a malformed catalog (always), or an unreadable record (``errors="raise"``).
+
+    Examples
+    --------
+    >>> traces = read_catalog("data/records/slammer/index.csv", where={"set": "pulse-like"})
+    >>> len(traces), traces[0].stats.catalog.event
+    (18, 'Imperial Valley 1979')
+    >>> traces, failures = read_catalog("data/records/slammer/index.csv", errors="collect")
+    >>> len(traces), failures
+    (36, [])
+    """
+    if errors not in ("raise", "collect"):
+        raise ValueError(f"errors must be 'raise' or 'collect', not {errors!r}")
+    traces: list[Trace] = []
+    failures: list[RecordFailure] = []
+    for entry in load_catalog(path, where):
+        try:
+            traces.extend(entry.read())
+        except RecordError as exc:
+            if errors == "raise":
+                raise
+            failures.append(RecordFailure(entry, exc))
+    return (traces, failures) if errors == "collect" else traces

@@ -1,0 +1,193 @@
+"""Helpers shared by the text-based record formats (AT2, COSMOS, plain text).
+
+Fast paths are vectorised (one ``str.split`` and one NumPy conversion for the whole body); only
+when they fail is the text walked line by line, to say exactly where the problem is (line and
+column, 1-based, as an editor shows them).
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from collections.abc import Iterable
+from pathlib import Path
+from typing import IO
+
+import numpy as np
+
+from floorslide.errors import RecordError
+
+HEAD_BYTES = 8192
+"""How much of a file the ``_is_<format>`` checks look at."""
+
+_TOKEN = re.compile(r"[^\s,]+")
+# A Fortran fixed-width field that ran into its neighbour ("-.123E-02-.456E-02").
+_NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eEdD][-+]?\d+)?")
+
+
+def read_head(filename: str | os.PathLike | IO[bytes], nbytes: int = HEAD_BYTES) -> str | None:
+    """The first ``nbytes`` of a file as text, or None if it is unreadable or binary.
+
+    Never raises: this is what the cheap ``_is_<format>`` checks use.
+    """
+    try:
+        if hasattr(filename, "read"):
+            position = filename.tell()
+            raw = filename.read(nbytes)
+            filename.seek(position)
+        else:
+            with open(filename, "rb") as fh:
+                raw = fh.read(nbytes)
+    except (OSError, TypeError, ValueError, AttributeError):
+        return None
+    if not isinstance(raw, bytes) or not raw or looks_binary(raw):
+        return None
+    return raw.decode("latin-1")
+
+
+def looks_binary(raw: bytes) -> bool:
+    """True if a chunk of bytes is not plain text (NUL bytes or many control characters)."""
+    if b"\x00" in raw:
+        return True
+    control = sum(raw.count(bytes([c])) for c in range(32) if c not in (9, 10, 12, 13))
+    return control > 0.01 * len(raw)
+
+
+def read_text(filename: str | os.PathLike) -> str:
+    """The whole file as text, with a RecordError for a missing, empty or binary file."""
+    path = Path(filename)
+    try:
+        raw = path.read_bytes()
+    except FileNotFoundError:
+        raise RecordError("no such file", where=str(path)) from None
+    except IsADirectoryError:
+        raise RecordError("is a directory, not a record file", where=str(path)) from None
+    except OSError as exc:
+        raise RecordError(f"cannot read file: {exc.strerror or exc}", where=str(path)) from None
+    if not raw.strip():
+        raise RecordError("empty file", where=str(path))
+    if looks_binary(raw[:HEAD_BYTES]):
+        raise RecordError("binary data, not a text record", where=str(path))
+    try:
+        return raw.decode("utf-8")
+    except UnicodeDecodeError:
+        return raw.decode("latin-1")
+
+
+def parse_floats(
+    lines: list[str], first_line: int, where: str, what: str = "a number"
+) -> np.ndarray:
+    """All whitespace/comma separated numbers of ``lines`` as one float64 array.
+
+    Parameters
+    ----------
+    lines
+        The text lines holding the numbers.
+    first_line
+        1-based line number of ``lines[0]`` in the file (for messages).
+    where
+        The file, for messages.
+    what
+        What each token should be, for messages.
+
+    Raises
+    ------
+    RecordError
+        At the first token that is not a number, giving its line and column.
+    """
+    body = " ".join(lines).replace(",", " ")
+    try:
+        return np.array(body.split(), dtype=np.float64)
+    except ValueError:
+        pass
+    values: list[float] = []
+    for offset, line in enumerate(lines):
+        for match in _TOKEN.finditer(line):
+            token = match.group()
+            try:
+                values.append(float(token))
+                continue
+            except ValueError:
+                pass
+            parts = _NUMBER.findall(token)
+            if parts and "".join(parts) == token:  # run-together fixed-width fields
+                values.extend(float(p.replace("d", "e").replace("D", "E")) for p in parts)
+                continue
+            raise RecordError(
+                f"line {first_line + offset}, column {match.start() + 1}: "
+                f"{token[:40]!r} is not {what}",
+                where=where,
+            )
+    return np.array(values, dtype=np.float64)
+
+
+def parse_fixed_width(
+    lines: list[str], width: int, per_line: int, count: int, first_line: int, where: str
+) -> np.ndarray:
+    """``count`` numbers in Fortran fixed-width fields (``per_line`` fields of ``width`` chars).
+
+    Used when whitespace splitting does not give the right count (fields that touch, e.g.
+    ``-0.12345-0.23456`` in ``(8F8.5)``).
+    """
+    padded = [line.rstrip("\r\n").ljust(width * per_line)[: width * per_line] for line in lines]
+    fields = np.array(
+        [line[i : i + width] for line in padded for i in range(0, width * per_line, width)]
+    )[:count]
+    try:
+        values = np.char.replace(np.char.upper(fields), "D", "E").astype(np.float64)
+    except ValueError:
+        values = None
+    if values is None or values.size < count:
+        for index, field in enumerate(fields):
+            try:
+                float(field.replace("D", "E").replace("d", "e"))
+            except ValueError:
+                line, col = divmod(index, per_line)
+                raise RecordError(
+                    f"line {first_line + line}, column {col * width + 1}: "
+                    f"{field.strip()[:40]!r} is not a number",
+                    where=where,
+                ) from None
+        raise RecordError(f"expected {count} values, found {fields.size}", where=where)
+    return values
+
+
+def locate_token(lines: Iterable[str], first_line: int, index: int) -> tuple[int, int, str]:
+    """Line, column (1-based) and text of the ``index``-th number token in ``lines``."""
+    seen = 0
+    for offset, line in enumerate(lines):
+        tokens = list(_TOKEN.finditer(line))
+        if seen + len(tokens) > index:
+            match = tokens[index - seen]
+            return first_line + offset, match.start() + 1, match.group()
+        seen += len(tokens)
+    return first_line, 1, "?"
+
+
+def check_finite(values: np.ndarray, where: str, locate=None) -> None:
+    """RecordError at the first NaN or infinite sample.
+
+    ``locate(index)`` may return ``(line, column, text)`` of that sample for the message.
+    """
+    bad = ~np.isfinite(values)
+    if not bad.any():
+        return
+    index = int(np.argmax(bad))
+    kind = "NaN" if np.isnan(values[index]) else "infinite"
+    place = f"sample {index + 1}"
+    if locate is not None:
+        line, col, _ = locate(index)
+        place = f"line {line}, column {col} (sample {index + 1})"
+    raise RecordError(
+        f"{place}: {kind} value; a record must hold finite numbers "
+        f"({int(bad.sum())} non-finite sample(s) in all)",
+        where=where,
+    )
+
+
+def parse_float_field(text: str, name: str, where: str) -> float:
+    """A header value as float, with a RecordError naming the field."""
+    try:
+        return float(text.replace("D", "E").replace("d", "e"))
+    except ValueError:
+        raise RecordError(f"{name} {text!r} is not a number", where=where) from None

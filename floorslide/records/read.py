@@ -1,0 +1,461 @@
+"""Reading accelerograms: any file → :class:`obspy.Stream` in m/s² with its metadata.
+
+:func:`read_record` reads PEER ``.AT2``, COSMOS V1/V2 and plain text with floorslide's own
+readers (also registered as ObsPy plugins, so :func:`obspy.read` reads them too), and every
+format ObsPy reads (MiniSEED, SAC, K-NET/KiK-net, GSE2, SEG-Y ...) through ObsPy, unchanged.
+It then does only what makes the data a record in SI:
+
+- data as float64 in m/s², ``stats.units = "m/s**2"``, ``stats.original_units`` the units of the
+  file, and one note in ``stats.processing`` when a conversion factor was applied;
+- source metadata kept: the format's own ``stats.<format>`` dictionary (``stats.at2``,
+  ``stats.cosmos``, ``stats.fstext``, ``stats.sac``, ``stats.knet`` ...), the usual ObsPy
+  fields (network, station, channel, starttime), and ``stats.record``, the same few facts for
+  every format: ``path``, ``format``, ``event``, ``station``, ``component`` (empty strings when
+  the source does not say; ObsPy's ``stats.component`` is the last letter of the channel code,
+  hence a separate place);
+- nothing else: no demeaning, filtering or trimming (see :func:`floorslide.process`).
+
+Units come from the file where the format states them (AT2 header line, COSMOS units code, a
+``# units:`` line in a text file; K-NET/KiK-net are counts with ObsPy's ``calib`` to m/s², the
+file's units being gal) and otherwise from ``units=``. A file that does not state its units and
+no ``units=`` is an error — units are never guessed (MiniSEED and SAC hold counts or unknown
+units: give ``units=``; the SAC value ``IDEP = IACC`` nominally means nm/s², which writers often
+ignore, so it is not trusted either). A ``units=`` or ``dt=`` that contradicts the file is an
+error too.
+
+**Sidecar catalog.** A single-column text file does not know its time step or units. When
+neither the file's header nor the caller gives them, :func:`read_record` looks for ``index.csv``
+in the same folder; if that catalog (see :mod:`floorslide.records.catalog`) lists the file, its
+row supplies ``dt``, ``units`` (and ``format``/``component`` if those columns exist) and all its
+columns are kept in ``stats.catalog``, exactly as :func:`~floorslide.records.catalog.read_catalog`
+does.
+"""
+
+from __future__ import annotations
+
+import os
+from importlib.metadata import PackageNotFoundError, version
+from pathlib import Path
+
+import numpy as np
+import obspy
+from obspy import Stream, Trace
+from obspy.core import AttribDict
+
+from floorslide.errors import RecordError, UnitsError
+from floorslide.records.formats import at2, cosmos, text
+from floorslide.records.units import FACTORS, SI_UNITS, canonical_units
+
+try:
+    _VERSION = version("floorslide")
+except PackageNotFoundError:  # pragma: no cover - running from a source tree
+    _VERSION = "unknown"
+
+PROCESSING_PREFIX = f"floorslide {_VERSION}"
+"""Prefix of the notes floorslide leaves in ``stats.processing`` (ObsPy uses ``ObsPy x.y``)."""
+
+OWN_FORMATS = {
+    at2.FORMAT: (at2._is_at2, at2._read_at2),
+    cosmos.FORMAT: (cosmos._is_cosmos_v2, cosmos._read_cosmos_v2),
+    text.FORMAT: (text._is_text, text._read_text),
+}
+"""floorslide's own formats, in the order auto-detection tries them."""
+
+FORMAT_ALIASES = {
+    "at2": at2.FORMAT,
+    "peer": at2.FORMAT,
+    "cosmos": cosmos.FORMAT,
+    "cosmosv2": cosmos.FORMAT,
+    "cosmos_v2": cosmos.FORMAT,
+    "v2": cosmos.FORMAT,
+    "v2c": cosmos.FORMAT,
+    "smc": cosmos.FORMAT,
+    "text": text.FORMAT,
+    "txt": text.FORMAT,
+    "fstext": text.FORMAT,
+    "csv": text.FORMAT,
+    "mseed": "MSEED",
+    "miniseed": "MSEED",
+    "knet": "KNET",
+    "kiknet": "KNET",
+}
+"""Format names accepted by ``format=`` besides ObsPy's own (case-insensitive)."""
+
+SUFFIX_FORMATS = {
+    ".at2": at2.FORMAT,
+    ".v1": cosmos.FORMAT,
+    ".v2": cosmos.FORMAT,
+    ".v1c": cosmos.FORMAT,
+    ".v2c": cosmos.FORMAT,
+    ".smc": cosmos.FORMAT,
+    ".txt": text.FORMAT,
+    ".dat": text.FORMAT,
+    ".csv": text.FORMAT,
+    ".asc": text.FORMAT,
+}
+"""File extensions that name one of floorslide's formats. When neither floorslide's checks nor
+ObsPy recognise a file by its content, a file with one of these extensions is read as that
+format, so that the error says what is wrong with it (e.g. the line and column of a bad value)
+rather than "unknown format"."""
+
+
+class _UnknownFormat(RecordError):
+    """No reader recognises the file."""
+
+
+SIDECAR = "index.csv"
+"""Name of the sidecar catalog looked for next to a text record that lacks dt or units."""
+
+_SAC_IACC = 8  # SAC header IDEP value "acceleration (nm/s**2)"
+
+
+def read_record(
+    path: str | os.PathLike,
+    format: str | None = None,
+    units: str | None = None,
+    dt: float | None = None,
+    component: str | None = None,
+) -> Stream:
+    """Read an accelerogram file into a Stream whose data are acceleration in m/s².
+
+    Parameters
+    ----------
+    path
+        The record file.
+    format
+        Format name: ``"AT2"``, ``"COSMOSV2"`` (also ``"COSMOS"``, ``"V2"``), ``"FSTEXT"`` (also
+        ``"TEXT"``), or any ObsPy format (``"MSEED"``, ``"SAC"``, ``"KNET"`` ...); default:
+        detected from the content.
+    units
+        Units of the values in the file (``"g"``, ``"gal"``, ``"m/s**2"``, ``"mm/s**2"``, or a
+        spelling :func:`~floorslide.records.units.canonical_units` knows). Needed when the
+        format does not state them; must agree with the file when it does.
+    dt
+        Time step in s, for a single-column text file without a ``# dt:`` header; must agree
+        with the file when it states one.
+    component
+        For a file holding several traces: keep those whose component matches (the format's
+        component name, the channel code, or its last letter, e.g. ``"N"`` for ``HNN``;
+        case-insensitive). For a single-trace file it must match the file's component if the
+        file names one, and is recorded as ``stats.record.component`` if not.
+
+    Returns
+    -------
+    obspy.Stream
+        One Trace per component read. Each has float64 data in m/s², ``stats.units =
+        "m/s**2"``, ``stats.original_units``, ``stats.record`` (``path, format, event, station,
+        component``; empty strings when unknown), the format's own metadata (``stats.at2``,
+        ``stats.cosmos``, ``stats.sac`` ...) and, when a sidecar catalog supplied dt/units,
+        ``stats.catalog`` (see the module notes).
+
+    Raises
+    ------
+    RecordError
+        For a missing file, a directory, an empty, binary, truncated or malformed file, NaN
+        or infinite samples, dt ≤ 0, a component that is not in the file — one line naming
+        the file and the problem.
+    UnitsError
+        For unknown units, units neither in the file nor given, or units that contradict it.
+
+    Examples
+    --------
+    >>> st = read_record("RSN6_IMPVALL.I_I-ELC180.AT2")          # doctest: +SKIP
+    >>> st = read_record("elcentro.txt", dt=0.01, units="g")    # doctest: +SKIP
+    >>> ag, dt = st[0].data, st[0].stats.delta                  # doctest: +SKIP
+    """
+    return _read_record(path, format, units, dt, component, sidecar=True)
+
+
+def _read_record(
+    path: str | os.PathLike,
+    format: str | None,
+    units: str | None,
+    dt: float | None,
+    component: str | None,
+    sidecar: bool,
+) -> Stream:
+    """:func:`read_record`, with the sidecar lookup optional (catalog rows turn it off)."""
+    path = Path(path)
+    where = str(path)
+    _check_path(path)
+    given_units = None
+    if units is not None:
+        try:
+            given_units = canonical_units(units)
+        except UnitsError as exc:
+            raise UnitsError(exc.message, where=where) from None
+    if dt is not None:
+        dt = _check_given_dt(dt, where)
+    fmt = resolve_format(format, where) if format else detect_format(path)
+    stream = None
+    if fmt is None:
+        try:
+            stream = _read_with_obspy(path, None, where)
+        except _UnknownFormat:
+            fmt = SUFFIX_FORMATS.get(path.suffix.lower())
+            if fmt is None:
+                raise
+        else:
+            fmt = stream[0].stats.get("_format") if len(stream) else None
+    entry = None
+    if fmt == text.FORMAT:
+        record = text.parse_text_record(path)
+        if sidecar and (
+            (record.dt is None and dt is None) or (record.units is None and given_units is None)
+        ):
+            entry = find_sidecar_entry(path)
+            if entry is not None:
+                dt = dt if dt is not None else entry.dt
+                if given_units is None and entry.units is not None:
+                    given_units = entry.units
+                component = component if component is not None else entry.component
+        source = "the time column" if record.columns == 2 else "the header"
+        step = text.check_dt(dt, record.dt, source, where)
+        stream = text.record_to_stream(record, where, step)
+        dt = None  # already checked against the file
+    elif fmt in OWN_FORMATS:
+        stream = OWN_FORMATS[fmt][1](path)
+    elif stream is None:
+        stream = _read_with_obspy(path, fmt, where)
+    if len(stream) == 0:
+        raise RecordError("no traces in the file", where=where)
+    for trace in stream:
+        trace.stats._format = fmt
+        _normalise(trace, str(fmt), given_units, dt, where)
+    stream = _select(stream, component, where)
+    if entry is not None:
+        for trace in stream:
+            entry.attach(trace)
+    return stream
+
+
+def _check_path(path: Path) -> None:
+    where = str(path)
+    if not path.exists():
+        raise RecordError("no such file", where=where)
+    if path.is_dir():
+        raise RecordError(
+            "is a directory; give a record file (floorslide inspect expands directories)",
+            where=where,
+        )
+    try:
+        size = path.stat().st_size
+    except OSError as exc:
+        raise RecordError(f"cannot read file: {exc.strerror or exc}", where=where) from None
+    if size == 0:
+        raise RecordError("empty file", where=where)
+
+
+def _check_given_dt(dt: float, where: str) -> float:
+    try:
+        value = float(dt)
+    except (TypeError, ValueError):
+        raise RecordError(f"dt = {dt!r} is not a number of seconds", where=where) from None
+    if not np.isfinite(value) or value <= 0:
+        raise RecordError(f"dt = {dt!r}: the time step must be > 0 s", where=where)
+    return value
+
+
+def resolve_format(format: str, where: str = "") -> str:
+    """The canonical name of a format given by the user (floorslide's or ObsPy's)."""
+    key = format.strip()
+    if key.lower() in FORMAT_ALIASES:
+        return FORMAT_ALIASES[key.lower()]
+    from obspy.core.util.base import ENTRY_POINTS
+
+    known = {name.upper() for name in ENTRY_POINTS["waveform"]}
+    if key.upper() in known:
+        return key.upper()
+    raise RecordError(
+        f"unknown format {format!r}; floorslide reads AT2, COSMOSV2, FSTEXT (plain text) and "
+        "the ObsPy formats (MSEED, SAC, KNET, GSE2, SEGY, ...)",
+        where=where or None,
+    )
+
+
+def detect_format(path: str | os.PathLike) -> str | None:
+    """floorslide's own format of a file if it is one (cheap checks), else None (ObsPy decides)."""
+    for name, (is_format, _) in OWN_FORMATS.items():
+        if is_format(path):
+            return name
+    return None
+
+
+def _read_with_obspy(path: Path, fmt: str | None, where: str) -> Stream:
+    if fmt is None and _looks_like_catalog(path):
+        raise RecordError(
+            "is a record catalog, not a record; read it with read_catalog() "
+            "(floorslide inspect reads catalogs)",
+            where=where,
+        )
+    try:
+        return obspy.read(str(path), format=fmt)
+    except RecordError:
+        raise
+    except TypeError as exc:
+        if fmt is None and "Unknown format" in str(exc):
+            raise _UnknownFormat(
+                "not a record in any format floorslide or ObsPy knows (PEER AT2, COSMOS V2, "
+                "plain text with 1 or 2 numeric columns, MiniSEED, SAC, K-NET, ...)",
+                where=where,
+            ) from None
+        raise RecordError(f"cannot read as {fmt}: {_one_line(exc)}", where=where) from None
+    # Third-party readers raise arbitrary exception types on malformed input (struct.error,
+    # IndexError, KeyError, custom ones ...); each becomes one RecordError naming the file.
+    except Exception as exc:
+        raise RecordError(
+            f"cannot read as {fmt or 'detected format'}: {type(exc).__name__}: {_one_line(exc)}",
+            where=where,
+        ) from None
+
+
+def _one_line(exc: BaseException) -> str:
+    return " ".join(str(exc).split())[:200] or type(exc).__name__
+
+
+def _looks_like_catalog(path: Path) -> bool:
+    from floorslide.records.catalog import is_catalog
+
+    return is_catalog(path)
+
+
+def _stated_units(trace: Trace, fmt: str, where: str) -> tuple[str | None, float]:
+    """Units the file states for its values (canonical) and a pre-factor for counts formats."""
+    stats = trace.stats
+    if fmt == "KNET":
+        # ObsPy: data are counts, calib = scale factor (gal/count) x 0.01 -> m/s**2.
+        return "gal", float(stats.calib) * 100.0
+    raw = stats.get("units")
+    if raw:
+        try:
+            return canonical_units(raw), 1.0
+        except UnitsError:
+            raise UnitsError(
+                f"the file gives unknown units {raw!r}; expected one of {', '.join(FACTORS)}",
+                where=where,
+            ) from None
+    return None, 1.0
+
+
+def _normalise(
+    trace: Trace, fmt: str, given_units: str | None, dt: float | None, where: str
+) -> None:
+    """Units to m/s², checks, and the normalised metadata of one trace (in place)."""
+    stats = trace.stats
+    if stats.npts == 0:
+        raise RecordError("empty trace (no samples)", where=where)
+    if not np.isfinite(stats.delta) or stats.delta <= 0:
+        raise RecordError(f"time step {stats.delta!r} s: must be > 0", where=where)
+    if dt is not None and abs(dt - stats.delta) > 1e-4 * stats.delta:
+        raise RecordError(
+            f"dt = {dt:g} s was given but the file says {stats.delta:.6g} s", where=where
+        )
+    stated, prefactor = _stated_units(trace, fmt, where)
+    if stated is not None and given_units is not None and stated != given_units:
+        raise UnitsError(
+            f"units {given_units!r} were given but the file says {stated!r}", where=where
+        )
+    original = stated or given_units
+    if original is None:
+        hint = ""
+        if fmt == "SAC" and int(stats.get("sac", {}).get("idep", -12345)) == _SAC_IACC:
+            hint = " (its SAC header says IDEP=IACC, nominally nm/s**2, which writers often ignore)"
+        raise UnitsError(
+            f"{fmt} file without stated units{hint}; give them with units= / --units "
+            f"({', '.join(list(FACTORS)[:5])})",
+            where=where,
+        )
+    data = np.asarray(trace.data, dtype=np.float64)
+    bad = ~np.isfinite(data)
+    if bad.any():
+        index = int(np.argmax(bad))
+        raise RecordError(
+            f"sample {index + 1}: {'NaN' if np.isnan(data[index]) else 'infinite'} value; "
+            "a record must hold finite numbers",
+            where=where,
+        )
+    factor = prefactor * FACTORS[original]
+    trace.data = np.ascontiguousarray(data * factor) if factor != 1.0 else data.copy()
+    if fmt == "KNET":
+        stats.calib = 1.0
+    stats.units = SI_UNITS
+    stats.original_units = original
+    if factor != 1.0:
+        source = "counts x calib" if fmt == "KNET" else original
+        note = (
+            f"{PROCESSING_PREFIX}: convert_units(from={source!r}, to={SI_UNITS!r}, "
+            f"factor={factor!r})"
+        )
+        stats.setdefault("processing", []).append(note)
+    event, station, comp = _source_metadata(trace, fmt)
+    stats.record = AttribDict(path=where, format=fmt, event=event, station=station, component=comp)
+
+
+def _source_metadata(trace: Trace, fmt: str) -> tuple[str, str, str]:
+    """Event, station and component as the format states them ('' when it does not)."""
+    stats = trace.stats
+    event, station, comp = "", stats.get("station", ""), ""
+    if fmt == at2.FORMAT:
+        meta = stats.at2
+        event = meta.event
+        if meta.date and meta.date not in event:
+            event = f"{event}, {meta.date}"
+        station, comp = meta.station, meta.component
+    elif fmt == cosmos.FORMAT:
+        meta = stats.cosmos
+        event = meta.event
+        station = stats.station or meta.station_name
+        comp = meta.component
+    elif fmt == text.FORMAT:
+        header = stats.fstext.header
+        event = header.get("event", "")
+        station = header.get("station", station)
+        comp = header.get("component", "")
+    elif fmt == "KNET":
+        knet = stats.get("knet", {})
+        if "evot" in knet:
+            event = f"{knet['evot']} M{knet.get('mag', '?')}"
+    elif fmt == "SAC":
+        name = str(stats.get("sac", {}).get("kevnm", "")).strip()
+        event = "" if name in ("", "-12345") else name
+    return event, station or "", comp or stats.get("channel", "")
+
+
+def _names(trace: Trace) -> set[str]:
+    channel = trace.stats.get("channel", "") or ""
+    names = {trace.stats.record.get("component", ""), channel, channel[-1:]}
+    return {n.strip().upper() for n in names if n and n.strip()}
+
+
+def _select(stream: Stream, component: str | None, where: str) -> Stream:
+    """The traces of ``stream`` matching ``component`` (see :func:`read_record`)."""
+    if component is None or not str(component).strip():
+        return stream
+    wanted = str(component).strip().upper()
+    if len(stream) == 1 and not _names(stream[0]):
+        stream[0].stats.record.component = str(component).strip()
+        return stream
+    kept = [tr for tr in stream if wanted in _names(tr)]
+    if not kept:
+        have = sorted({tr.stats.record.component or tr.stats.channel for tr in stream})
+        raise RecordError(
+            f"no component {component!r} in this file; it holds {', '.join(map(str, have))}",
+            where=where,
+        )
+    return Stream(kept)
+
+
+def find_sidecar_entry(path: str | os.PathLike):
+    """The row of ``index.csv`` next to ``path`` that lists it, or None.
+
+    Returns
+    -------
+    floorslide.records.catalog.CatalogEntry or None
+    """
+    from floorslide.records.catalog import find_entry
+
+    path = Path(path)
+    sidecar = path.parent / SIDECAR
+    if not sidecar.is_file():
+        return None
+    return find_entry(sidecar, path)
