@@ -1,0 +1,373 @@
+"""Bad input gets a clear answer, and nothing is lost (DESIGN §9, issue 2).
+
+Each case: ``read_record`` raises a RecordError (UnitsError for units) whose one-line message
+names the file and the problem; ``floorslide inspect`` on the bad file and a good catalog prints
+that line on stderr without a traceback, still reports the good record, and exits with 3.
+"""
+
+from __future__ import annotations
+
+import json
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+from obspy import Stream, Trace
+
+import floorslide as fs
+from floorslide.cli import cli
+from floorslide.errors import RecordError, UnitsError
+from tests.conftest import SLAMMER
+from tests.records.conftest import ELC_FILE, FIXTURES
+
+AT2 = FIXTURES / "ELC180_ngawest2.AT2"
+COSMOS = FIXTURES / "ELC180.V2"
+
+
+def _at2_lines() -> list[str]:
+    return AT2.read_text().splitlines()
+
+
+def _write(path: Path, lines: list[str]) -> Path:
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+def _at2_with(tmp: Path, name: str, line4: str | None = None, **changes: str) -> Path:
+    lines = _at2_lines()
+    if line4 is not None:
+        lines[3] = line4
+    for index, text in changes.items():
+        lines[int(index[1:])] = text
+    return _write(tmp / name, lines)
+
+
+def _mseed(tmp: Path, name: str, data: np.ndarray, channels=("HNN",)) -> Path:
+    st = Stream()
+    for ch in channels:
+        tr = Trace(np.asarray(data, dtype=np.float64))
+        tr.stats.delta, tr.stats.station, tr.stats.channel = 0.01, "ELC", ch
+        st.append(tr)
+    path = tmp / name
+    st.write(str(path), format="MSEED", encoding="FLOAT64")
+    return path
+
+
+def _cosmos_with(tmp: Path, name: str, old: str, new: str) -> Path:
+    text = COSMOS.read_text()
+    assert old in text
+    path = tmp / name
+    path.write_text(text.replace(old, new, 1))
+    return path
+
+
+def _case(name: str, tmp: Path):
+    """(path, read_record keywords, expected exception type, regex of the message)."""
+    t = tmp
+    lines = _at2_lines()
+    if name == "empty file":
+        (t / "empty.AT2").write_text("")
+        return t / "empty.AT2", {}, RecordError, "empty file"
+    if name == "blank file":
+        (t / "blank.txt").write_text("\n  \n\t\n")
+        return t / "blank.txt", {"format": "text"}, RecordError, "empty file"
+    if name == "truncated AT2":
+        return (
+            _write(t / "trunc.AT2", lines[:-3]),
+            {},
+            RecordError,
+            r"truncated: the header says NPTS=3949 but the file holds only 3935 values",
+        )
+    if name == "more values than NPTS":
+        return (
+            _at2_with(t, "long.AT2", "NPTS=  3900, DT=   .0100 SEC,"),
+            {},
+            RecordError,
+            r"NPTS=3900 but the file holds 3949 values; header and data disagree",
+        )
+    if name == "NPTS missing":
+        return (
+            _at2_with(t, "nonpts.AT2", "DT=   .0100 SEC,"),
+            {"format": "AT2"},
+            RecordError,
+            r"gives no NPTS",
+        )
+    if name == "DT missing":
+        return _at2_with(t, "nodt.AT2", "NPTS=  3949,"), {}, RecordError, r"gives no DT"
+    if name == "no NPTS/DT line":
+        return (
+            _write(t / "nohdr.AT2", lines[:3] + lines[4:]),
+            {"format": "AT2"},
+            RecordError,
+            r"no NPTS/DT line",
+        )
+    if name == "NPTS not a number":
+        return (
+            _at2_with(t, "nptsx.AT2", "NPTS=  39x9, DT=   .0100 SEC,"),
+            {},
+            RecordError,
+            r"NPTS '39x9' is not a number",
+        )
+    if name == "non-numeric token":
+        bad = lines[:]
+        bad[9] = "".join(v.rjust(15) for v in ("-.1E-02", ".2E-02", ".61x2620E-02", "0", "0"))
+        return (
+            _write(t / "token.AT2", bad),
+            {},
+            RecordError,
+            r"line 10, column 34: '.61x2620E-02' is not a number",
+        )
+    if name == "non-numeric token in text":
+        (t / "token.txt").write_text("# dt: 0.01\n# units: g\n0.1\n0.2\n 0.3q\n")
+        return t / "token.txt", {}, RecordError, r"line 5, column 2: '0.3q' is not a number"
+    if name == "NaN sample":
+        bad = lines[:]
+        bad[6] = bad[6][:15] + "NaN".rjust(15) + bad[6][30:]
+        return (
+            _write(t / "nan.AT2", bad),
+            {},
+            RecordError,
+            r"line 7, column 28 \(sample 12\): NaN value",
+        )
+    if name == "infinite sample in text":
+        (t / "inf.txt").write_text("# dt: 0.01\n# units: g\n0.1\n-inf\n")
+        return t / "inf.txt", {}, RecordError, r"line 4: infinite value in column 1"
+    if name == "NaN sample in MiniSEED":
+        data = np.zeros(100)
+        data[41] = np.nan
+        return (
+            _mseed(t, "nan.mseed", data),
+            {"units": "g"},
+            RecordError,
+            r"sample 42: NaN value",
+        )
+    if name == "dt zero":
+        return _at2_with(t, "dt0.AT2", "NPTS=  3949, DT=   .0000 SEC,"), {}, RecordError, "> 0"
+    if name == "dt negative in text header":
+        (t / "dtneg.txt").write_text("# dt: -0.01\n# units: g\n0.1\n0.2\n")
+        return t / "dtneg.txt", {}, RecordError, r"header dt: -0.01 must be > 0"
+    if name == "dt given negative":
+        return (
+            SLAMMER / ELC_FILE,
+            {"dt": -0.01, "units": "g"},
+            RecordError,
+            r"dt = -0.01: the time step must be > 0",
+        )
+    if name == "COSMOS sample interval zero":
+        return (
+            _cosmos_with(
+                t, "dt0.V2", "      10.000000      39.490000", "       0.000000      39.490000"
+            ),
+            {},
+            RecordError,
+            r"sample interval 0.0 ms: the time step must be > 0",
+        )
+    if name == "COSMOS length inconsistent":
+        return (
+            _cosmos_with(
+                t, "len.V2", "      10.000000      39.490000", "      10.000000      19.490000"
+            ),
+            {},
+            RecordError,
+            r"record length 19.49 s \(real header 63\) disagrees with 3949 samples",
+        )
+    if name == "COSMOS truncated":
+        text = COSMOS.read_text().splitlines()
+        end = text.index("End-of-data for Chan  1 acceleration")
+        return (
+            _write(t / "trunc.V2", text[: end - 20]),
+            {},
+            RecordError,
+            r"truncated: line \d+ announces 3949 acceleration values but only 3929 follow",
+        )
+    if name == "COSMOS raw counts":
+        return (
+            _cosmos_with(
+                t, "v0.V2", "       2       1       4     120", "       0       1      50     120"
+            ),
+            {},
+            RecordError,
+            r"raw counts \(COSMOS V0\)",
+        )
+    if name == "unknown units given":
+        return AT2, {"units": "furlongs"}, UnitsError, r"unknown units 'furlongs'"
+    if name == "unknown units in AT2 header":
+        return (
+            _at2_with(t, "fur.AT2", None, l2="ACCELERATION TIME SERIES IN UNITS OF FURLONGS"),
+            {},
+            UnitsError,
+            r"unknown units 'FURLONGS'",
+        )
+    if name == "unknown units in text header":
+        (t / "units.txt").write_text("# dt: 0.01\n# units: parsecs\n0.1\n0.2\n")
+        return t / "units.txt", {}, UnitsError, r"header units: unknown units 'parsecs'"
+    if name == "units contradict the file":
+        return AT2, {"units": "gal"}, UnitsError, r"units 'gal' were given but the file says 'g'"
+    if name == "binary garbage":
+        rng = np.random.default_rng(0)
+        (t / "garbage.bin").write_bytes(rng.integers(0, 256, 4096, dtype=np.uint8).tobytes())
+        return t / "garbage.bin", {}, RecordError, r"not a record in any format"
+    if name == "binary garbage named .AT2":
+        rng = np.random.default_rng(1)
+        (t / "garbage2.AT2").write_bytes(rng.integers(0, 256, 4096, dtype=np.uint8).tobytes())
+        return t / "garbage2.AT2", {}, RecordError, r"binary data, not a text record"
+    if name == "directory":
+        (t / "folder").mkdir()
+        return t / "folder", {}, RecordError, r"is a directory"
+    if name == "missing file":
+        return t / "missing.AT2", {}, RecordError, r"no such file"
+    if name == "component not in a multi-trace file":
+        return (
+            _mseed(t, "three.mseed", np.ones(50), ("HNE", "HNN", "HNZ")),
+            {"units": "g", "component": "X"},
+            RecordError,
+            r"no component 'X' in this file; it holds HNE, HNN, HNZ",
+        )
+    if name == "text with three columns":
+        (t / "three.txt").write_text("0 1 2\n0 1 2\n")
+        return t / "three.txt", {"format": "text"}, RecordError, r"line 1: 3 columns"
+    if name == "text with a ragged row":
+        (t / "ragged.txt").write_text("# units: g\n0.00 1\n0.01 2\n0.02\n")
+        return t / "ragged.txt", {}, RecordError, r"line 4: 1 columns where the data above have 2"
+    if name == "non-uniform time column":
+        (t / "jitter.txt").write_text("# units: g\n0.00 1\n0.01 2\n0.025 3\n0.03 4\n")
+        return t / "jitter.txt", {}, RecordError, r"line 4: time 0.025 s is .* off the uniform grid"
+    if name == "text npts inconsistent":
+        (t / "npts.txt").write_text("# dt: 0.01\n# units: g\n# npts: 5\n0.1\n0.2\n")
+        return t / "npts.txt", {}, RecordError, r"npts=5 but the file holds 2 samples \(truncated\)"
+    if name == "unknown format":
+        return AT2, {"format": "XYZ"}, RecordError, r"unknown format 'XYZ'"
+    raise AssertionError(name)
+
+
+CASES = [
+    "empty file",
+    "blank file",
+    "truncated AT2",
+    "more values than NPTS",
+    "NPTS missing",
+    "DT missing",
+    "no NPTS/DT line",
+    "NPTS not a number",
+    "non-numeric token",
+    "non-numeric token in text",
+    "NaN sample",
+    "infinite sample in text",
+    "NaN sample in MiniSEED",
+    "dt zero",
+    "dt negative in text header",
+    "dt given negative",
+    "COSMOS sample interval zero",
+    "COSMOS length inconsistent",
+    "COSMOS truncated",
+    "COSMOS raw counts",
+    "unknown units given",
+    "unknown units in AT2 header",
+    "unknown units in text header",
+    "units contradict the file",
+    "binary garbage",
+    "binary garbage named .AT2",
+    "directory",
+    "missing file",
+    "component not in a multi-trace file",
+    "text with three columns",
+    "text with a ragged row",
+    "non-uniform time column",
+    "text npts inconsistent",
+    "unknown format",
+]
+
+
+@pytest.mark.parametrize("name", CASES)
+def test_read_record_gives_one_clear_line(tmp_path, name):
+    path, kwargs, error, pattern = _case(name, tmp_path)
+    with pytest.raises(error) as info:
+        fs.read_record(path, **kwargs)
+    message = str(info.value)
+    assert "\n" not in message
+    assert message.startswith(f"{path}: ") or name == "unknown format"
+    assert info.value.where == str(path) or name == "unknown format"
+    assert info.value.exit_code == 3
+    assert _search(pattern, message), message
+
+
+def _search(pattern: str, text: str) -> bool:
+    import re
+
+    return re.search(pattern, text) is not None
+
+
+@pytest.fixture
+def good_catalog(tmp_path) -> Path:
+    """A one-row catalog of a real record (catalog rows ignore the command-line options)."""
+    folder = tmp_path / "good"
+    folder.mkdir()
+    shutil.copy(SLAMMER / ELC_FILE, folder / ELC_FILE)
+    (folder / "index.csv").write_text(f"file,dt,units,station\n{ELC_FILE},0.01,g,El Centro\n")
+    return folder / "index.csv"
+
+
+_FLAGS = {"format": "--format", "units": "--units", "dt": "--dt", "component": "--component"}
+
+
+@pytest.mark.parametrize("name", CASES)
+def test_inspect_reports_the_bad_file_and_keeps_going(tmp_path, good_catalog, name):
+    path, kwargs, _, pattern = _case(name, tmp_path)
+    args = ["inspect", "--json"]
+    for key, value in kwargs.items():
+        args += [_FLAGS[key], str(value)]
+    result = CliRunner().invoke(cli, [*args, str(path), str(good_catalog)])
+    assert result.exit_code == 3, result.output
+    assert result.exception is None or isinstance(result.exception, SystemExit)
+    assert "Traceback" not in result.stderr
+    errors = result.stderr.strip().splitlines()
+    assert len(errors) == 1 and errors[0].startswith(f"floorslide: error: {path}: ")
+    pattern = {"directory": "no records found in this directory"}.get(name, pattern)
+    assert _search(pattern, errors[0]), errors[0]
+    rows = json.loads(result.stdout)
+    assert [row["station"] for row in rows] == ["El Centro"]
+
+
+def test_inspect_directory_without_records(tmp_path, good_catalog):
+    empty = tmp_path / "docs"
+    empty.mkdir()
+    (empty / "README.md").write_text("# nothing here\n")
+    result = CliRunner().invoke(cli, ["inspect", str(empty), str(good_catalog)])
+    assert result.exit_code == 3
+    assert (
+        result.stderr.strip() == f"floorslide: error: {empty}: no records found in this directory"
+    )
+    assert "El Centro" not in result.stdout  # the table shows paths
+    assert ELC_FILE in result.stdout
+
+
+def test_inspect_missing_argument_path(tmp_path, good_catalog):
+    result = CliRunner().invoke(cli, ["inspect", str(tmp_path / "nope"), str(good_catalog)])
+    assert result.exit_code == 3
+    assert "no such file or directory" in result.stderr
+
+
+def test_console_script_exit_code_and_no_traceback(tmp_path, good_catalog):
+    """The installed entry point (floorslide.cli:main), in a subprocess."""
+    (tmp_path / "empty.AT2").write_text("")
+    proc = subprocess.run(
+        [
+            sys.executable,
+            "-c",
+            "from floorslide.cli import main; main()",
+            "inspect",
+            "--json",
+            str(tmp_path / "empty.AT2"),
+            str(good_catalog),
+        ],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert proc.returncode == 3
+    assert proc.stderr.strip() == f"floorslide: error: {tmp_path / 'empty.AT2'}: empty file"
+    assert len(json.loads(proc.stdout)) == 1
