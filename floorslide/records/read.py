@@ -36,6 +36,7 @@ from __future__ import annotations
 import os
 from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 import obspy
@@ -45,6 +46,9 @@ from obspy.core import AttribDict
 from floorslide.errors import RecordError, UnitsError
 from floorslide.records.formats import at2, cosmos, text
 from floorslide.records.units import FACTORS, SI_UNITS, canonical_units
+
+if TYPE_CHECKING:
+    from floorslide.records.catalog import CatalogEntry
 
 try:
     _VERSION = version("floorslide")
@@ -69,7 +73,6 @@ FORMAT_ALIASES = {
     "cosmos_v2": cosmos.FORMAT,
     "v2": cosmos.FORMAT,
     "v2c": cosmos.FORMAT,
-    "smc": cosmos.FORMAT,
     "text": text.FORMAT,
     "txt": text.FORMAT,
     "fstext": text.FORMAT,
@@ -87,7 +90,6 @@ SUFFIX_FORMATS = {
     ".v2": cosmos.FORMAT,
     ".v1c": cosmos.FORMAT,
     ".v2c": cosmos.FORMAT,
-    ".smc": cosmos.FORMAT,
     ".txt": text.FORMAT,
     ".dat": text.FORMAT,
     ".csv": text.FORMAT,
@@ -445,13 +447,8 @@ def _select(stream: Stream, component: str | None, where: str) -> Stream:
     return Stream(kept)
 
 
-def find_sidecar_entry(path: str | os.PathLike):
-    """The row of ``index.csv`` next to ``path`` that lists it, or None.
-
-    Returns
-    -------
-    floorslide.records.catalog.CatalogEntry or None
-    """
+def find_sidecar_entry(path: str | os.PathLike) -> CatalogEntry | None:
+    """The row of ``index.csv`` next to ``path`` that lists it, or None."""
     from floorslide.records.catalog import find_entry
 
     path = Path(path)

@@ -1,5 +1,7 @@
-"""COSMOS V1/V2 strong-motion records (``.V2``, ``.V2c``, ``.smc``), as an ObsPy waveform plugin
+"""COSMOS V1/V2 strong-motion records (``.V2``, ``.V2c``, ``.V1``), as an ObsPy waveform plugin
 (format ``"COSMOSV2"``).
+
+(The USGS "SMC" format, ``.smc``, is a different layout and is not read here.)
 
 A COSMOS file is one or more channel records, each self-describing::
 

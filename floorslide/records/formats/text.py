@@ -36,6 +36,7 @@ from __future__ import annotations
 
 import os
 import re
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from itertools import chain
 from typing import IO
@@ -57,6 +58,11 @@ _DT_KEYS = ("dt", "delta", "time_step", "timestep", "sample_interval", "sampling
 _RATE_KEYS = ("sampling_rate", "fs", "sample_rate", "sps")
 _LEADING_NUMBER = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([A-Za-z]*)")
 _TIME_TOLERANCE = 0.01  # fraction of a step a time value may be off the uniform grid
+_NONBLANK = re.compile(r"^[ \t]*\S", re.MULTILINE)
+_ROWS = {
+    1: re.compile(r"^[ \t]*\S+[ \t]*$", re.MULTILINE),
+    2: re.compile(r"^[ \t]*\S+[ \t]+\S+[ \t]*$", re.MULTILINE),
+}
 
 
 @dataclass
@@ -155,44 +161,43 @@ def _header_dt(header: dict[str, str], where: str) -> float | None:
     return None
 
 
-def parse_text_record(filename: str | os.PathLike) -> TextRecord:
-    """Parse a text accelerogram; dt and units may come back None if the file does not say.
+def _table(lines: list[str], start: int, where: str) -> tuple[np.ndarray, Callable[[int], int]]:
+    """The numbers of the data lines (from ``lines[start]`` on) as a (rows, columns) array, and a
+    function giving the 1-based file line of a row (for messages).
 
-    Parameters
-    ----------
-    filename
-        Path of the text file.
-
-    Returns
-    -------
-    TextRecord
-
-    Raises
-    ------
-    RecordError
-        For a malformed file (see the module docstring).
+    Fast path, without a Python loop over lines: when the data hold no comment lines, regular
+    expressions check that every non-blank line has the same number (1 or 2) of fields, and one
+    ``split`` converts them all. Anything unusual (comments between data lines, a bad value, a
+    ragged row, NaN) takes the line-by-line path, which says exactly where the problem is.
     """
-    where = str(filename)
-    lines = read_text(filename).splitlines()
-    header: dict[str, str] = {}
-    names: list[str] = []
-    start = len(lines)
-    for i, line in enumerate(lines):
-        stripped = line.strip()
-        if not stripped:
-            continue
-        if stripped.startswith(COMMENT_CHARS):
-            match = _KEY_VALUE.match(stripped)
-            if match:
-                header[_norm_key(match.group(1))] = match.group(2)
-            continue
-        tokens = _tokens(stripped)
-        if not names and not any(_is_float(t) for t in tokens):
-            if all(_NAME.match(t) for t in tokens):
-                names = tokens
-                continue
-        start = i
-        break
+    body = "\n".join(lines[start:])
+    first = _tokens(lines[start]) if start < len(lines) else []
+    if len(first) in (1, 2) and not any(c in body for c in COMMENT_CHARS):
+        flat = body.replace(",", " ")
+        rows = len(_NONBLANK.findall(flat))
+        if len(_ROWS[len(first)].findall(flat)) == rows:
+            try:
+                values = np.array(flat.split(), dtype=np.float64)
+            except ValueError:
+                values = None
+            if values is not None and np.isfinite(values).all():
+                numbers: list[int] = []
+
+                def line_of(row: int) -> int:
+                    if not numbers:
+                        numbers.extend(
+                            i for i, line in enumerate(lines[start:], start + 1) if line.strip()
+                        )
+                    return numbers[row]
+
+                return values.reshape(-1, len(first)), line_of
+    return _table_by_lines(lines, start, where)
+
+
+def _table_by_lines(
+    lines: list[str], start: int, where: str
+) -> tuple[np.ndarray, Callable[[int], int]]:
+    """:func:`_table`, line by line, with the line and column of every problem."""
     rows = [
         (i, line)
         for i, line in enumerate(lines[start:], start + 1)
@@ -238,10 +243,53 @@ def parse_text_record(filename: str | os.PathLike) -> TextRecord:
             "a record must hold finite numbers",
             where=where,
         )
+    return table, lambda row: rows[row][0]
+
+
+def parse_text_record(filename: str | os.PathLike) -> TextRecord:
+    """Parse a text accelerogram; dt and units may come back None if the file does not say.
+
+    Parameters
+    ----------
+    filename
+        Path of the text file.
+
+    Returns
+    -------
+    TextRecord
+
+    Raises
+    ------
+    RecordError
+        For a malformed file (see the module docstring).
+    """
+    where = str(filename)
+    lines = read_text(filename).splitlines()
+    header: dict[str, str] = {}
+    names: list[str] = []
+    start = len(lines)
+    for i, line in enumerate(lines):
+        stripped = line.strip()
+        if not stripped:
+            continue
+        if stripped.startswith(COMMENT_CHARS):
+            match = _KEY_VALUE.match(stripped)
+            if match:
+                header[_norm_key(match.group(1))] = match.group(2)
+            continue
+        tokens = _tokens(stripped)
+        if not names and not any(_is_float(t) for t in tokens):
+            if all(_NAME.match(t) for t in tokens):
+                names = tokens
+                continue
+        start = i
+        break
+    table, line_of = _table(lines, start, where)
+    ncols = table.shape[1]
     dt = _header_dt(header, where)
     t0 = 0.0
     if ncols == 2:
-        dt, t0 = _time_column(table[:, 0], [r[0] for r in rows], dt, where)
+        dt, t0 = _time_column(table[:, 0], line_of, dt, where)
     units = None
     if header.get("units") or header.get("unit"):
         raw = header.get("units") or header.get("unit") or ""
@@ -272,7 +320,7 @@ def canonical_units_in_header(raw: str, where: str) -> str:
 
 
 def _time_column(
-    times: np.ndarray, line_numbers: list[int], header_dt: float | None, where: str
+    times: np.ndarray, line_of: Callable[[int], int], header_dt: float | None, where: str
 ) -> tuple[float, float]:
     """dt and t0 of a uniform, increasing time column (RecordError otherwise)."""
     n = times.size
@@ -282,7 +330,7 @@ def _time_column(
     if (steps <= 0).any():
         k = int(np.argmax(steps <= 0)) + 1
         raise RecordError(
-            f"line {line_numbers[k]}: time {times[k]:g} s does not increase "
+            f"line {line_of(k)}: time {times[k]:g} s does not increase "
             f"(previous {times[k - 1]:g} s)",
             where=where,
         )
@@ -291,7 +339,7 @@ def _time_column(
     if off.max() > _TIME_TOLERANCE * dt:
         k = int(np.argmax(off > _TIME_TOLERANCE * dt))
         raise RecordError(
-            f"line {line_numbers[k]}: time {times[k]:g} s is {off[k]:.3g} s off the uniform grid "
+            f"line {line_of(k)}: time {times[k]:g} s is {off[k]:.3g} s off the uniform grid "
             f"t0 + k*dt (dt = {dt:.6g} s); floorslide needs uniformly sampled records - "
             "resample first",
             where=where,
