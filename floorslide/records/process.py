@@ -65,9 +65,10 @@ import numpy as np
 from obspy import Trace
 
 from floorslide.constants import G
-from floorslide.errors import ModelError
+from floorslide.errors import ModelError, UnitsError
 from floorslide.records.measures import velocity_displacement
 from floorslide.records.read import PROCESSING_PREFIX
+from floorslide.records.units import SI_UNITS, canonical_units
 
 STEPS = (
     "demean",
@@ -177,7 +178,8 @@ def process(trace: Trace, **steps: Any) -> Trace:
     Parameters
     ----------
     trace
-        The record (ObsPy Trace, data in m/s²). It is not modified.
+        The record (ObsPy Trace, data in m/s²; a trace whose ``stats.units`` says otherwise
+        is refused). It is not modified.
     **steps
         Any of ``demean, detrend, detrend_order, taper, highpass, lowpass, bandpass,
         filter_order, zerophase, baseline, resample, resample_window, scale_pga, scale`` (see
@@ -191,6 +193,8 @@ def process(trace: Trace, **steps: Any) -> Trace:
 
     Raises
     ------
+    UnitsError
+        If ``trace.stats.units`` is not m/s².
     ModelError
         For an unknown step (named), an invalid value, a corner frequency at or above the
         record's Nyquist frequency, or conflicting steps (``bandpass`` with ``highpass`` or
@@ -209,6 +213,12 @@ def process(trace: Trace, **steps: Any) -> Trace:
         for key, value in steps.items()
         if value is not None and (value is not False or key == "zerophase")
     }
+    units = trace.stats.get("units")
+    if units and canonical_units(units) != SI_UNITS:
+        raise UnitsError(
+            f"trace data are in {units}; processing works on m/s**2 (read_record converts)",
+            where=trace.stats.get("record", {}).get("path") or trace.id,
+        )
     out = trace.copy()
     out.data = np.asarray(out.data, dtype=np.float64)
     if out.stats.npts == 0:

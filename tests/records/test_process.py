@@ -7,7 +7,7 @@ import pytest
 from obspy import Trace
 
 import floorslide as fs
-from floorslide.errors import ModelError
+from floorslide.errors import ModelError, UnitsError
 from floorslide.records.measures import velocity_displacement
 from floorslide.records.process import STEPS, baseline_correct
 from tests.conftest import SLAMMER, G
@@ -211,6 +211,13 @@ def test_full_chain_is_recorded(elc):
 def test_bad_steps_are_clear_errors(elc, steps, message):
     with pytest.raises(ModelError, match=message):
         fs.process(elc, **steps)
+
+
+def test_trace_in_other_units_is_refused():
+    tr = trace_of(np.ones(10), 0.01)
+    tr.stats.units = "g"
+    with pytest.raises(UnitsError, match="processing works on m/s"):
+        fs.process(tr, scale_pga=0.3)
 
 
 def test_steps_constant_lists_every_keyword():
