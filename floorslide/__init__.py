@@ -12,7 +12,13 @@ from floorslide.building import (
     peak_floor_acceleration,
 )
 from floorslide.constants import G
-from floorslide.contents import SlideResult, slide
+from floorslide.contents import (
+    OscillatorResult,
+    SlideResult,
+    response_mode,
+    slide,
+    slide_oscillator,
+)
 from floorslide.errors import (
     FloorslideError,
     ModelError,
@@ -22,13 +28,21 @@ from floorslide.errors import (
     UnitsError,
 )
 from floorslide.records import measures, process, read_catalog, read_record
+from floorslide.spectra import Spectrum, broaden, envelope, response_spectrum
 
 __all__ = [
     "G",
     "IsolatedBuilding",
     "Rayleigh",
     "ShearBuilding",
+    "OscillatorResult",
     "SlideResult",
+    "Spectrum",
+    "broaden",
+    "envelope",
+    "response_mode",
+    "response_spectrum",
+    "slide_oscillator",
     "floor_motions",
     "peak_floor_acceleration",
     "slide",

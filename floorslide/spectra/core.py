@@ -1,0 +1,325 @@
+"""Response spectra and floor response spectra, exact at any dt.
+
+For every period and damping ratio, the linear oscillator ``q'' + 2ξω q' + ω² q = −a_f(t)`` is
+driven by the floor's absolute acceleration — the ground record itself (piecewise linear) or the
+building's exact floor response to it. The oscillator is stepped exactly together with the
+floor (the augmented first-order hold of ``building/exact.py``; on the ground the recurrence of
+Nigam & Jennings 1969) and its peaks are searched inside steps. Spectral values:
+
+- ``sd = max|q|`` (m), ``psa = ω²·sd``, ``psv = ω·sd`` (pseudo-spectral values);
+- ``sv = max|q'|`` (m/s, relative velocity);
+- ``sa = max|q'' + a_f| = max|ω² q + 2ξω q'|`` (m/s², absolute acceleration — not PSA).
+
+At period 0 the oscillator is rigid: ``psa = sa`` = the true peak of the floor motion (inside
+steps), ``sd = sv = 0``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, replace
+
+import numpy as np
+import scipy.linalg
+
+from floorslide.building.exact import ExactStepper, spectral_radius, taylor_degree
+from floorslide.building.model import LinearBuilding
+from floorslide.building.motions import check_record, floor_motions, peak_floor_acceleration
+from floorslide.errors import ModelError
+from floorslide.spectra._kernels import spectrum_kernel
+
+MAX_PHASE = 0.5
+METHODS = ("exact", "samples", "newmark", "fft", "reinterpolated")
+
+
+@dataclass(frozen=True)
+class Spectrum:
+    """Response spectra, one row per damping ratio.
+
+    Attributes
+    ----------
+    periods
+        Oscillator periods, s (0 allowed: the peak of the motion).
+    damping
+        Damping ratios.
+    psa, sa, sv, sd, psv
+        ``(len(damping), len(periods))``: pseudo-spectral acceleration (m/s²), absolute
+        acceleration (m/s²), relative velocity (m/s), relative displacement (m), pseudo-velocity
+        (m/s).
+    method
+        How it was computed.
+    broadening
+        Peak-broadening factor applied (0 when none).
+    """
+
+    periods: np.ndarray
+    damping: np.ndarray
+    psa: np.ndarray
+    sa: np.ndarray
+    sv: np.ndarray
+    sd: np.ndarray
+    psv: np.ndarray
+    method: str = "exact"
+    broadening: float = 0.0
+
+    def to_dict(self) -> dict:
+        """JSON-ready dict with SI values (``psa[i]`` belongs to ``damping[i]``)."""
+        return dict(
+            periods=self.periods.tolist(),
+            damping=self.damping.tolist(),
+            psa=self.psa.tolist(),
+            sa=self.sa.tolist(),
+            sv=self.sv.tolist(),
+            sd=self.sd.tolist(),
+            psv=self.psv.tolist(),
+            method=self.method,
+            broadening=self.broadening,
+        )
+
+
+def period_grid(periods) -> np.ndarray:
+    """Periods from a list or from ``{"min": .., "max": .., "n": ..}`` (log-spaced), validated."""
+    if isinstance(periods, dict):
+        try:
+            lo, hi, n = float(periods["min"]), float(periods["max"]), int(periods["n"])
+        except (KeyError, TypeError, ValueError):
+            raise ModelError("periods must be a list or {min, max, n}", "periods") from None
+        if not (0 < lo < hi and n >= 2):
+            raise ModelError(f"periods need 0 < min < max and n ≥ 2, got {periods}", "periods")
+        return np.geomspace(lo, hi, n)
+    arr = np.atleast_1d(np.asarray(periods, dtype=float)).ravel()
+    if arr.size == 0 or not np.all(np.isfinite(arr)) or np.any(arr < 0):
+        raise ModelError("periods must be finite and ≥ 0 s", "periods")
+    return arr
+
+
+def _damping_list(damping) -> np.ndarray:
+    arr = np.atleast_1d(np.asarray(damping, dtype=float)).ravel()
+    if arr.size == 0 or not np.all(np.isfinite(arr)) or np.any(arr < 0) or np.any(arr >= 1):
+        raise ModelError(f"damping ratios must be in [0, 1), got {arr.tolist()}", "damping")
+    return arr
+
+
+def _oscillator_blocks(A, b, Ca, da, w, xi, h):
+    """Exact sub-step recurrence of oscillators coupled to a floor, from one batched expm of the
+    augmented first-order-hold matrices (Van Loan 1978)."""
+    n = A.shape[0]
+    m = w.size
+    N = n + 2
+    aug = np.zeros((m, N + 2, N + 2))
+    aug[:, :n, :n] = A
+    aug[:, :n, N] = b
+    aug[:, n, n + 1] = 1.0
+    aug[:, n + 1, :n] = -Ca
+    aug[:, n + 1, n] = -(w**2)
+    aug[:, n + 1, n + 1] = -2 * xi * w
+    aug[:, n + 1, N] = -da
+    aug[:, N, N + 1] = 1.0
+    E = scipy.linalg.expm(aug * h)
+    Pqq = np.ascontiguousarray(E[:, n:N, n:N])
+    Pqx = np.ascontiguousarray(E[:, n:N, :n])
+    g0 = E[:, n:N, N]
+    g1 = E[:, n:N, N + 1]
+    return Pqq, Pqx, np.ascontiguousarray(g0 - g1 / h), np.ascontiguousarray(g1 / h)
+
+
+def _exact(a, dt, T, Z, building, floor):
+    """Exact spectra on the ground or a floor; returns sd, sv, sa of shape (len(Z), len(T))."""
+    on_floor = building is not None and building.dof_of(floor) is not None
+    if on_floor:
+        A, B = building.state_matrices()
+        b = B[:, 0]
+        Ca, Da, _ = building.output_matrices([floor], "acceleration")
+        Ca, da = Ca[0], float(Da[0, 0])
+        rho_b = spectral_radius(A)
+    else:
+        A, b, Ca, da, rho_b = np.zeros((0, 0)), np.zeros(0), np.zeros(0), 1.0, 0.0
+    pos = T > 0
+    TT, ZZ = np.meshgrid(T[pos], Z)
+    w_all = 2 * np.pi / TT.ravel()
+    xi_all = ZZ.ravel()
+    res = np.zeros((w_all.size, 3))
+    # group the oscillators by the number of sub-steps their frequency needs
+    m_all = np.maximum(1, np.ceil(np.maximum(w_all, rho_b) * dt / MAX_PHASE - 1e-12))
+    m_all = m_all.astype(int)
+    for m in np.unique(m_all):
+        idx = np.nonzero(m_all == m)[0]
+        h = dt / m
+        K = taylor_degree(max(rho_b, w_all[idx].max()) * h)
+        if on_floor:
+            st = ExactStepper.build(A, b, dt, substeps=int(m))
+            p, q = st.input_weights()
+            R, beta = st.taylor_rows(Ca[None, :], np.array([da]), order=K)
+            phi, R, beta = st.phi, R[0], beta[0]
+        else:
+            phi, p, q = np.zeros((0, 0)), np.zeros(0), np.zeros(0)
+            R, beta = np.zeros((2, 0)), np.array([1.0, 0.0])
+        Pqq, Pqx, pq, qq = _oscillator_blocks(A, b, Ca, da, w_all[idx], xi_all[idx], h)
+        out = np.zeros((idx.size, 3))
+        spectrum_kernel(
+            phi,
+            p,
+            q,
+            np.ascontiguousarray(R),
+            np.ascontiguousarray(beta),
+            a,
+            int(m),
+            h,
+            K,
+            np.ascontiguousarray(w_all[idx]),
+            np.ascontiguousarray(xi_all[idx]),
+            Pqq,
+            Pqx,
+            pq,
+            qq,
+            out,
+        )
+        res[idx] = out
+    sd = np.zeros((Z.size, T.size))
+    sv = np.zeros((Z.size, T.size))
+    sa = np.zeros((Z.size, T.size))
+    sd[:, pos] = res[:, 0].reshape(Z.size, -1)
+    sv[:, pos] = res[:, 1].reshape(Z.size, -1)
+    sa[:, pos] = res[:, 2].reshape(Z.size, -1)
+    if (~pos).any():
+        pfa = peak_floor_acceleration(
+            building if on_floor else None, a, dt, floors=[floor] if on_floor else None
+        ).peak[0]
+        sa[:, ~pos] = pfa
+    return sd, sv, sa
+
+
+def response_spectrum(
+    acc,
+    dt: float,
+    periods,
+    damping=0.05,
+    *,
+    building: LinearBuilding | None = None,
+    floor: int | None = None,
+    method: str = "exact",
+    substeps: int = 4,
+) -> Spectrum:
+    """Response spectra of a record, or floor response spectra (FRS) of a building's floor.
+
+    Parameters
+    ----------
+    acc
+        Ground acceleration samples, m/s² (or, without `building`, any motion taken as piecewise
+        linear).
+    dt
+        Time step, s.
+    periods
+        Oscillator periods (s, list; 0 gives the peak of the motion) or ``{"min", "max", "n"}``
+        (log-spaced).
+    damping
+        Damping ratio or list of ratios.
+    building, floor
+        Floor response spectrum of `floor`, driven by the building's exact floor motion.
+    method
+        ``"exact"``; approximate: ``"samples"`` (exact recurrence, peaks at samples only),
+        ``"newmark"`` (average acceleration at ``dt/substeps`` on exact floor samples), ``"fft"``
+        (frequency-domain transfer function, peaks at samples), ``"reinterpolated"`` (exact
+        solver on floor samples joined by straight lines).
+    substeps
+        Sub-steps of ``"newmark"``.
+
+    References
+    ----------
+    Nigam, N. C., Jennings, P. C. (1969). Calculation of response spectra from strong-motion
+    earthquake records. *Bull. Seismol. Soc. Am.* 59(2), 909–922.
+    Van Loan (1978), Theorem 1 (the augmented matrix exponential).
+    """
+    a, dt = check_record(acc, dt, "acc")
+    T = period_grid(periods)
+    Z = _damping_list(damping)
+    if method not in METHODS:
+        raise ModelError(f"unknown method {method!r}; expected one of {', '.join(METHODS)}")
+    if building is not None:
+        if floor is None:
+            raise ModelError("floor is required with building=", "floor")
+        building.check_floors([floor])
+    elif floor not in (None, 0):
+        raise ModelError("floor= needs building=", "floor")
+    if method == "exact":
+        sd, sv, sa = _exact(a, dt, T, Z, building, floor)
+    else:
+        from floorslide.spectra import approximate
+
+        sd, sv, sa = approximate.spectra(a, dt, T, Z, building, floor, method, int(substeps))
+    w = np.where(T > 0, 2 * np.pi / np.where(T > 0, T, 1.0), 0.0)
+    psa = sd * w**2
+    psa[:, T == 0] = sa[:, T == 0]
+    return Spectrum(periods=T, damping=Z, psa=psa, sa=sa, sv=sv, sd=sd, psv=sd * w, method=method)
+
+
+def broaden(spectrum: Spectrum, factor: float = 0.15) -> Spectrum:
+    """Peak broadening of a design floor response spectrum.
+
+    Each ordinate becomes the largest ordinate within ``±factor`` in frequency:
+    ``S_b(f) = max{S(f') : f/(1+factor) ≤ f' ≤ f/(1−factor)}``, the ±15 % of ASCE 4-16 §6.2.3
+    and US NRC Regulatory Guide 1.122 (ordinates between grid periods interpolated linearly in
+    log-period). Periods 0 are left as they are.
+    """
+    if not (0 < factor < 1):
+        raise ModelError(f"broadening factor must be in (0, 1), got {factor}", "broadening")
+    T = spectrum.periods
+    pos = T > 0
+    Tp = T[pos]
+    order = np.argsort(Tp)
+    Ts = Tp[order]
+    lt = np.log(Ts)
+
+    def widen(S: np.ndarray) -> np.ndarray:
+        out = S.copy()
+        for i in range(S.shape[0]):
+            row = S[i, pos][order]
+            new = row.copy()
+            for j, t in enumerate(Ts):
+                lo, hi = t * (1 - factor), t * (1 + factor)  # f' ∈ [f/(1+β), f/(1−β)]
+                inside = (Ts >= lo) & (Ts <= hi)
+                ends = np.interp(np.log([lo, hi]), lt, row)
+                new[j] = max(row[inside].max(initial=-np.inf), ends.max())
+            tmp = np.empty_like(row)
+            tmp[order] = new
+            out[i, pos] = tmp
+        return out
+
+    return replace(
+        spectrum,
+        psa=widen(spectrum.psa),
+        sa=widen(spectrum.sa),
+        sv=widen(spectrum.sv),
+        sd=widen(spectrum.sd),
+        psv=widen(spectrum.psv),
+        broadening=float(factor),
+    )
+
+
+def envelope(spectra: Sequence[Spectrum]) -> Spectrum:
+    """Ordinate-wise maximum of spectra on the same periods and damping ratios."""
+    spectra = list(spectra)
+    if not spectra:
+        raise ModelError("envelope needs at least one spectrum")
+    first = spectra[0]
+    for s in spectra[1:]:
+        if not (
+            np.array_equal(s.periods, first.periods) and np.array_equal(s.damping, first.damping)
+        ):
+            raise ModelError("spectra must share periods and damping ratios to be enveloped")
+    stack = {
+        k: np.max([getattr(s, k) for s in spectra], axis=0)
+        for k in ("psa", "sa", "sv", "sd", "psv")
+    }
+    return replace(first, **stack, method="envelope")
+
+
+def floor_samples(acc, dt, building, floor, oversample=1):
+    """Exact samples of the floor absolute acceleration (the record itself on the ground)."""
+    if building is None or building.dof_of(floor) is None:
+        if oversample == 1:
+            return acc
+        return np.interp(
+            np.arange((acc.size - 1) * oversample + 1) / oversample, np.arange(acc.size), acc
+        )
+    return floor_motions(building, acc, dt, floors=[floor], oversample=oversample)[0]
