@@ -155,6 +155,166 @@ def inspect(
         sys.exit(EXIT_RECORD)
 
 
+def _floats(text: str, name: str) -> list[float]:
+    """Comma-separated numbers of an option, or a one-line usage error naming it."""
+    try:
+        values = [float(v) for v in text.split(",") if v.strip()]
+    except ValueError:
+        raise click.BadParameter(
+            f"expected numbers separated by commas, got {text!r}", param_hint=name
+        ) from None
+    if not values:
+        raise click.BadParameter("expected at least one number", param_hint=name)
+    return values
+
+
+def _read_one(
+    record: str, fmt: str | None, units: str | None, dt: float | None, component: str | None
+):
+    """The single trace of RECORD (one component), in m/s²; nothing else is applied."""
+    from floorslide.errors import RecordError
+    from floorslide.records.read import read_record
+
+    stream = read_record(record, format=fmt, units=units, dt=dt, component=component)
+    if len(stream) != 1:
+        names = ", ".join(tr.stats.channel or tr.id for tr in stream)
+        raise RecordError(
+            f"{len(stream)} components ({names}); choose one with --component", record
+        )
+    return stream[0]
+
+
+def record_options(func):
+    """The options every single-record command takes (DESIGN §3)."""
+    for option in reversed(
+        [
+            click.option("--format", "fmt", metavar="F", help="Record format (default: detected)."),
+            click.option("--units", metavar="U", help="Units of the file: g|gal|m/s**2|mm/s**2."),
+            click.option(
+                "--dt", type=float, metavar="SECONDS", help="Time step of single-column text."
+            ),
+            click.option("--component", metavar="C", help="Component of a multi-trace file."),
+        ]
+    ):
+        func = option(func)
+    return func
+
+
+@cli.command()
+@click.argument("record")
+@click.option("--mu", required=True, metavar="MU[,MU...]", help="Kinetic friction coefficient(s).")
+@click.option("--mu-s", "mu_s", metavar="MU_S", help="Static coefficient(s) (default: --mu).")
+@click.option("--scale-pga", type=float, metavar="G", help="Scale the record to this PGA, in g.")
+@click.option(
+    "--direction",
+    type=click.Choice(["both", "positive", "negative"]),
+    default="both",
+    show_default=True,
+    help="One-way sliding (Newmark slope convention) or both ways.",
+)
+@click.option("--json", "as_json", is_flag=True, help="Print a JSON list (SI values) on stdout.")
+@record_options
+def slide(record, mu, mu_s, scale_pga, direction, as_json, fmt, units, dt, component):
+    """Sliding of a rigid block standing on the ground under RECORD, one row per friction
+    coefficient: peak slide, residual slide (m), peak absolute acceleration of the object
+    (m/s²), fraction of time sliding and number of slip phases. Exact for the piecewise-linear
+    record; no filtering unless asked.
+    """
+    import json
+
+    from floorslide.constants import G
+    from floorslide.contents.sliding import slide as slide_exact
+    from floorslide.records.process import process
+
+    mus = _floats(mu, "--mu")
+    mus_s = _floats(mu_s, "--mu-s") if mu_s else None
+    tr = _read_one(record, fmt, units, dt, component)
+    if scale_pga is not None:
+        if not scale_pga > 0:
+            raise click.BadParameter("must be > 0", param_hint="--scale-pga")
+        tr = process(tr, scale_pga=scale_pga)
+    res = slide_exact(tr.data, tr.stats.delta, mus, mus_s, direction=direction)
+    rows = res.to_records()
+    if as_json:
+        for row in rows:
+            row["record"] = record
+            row["direction"] = direction
+        click.echo(json.dumps(rows, indent=1))
+        return
+    click.echo(
+        f"{record}: dt = {tr.stats.delta:g} s, {tr.stats.npts} samples, direction {direction}"
+    )
+    click.echo(
+        f"{'mu_k':>7} {'mu_s':>7} {'peak slide (m)':>15} {'residual (m)':>13} "
+        f"{'peak acc (m/s2)':>16} {'(g)':>7} {'sliding':>8} {'slips':>6}"
+    )
+    for row in rows:
+        click.echo(
+            f"{row['mu_k']:7.4g} {row['mu_s']:7.4g} {row['peak_slide']:15.6g} "
+            f"{row['residual_slide']:13.6g} {row['peak_abs_accel']:16.5g} "
+            f"{row['peak_abs_accel'] / G:7.4f} {row['slide_fraction']:8.1%} {row['slip_phases']:6d}"
+        )
+
+
+def _periods(text: str | None):
+    """``--periods`` as a list ``0.1,0.5,1`` or a log-spaced ``min:max:n``."""
+    if text is None:
+        return {"min": 0.02, "max": 5.0, "n": 100}
+    if ":" in text:
+        parts = text.split(":")
+        if len(parts) != 3:
+            raise click.BadParameter(
+                "expected MIN:MAX:N or a comma-separated list", param_hint="--periods"
+            )
+        try:
+            return {"min": float(parts[0]), "max": float(parts[1]), "n": int(parts[2])}
+        except ValueError:
+            raise click.BadParameter(
+                "expected MIN:MAX:N with numbers", param_hint="--periods"
+            ) from None
+    return _floats(text, "--periods")
+
+
+@cli.command()
+@click.argument("record")
+@click.option(
+    "--damping", default="0.05", show_default=True, metavar="Z[,Z...]", help="Damping ratio(s)."
+)
+@click.option(
+    "--periods",
+    metavar="T[,T...]|MIN:MAX:N",
+    help="Periods in s (0 = peak ground acceleration); default 0.02:5:100 (log-spaced).",
+)
+@click.option("--json", "as_json", is_flag=True, help="Print JSON (SI values) on stdout.")
+@record_options
+def spectrum(record, damping, periods, as_json, fmt, units, dt, component):
+    """Response spectra of RECORD: pseudo-spectral acceleration PSA, absolute acceleration SA,
+    relative velocity SV, displacement SD (and pseudo-velocity PSV), exact for the
+    piecewise-linear record with peaks inside steps. No filtering is applied.
+    """
+    import json
+
+    from floorslide.constants import G
+    from floorslide.spectra.core import response_spectrum
+
+    zetas = _floats(damping, "--damping")
+    grid = _periods(periods)
+    tr = _read_one(record, fmt, units, dt, component)
+    sp = response_spectrum(tr.data, tr.stats.delta, grid, zetas)
+    if as_json:
+        click.echo(json.dumps({"record": record, **sp.to_dict()}, indent=1))
+        return
+    click.echo(f"{record}: dt = {tr.stats.delta:g} s, {tr.stats.npts} samples")
+    for i, z in enumerate(sp.damping):
+        click.echo(f"damping {z:g}")
+        click.echo(f"{'T (s)':>9} {'PSA (g)':>9} {'SA (g)':>9} {'SV (m/s)':>10} {'SD (m)':>10}")
+        for j, t in enumerate(sp.periods):
+            click.echo(
+                f"{t:9.4g} {sp.psa[i, j] / G:9.4f} {sp.sa[i, j] / G:9.4f} "
+                f"{sp.sv[i, j]:10.4g} {sp.sd[i, j]:10.4g}"
+            )
+
+
 def main() -> None:
     """Entry point of the ``floorslide`` console script."""
     try:

@@ -123,6 +123,20 @@ def _oscillator_blocks(A, b, Ca, da, w, xi, h):
     return Pqq, Pqx, np.ascontiguousarray(g0 - g1 / h), np.ascontiguousarray(g1 / h)
 
 
+def _impulse_integrals(w, xi, dt, n=513):
+    """``∫₀^dt |h|``, ``∫₀^dt |h'|`` and ``∫₀^dt |ω²h + 2ξωh'|`` of the oscillators' impulse
+    responses ``h = e^{−ξωt} sin(ω_d t)/ω_d`` (trapezoid on a fine grid, 2 % safety margin: they
+    only make a skip test conservative)."""
+    t = np.linspace(0.0, dt, n)[:, None]
+    wd = w * np.sqrt(1 - xi**2)
+    env = np.exp(-xi * w * t)
+    h = env * np.sin(wd * t) / wd
+    hd = env * (np.cos(wd * t) - xi * w / wd * np.sin(wd * t))
+    ha = w**2 * h + 2 * xi * w * hd
+    out = np.stack([np.trapezoid(np.abs(f), dx=dt / (n - 1), axis=0) for f in (h, hd, ha)])
+    return np.ascontiguousarray(out * 1.02)
+
+
 def _exact(a, dt, T, Z, building, floor):
     """Exact spectra on the ground or a floor; returns sd, sv, sa of shape (len(Z), len(T))."""
     on_floor = building is not None and building.dof_of(floor) is not None
@@ -134,53 +148,103 @@ def _exact(a, dt, T, Z, building, floor):
         rho_b = spectral_radius(A)
     else:
         A, b, Ca, da, rho_b = np.zeros((0, 0)), np.zeros(0), np.zeros(0), 1.0, 0.0
+    n = A.shape[0]
     pos = T > 0
     TT, ZZ = np.meshgrid(T[pos], Z)
-    w_all = 2 * np.pi / TT.ravel()
-    xi_all = ZZ.ravel()
-    res = np.zeros((w_all.size, 3))
-    # group the oscillators by the number of sub-steps their frequency needs
-    m_all = np.maximum(1, np.ceil(np.maximum(w_all, rho_b) * dt / MAX_PHASE - 1e-12))
-    m_all = m_all.astype(int)
-    for m in np.unique(m_all):
-        idx = np.nonzero(m_all == m)[0]
-        h = dt / m
-        K = taylor_degree(max(rho_b, w_all[idx].max()) * h)
+    w = np.ascontiguousarray(2 * np.pi / TT.ravel())
+    xi = np.ascontiguousarray(ZZ.ravel())
+    nosc = w.size
+    # record-step recurrence of every oscillator coupled to the floor
+    Pqq, Pqx, pq, qq = _oscillator_blocks(A, b, Ca, da, w, xi, dt)
+    P = np.ascontiguousarray(
+        np.stack([Pqq[:, 0, 0], Pqq[:, 0, 1], Pqq[:, 1, 0], Pqq[:, 1, 1], pq[:, 0], pq[:, 1]])
+    )
+    X = np.ascontiguousarray(qq.T)
+    PX = np.ascontiguousarray(np.transpose(Pqx, (1, 2, 0)))
+    one_crit = np.maximum(w, rho_b) * dt <= MAX_PHASE
+    # the building: record step, and its own sub-steps for the floor-acceleration bound
+    if on_floor:
+        full = ExactStepper.build(A, b, dt, substeps=1)
+        phi, p, q = full.phi, *full.input_weights()
+        own = ExactStepper.build(A, b, dt)
+        b_R, b_beta = own.taylor_rows(Ca[None, :], np.array([da]))
+        b_phi, (b_p, b_q), b_R, b_beta = own.phi, own.input_weights(), b_R[0], b_beta[0]
+        b_K, b_m = own.order, own.substeps
+    else:
+        phi, p, q = np.zeros((0, 0)), np.zeros(0), np.zeros(0)
+        b_phi, b_p, b_q = phi, p, q
+        b_R, b_beta, b_K, b_m = np.zeros((2, 0)), np.array([1.0, 0.0]), 1, 1
+    # in-step search: sub-steps per oscillator, grouped by their number
+    m_all = np.maximum(1, np.ceil(np.maximum(w, rho_b) * dt / MAX_PHASE - 1e-12)).astype(int)
+    groups = np.unique(m_all)
+    grp = np.searchsorted(groups, m_all).astype(np.int64)
+    G_K = np.array(
+        [taylor_degree(max(rho_b, w[m_all == m].max()) * dt / m) for m in groups], dtype=np.int64
+    )
+    kr = int(G_K.max()) + 1
+    G_phi = np.zeros((groups.size, n, n))
+    G_p = np.zeros((groups.size, n))
+    G_q = np.zeros((groups.size, n))
+    G_R = np.zeros((groups.size, kr, n))
+    G_beta = np.zeros((groups.size, kr))
+    S_Pqq = np.zeros((nosc, 2, 2))
+    S_Pqx = np.zeros((nosc, 2, n))
+    S_pq = np.zeros((nosc, 2))
+    S_qq = np.zeros((nosc, 2))
+    for g, m in enumerate(groups):
         if on_floor:
             st = ExactStepper.build(A, b, dt, substeps=int(m))
-            p, q = st.input_weights()
-            R, beta = st.taylor_rows(Ca[None, :], np.array([da]), order=K)
-            phi, R, beta = st.phi, R[0], beta[0]
-        else:
-            phi, p, q = np.zeros((0, 0)), np.zeros(0), np.zeros(0)
-            R, beta = np.zeros((2, 0)), np.array([1.0, 0.0])
-        Pqq, Pqx, pq, qq = _oscillator_blocks(A, b, Ca, da, w_all[idx], xi_all[idx], h)
-        out = np.zeros((idx.size, 3))
-        spectrum_kernel(
-            phi,
-            p,
-            q,
-            np.ascontiguousarray(R),
-            np.ascontiguousarray(beta),
-            a,
-            int(m),
-            h,
-            K,
-            np.ascontiguousarray(w_all[idx]),
-            np.ascontiguousarray(xi_all[idx]),
-            Pqq,
-            Pqx,
-            pq,
-            qq,
-            out,
+            R, beta = st.taylor_rows(Ca[None, :], np.array([da]), order=int(G_K[g]))
+            G_phi[g] = st.phi
+            G_p[g], G_q[g] = st.input_weights()
+            G_R[g, : R.shape[1]] = R[0]
+            G_beta[g, : R.shape[1]] = beta[0]
+        idx = m_all == m
+        S_Pqq[idx], S_Pqx[idx], S_pq[idx], S_qq[idx] = _oscillator_blocks(
+            A, b, Ca, da, w[idx], xi[idx], dt / m
         )
-        res[idx] = out
+    out = np.zeros((nosc, 3))
+    Ih = _impulse_integrals(w, xi, dt) if on_floor else np.zeros((3, nosc))
+    spectrum_kernel(
+        phi,
+        p,
+        q,
+        a,
+        dt,
+        w,
+        xi,
+        P,
+        X,
+        PX,
+        one_crit,
+        b_phi,
+        b_p,
+        b_q,
+        np.ascontiguousarray(b_R),
+        np.ascontiguousarray(b_beta),
+        int(b_K),
+        int(b_m),
+        grp,
+        groups.astype(np.int64),
+        G_K,
+        G_phi,
+        G_p,
+        G_q,
+        G_R,
+        G_beta,
+        S_Pqq,
+        S_Pqx,
+        S_pq,
+        S_qq,
+        Ih,
+        out,
+    )
     sd = np.zeros((Z.size, T.size))
     sv = np.zeros((Z.size, T.size))
     sa = np.zeros((Z.size, T.size))
-    sd[:, pos] = res[:, 0].reshape(Z.size, -1)
-    sv[:, pos] = res[:, 1].reshape(Z.size, -1)
-    sa[:, pos] = res[:, 2].reshape(Z.size, -1)
+    sd[:, pos] = out[:, 0].reshape(Z.size, -1)
+    sv[:, pos] = out[:, 1].reshape(Z.size, -1)
+    sa[:, pos] = out[:, 2].reshape(Z.size, -1)
     if (~pos).any():
         pfa = peak_floor_acceleration(
             building if on_floor else None, a, dt, floors=[floor] if on_floor else None
