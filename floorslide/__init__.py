@@ -4,6 +4,9 @@ buildings under recorded earthquakes.
 The public API (DESIGN §3) is re-exported here; nothing else lives in this module.
 """
 
+from importlib.metadata import PackageNotFoundError
+from importlib.metadata import version as _version
+
 from floorslide.building import (
     IsolatedBuilding,
     Rayleigh,
@@ -29,6 +32,11 @@ from floorslide.errors import (
 )
 from floorslide.records import measures, process, read_catalog, read_record
 from floorslide.spectra import Spectrum, broaden, envelope, response_spectrum
+
+try:
+    __version__ = _version("floorslide")
+except PackageNotFoundError:  # pragma: no cover - running from a source tree
+    __version__ = "0+unknown"
 
 __all__ = [
     "G",

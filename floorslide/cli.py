@@ -315,6 +315,67 @@ def spectrum(record, damping, periods, as_json, fmt, units, dt, component):
             )
 
 
+def _print_summary(summary, plan) -> None:
+    """The end of a run: counts, time, where the results are, unreadable records."""
+    click.echo(
+        f"{summary.ran} tasks run, {summary.resumed} already done, {summary.tasks} in all, "
+        f"in {summary.seconds:.1f} s → {summary.out}"
+    )
+    for failure in summary.failures:
+        click.echo(f"floorslide: error: {failure}", err=True)
+
+
+@cli.command()
+@click.argument("scene", type=click.Path(dir_okay=False))
+@click.option("-o", "--out", metavar="OUT.h5", help="Result file (default: SCENE's name .h5 here).")
+@click.option("--dry-run", is_flag=True, help="Print the plan (what runs, what is skipped, why).")
+@click.option(
+    "--resume", is_flag=True, help="Continue an interrupted run; finished tasks are kept."
+)
+@click.option(
+    "--workers",
+    type=click.IntRange(min=1),
+    metavar="N",
+    help="Local worker processes (default: all cores).",
+)
+@click.option(
+    "--scheduler", metavar="ADDRESS", help="Send the tasks to a running Dask distributed scheduler."
+)
+@click.option(
+    "--force", is_flag=True, hidden=True, help="Integrate even where the answer is known."
+)
+def run(scene, out, dry_run, resume, workers, scheduler, force):
+    """Run a scene file (TOML): records × buildings × contents → OUT.h5.
+
+    The planner simulates only what the scene asks for and says what it skipped; results are
+    written as tasks finish, so an interrupted run keeps them and --resume continues it.
+    Unreadable records are reported and the others still run (exit code 3).
+    """
+    from pathlib import Path
+
+    from floorslide.run.execute import execute
+    from floorslide.scene.planner import plan as make_plan
+    from floorslide.scene.schema import load_scene
+
+    sc = load_scene(scene)
+    plan = make_plan(sc, force=force)
+    if dry_run:
+        click.echo(plan.describe())
+        sys.exit(EXIT_RECORD if plan.failures else EXIT_OK)
+    out = out or f"{Path(scene).stem}.h5"
+    summary = execute(plan, out, workers=workers, scheduler=scheduler, resume=resume, force=force)
+    if summary.interrupted:
+        click.echo(
+            f"floorslide: interrupted; {summary.ran + summary.resumed} finished tasks are in "
+            f"{out} (continue with --resume)",
+            err=True,
+        )
+        sys.exit(130)
+    _print_summary(summary, plan)
+    if summary.failures:
+        sys.exit(EXIT_RECORD)
+
+
 def main() -> None:
     """Entry point of the ``floorslide`` console script."""
     try:

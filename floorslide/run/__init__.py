@@ -1,0 +1,1 @@
+"""Running studies: execution, the result store."""

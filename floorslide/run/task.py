@@ -1,0 +1,158 @@
+"""One task: a record on a building — floor peaks, sliding contents, floor spectra.
+
+A pure function of its input (the planner's :class:`~floorslide.scene.planner.Task`, which
+carries the record's samples), so it runs the same in this process, a local worker process or
+a Dask worker, and gives the same numbers bit for bit.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from floorslide.building.motions import floor_motions, peak_floor_acceleration
+from floorslide.contents.oscillator import slide_oscillator
+from floorslide.contents.sliding import slide
+from floorslide.run.results import ContentResult, Histories, SpectrumResult, TaskResult
+from floorslide.scene.planner import Task, decide
+from floorslide.spectra.core import broaden, response_spectrum
+
+HISTORY_MU = 3
+"""Friction values per content whose slide histories are kept for figures."""
+
+
+def _meta(task: Task) -> dict:
+    b, r = task.building, task.record
+    return dict(
+        record_set=r.set,
+        record=r.record,
+        record_file=r.label,
+        building=b.id,
+        building_base=b.base,
+        building_kind=b.kind,
+        stories=b.stories,
+        isolation_period=b.period if b.kind == "isolated" else float("nan"),
+        isolation_damping=b.damping if b.kind == "isolated" else float("nan"),
+        superstructure=b.superstructure,
+        fixed_period=b.period if b.kind == "fixed" else b.super_period,
+        dt=r.dt,
+        npts=int(r.acc.size),
+        pga=float(np.abs(r.acc).max()),
+        scale=r.scale,
+    )
+
+
+def run_task(task: Task, force: bool = False) -> TaskResult:
+    """Compute everything `task` asks for (see the planner for the skip rules)."""
+    t0 = time.perf_counter()
+    rec = task.record
+    acc, dt = rec.acc, rec.dt
+    model = task.building.build()
+    floors = np.array(task.floors, dtype=np.int64)
+    pfa = (
+        peak_floor_acceleration(model, acc, dt, floors=list(task.floors)).peak
+        if floors.size
+        else np.zeros(0)
+    )
+    pfa_of = dict(zip(task.floors, pfa, strict=True))
+    result = TaskResult(task.task_id, _meta(task), floors, np.asarray(pfa, dtype=float))
+    hist_slides, hist_mu = {}, {}
+    for content, floor in task.contents:
+        mu = np.asarray(content.mu, dtype=float)
+        mu_s = np.asarray(content.mu_s if content.mu_s else content.mu, dtype=float)
+        modes, integrate, reasons = decide(content, pfa_of[floor], force)
+        n = mu.size
+        peak = np.zeros(n)
+        resid = np.zeros(n)
+        acc_obj = np.full(n, pfa_of[floor])
+        frac = np.zeros(n)
+        slips = np.zeros(n, dtype=np.int64)
+        deform = top = None
+        rock = np.array([m == "rock" for m in modes])
+        for arr in (peak, resid, acc_obj, frac):
+            arr[rock] = np.nan
+        slips[rock] = -1
+        idx = np.nonzero(integrate)[0]
+        on = dict(building=model, floor=floor)
+        if content.model == "oscillator":
+            deform = np.full(n, np.nan)
+            top = np.full(n, np.nan)
+            if idx.size:
+                r = slide_oscillator(
+                    acc,
+                    dt,
+                    mu[idx],
+                    content.frequency,
+                    content.damping,
+                    content.mass_ratio,
+                    mu_s=mu_s[idx],
+                    **on,
+                )
+                peak[idx], resid[idx] = r.peak_slide, r.residual_slide
+                acc_obj[idx], frac[idx], slips[idx] = (
+                    r.peak_base_accel,
+                    r.slide_fraction,
+                    r.slip_phases,
+                )
+                deform[idx], top[idx] = r.peak_deformation, r.peak_top_accel
+        elif idx.size:
+            vert = rec.vertical if content.vertical else None
+            r = slide(acc, dt, mu[idx], mu_s[idx], vertical=vert, direction=content.direction, **on)
+            peak[idx], resid[idx] = r.peak_slide, r.residual_slide
+            acc_obj[idx], frac[idx], slips[idx] = r.peak_abs_accel, r.slide_fraction, r.slip_phases
+        summary = modes[0] if len(set(modes)) == 1 else "mixed"
+        result.contents.append(
+            ContentResult(
+                content=content.id,
+                floor=floor,
+                model=content.model,
+                mode=summary,
+                skipped="; ".join(f"{k} ({v})" for k, v in reasons.items()),
+                mu_k=mu,
+                mu_s=mu_s,
+                peak_slide=peak,
+                residual_slide=resid,
+                peak_abs_accel=acc_obj,
+                slide_fraction=frac,
+                slip_phases=slips,
+                vertical=content.vertical,
+                peak_deformation=deform,
+                peak_top_accel=top,
+                modes=np.array(modes),
+            )
+        )
+        if task.histories and content.model == "rigid":
+            pick = np.unique(np.linspace(0, n - 1, min(HISTORY_MU, n)).round().astype(int))
+            r = slide(
+                acc,
+                dt,
+                mu[pick],
+                mu_s[pick],
+                histories=True,
+                direction=content.direction,
+                vertical=rec.vertical if content.vertical else None,
+                **on,
+            )
+            key = f"{content.id}/floor_{floor}"
+            hist_slides[key], hist_mu[key] = r.u, mu[pick]
+    sc = task.spectra
+    for floor in task.spectra_floors:
+        sp = response_spectrum(
+            acc, dt, np.asarray(sc.periods), list(sc.damping), building=model, floor=floor
+        )
+        if sc.broadening:
+            sp = broaden(sp, sc.broadening)
+        result.spectra.append(
+            SpectrumResult(floor, sp.periods, sp.damping, sp.psa, sp.sa, sp.sv, sp.sd)
+        )
+    if task.histories:
+        fl = np.array(task.floors, dtype=np.int64)
+        motions = (
+            floor_motions(model, acc, dt, floors=list(task.floors))
+            if fl.size
+            else np.zeros((0, acc.size))
+        )
+        result.histories = Histories(dt, fl, motions, hist_slides, hist_mu)
+    result.seconds = time.perf_counter() - t0
+    return result

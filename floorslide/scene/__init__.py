@@ -1,0 +1,1 @@
+"""Scenes: schema, loading, validation, the planner."""

@@ -1,0 +1,285 @@
+"""The planner: a scene becomes tasks (record × building), simulating only what is asked for.
+
+Rules (DESIGN §1), each counted in the plan and printed by ``floorslide run --dry-run``:
+
+- floors nobody asked about (no content, no spectrum there) are not output;
+- floor 0 of a fixed-base building is the ground: no building model is stepped for it;
+- an object whose floor never reaches ``max(mu_s, mu_k)·g`` (its true peak, inside steps) is
+  not integrated: its answer is exactly zero slide and the floor's peak acceleration;
+- objects that would rock (Shenton 1996, from width/height) are reported as rocking, not
+  simulated as sliders; objects that rest are the previous rule;
+- vertical shaking and the flexible (2-DOF) model run only where a content declares them.
+
+Records are read, processed and scaled once, here; a record that cannot be read is reported
+and the others still run. The per-object rules are decided by :func:`decide`, which the
+dry run and the workers share.
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from floorslide.constants import G
+from floorslide.contents.rocking import response_mode
+from floorslide.errors import FloorslideError, RecordError
+from floorslide.scene.schema import BuildingSpec, ContentSpec, RecordSetSpec, Scene, SpectraSpec
+
+
+@dataclass(frozen=True)
+class LoadedRecord:
+    """A record of the study, read, processed and scaled (arrays in m/s²)."""
+
+    set: str
+    record: str
+    label: str
+    acc: np.ndarray
+    dt: float
+    vertical: np.ndarray | None
+    scale: float
+    meta: dict = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class Task:
+    """One record on one building: what to output and to simulate."""
+
+    task_id: str
+    record: LoadedRecord
+    building: BuildingSpec
+    floors: tuple[int, ...]
+    contents: tuple[tuple[ContentSpec, int], ...]
+    spectra_floors: tuple[int, ...]
+    spectra: SpectraSpec | None = None
+    histories: bool = False
+
+
+@dataclass
+class Plan:
+    """Tasks to run and what is skipped, with counts."""
+
+    scene: Scene
+    tasks: list[Task]
+    records: list[LoadedRecord]
+    failures: list[str]
+    skipped: Counter = field(default_factory=Counter)
+    runs: Counter = field(default_factory=Counter)
+
+    def summary(self) -> dict:
+        """JSON-ready plan summary (stored in the result file)."""
+        return dict(
+            scene=self.scene.name,
+            records=len(self.records),
+            record_failures=self.failures,
+            buildings=[b.id for b in self.scene.buildings],
+            tasks=len(self.tasks),
+            runs=dict(self.runs),
+            skipped=dict(self.skipped),
+        )
+
+    def describe(self) -> str:
+        """Human-readable plan: what runs, what is skipped and why, with counts."""
+        lines = [
+            f"scene {self.scene.name!r}: {len(self.records)} records × "
+            f"{len(self.scene.buildings)} buildings = {len(self.tasks)} tasks"
+        ]
+        for rs in self.scene.records:
+            n = sum(1 for r in self.records if r.set.split("@")[0] == rs.set)
+            lines.append(f"  record set {rs.set!r}: {n} records")
+        for b in self.scene.buildings:
+            extra = (
+                f", on isolation T_i = {b.period:g} s, ξ_i = {b.damping:g}"
+                if b.kind == "isolated"
+                else f", T = {b.period:g} s, ξ = {b.damping:g}"
+            )
+            lines.append(f"  building {b.id!r}: {b.kind}, {b.stories} storeys{extra}")
+        lines.append("runs:")
+        for what, count in sorted(self.runs.items()):
+            lines.append(f"  {count:7d}  {what}")
+        lines.append("skipped:")
+        if not self.skipped:
+            lines.append("        0  (nothing)")
+        for what, count in sorted(self.skipped.items()):
+            lines.append(f"  {count:7d}  {what}")
+        for failure in self.failures:
+            lines.append(f"  unreadable record: {failure}")
+        return "\n".join(lines)
+
+
+MODE_CODES = {"rest": 0, "slide": 1, "rock": 2, "slide-rock": 3}
+
+
+def decide(content: ContentSpec, pfa: float, force: bool = False):
+    """Per friction pair: Shenton's response mode, and whether it must be integrated.
+
+    Returns ``(modes, integrate, reasons)``: ``modes`` a list of mode names, ``integrate`` a
+    boolean array, ``reasons`` a Counter of skip reasons. An object is integrated unless it
+    rocks, or its floor's true peak acceleration never exceeds ``max(mu_s, mu_k)·g`` (then its
+    exact answer is no slide) — the latter only without vertical shaking, whose friction limit
+    varies. With `force` everything that is not rocking is integrated (to check the rules).
+    """
+    mu = np.asarray(content.mu, dtype=float)
+    mu_s = np.asarray(content.mu_s if content.mu_s else content.mu, dtype=float)
+    mub = np.maximum(mu, mu_s)
+    modes = []
+    integrate = np.ones(mu.size, dtype=bool)
+    reasons: Counter = Counter()
+    for i in range(mu.size):
+        if content.width is not None:
+            mode = response_mode(content.width, content.height, float(mu_s[i]), float(pfa))
+        else:
+            mode = "slide" if pfa > mub[i] * G else "rest"
+        modes.append(mode)
+        if mode == "rock":
+            integrate[i] = False
+            reasons["objects that rock (Shenton 1996): reported, not simulated as sliders"] += 1
+        elif not force and not content.vertical and content.model == "rigid" and pfa <= mub[i] * G:
+            integrate[i] = False
+            reasons[
+                "objects whose floor never reaches mu_s·g: exact zero slide, not integrated"
+            ] += 1
+    return modes, integrate, reasons
+
+
+def _load_set(rs: RecordSetSpec, processing: dict, failures: list[str]) -> list[LoadedRecord]:
+    from floorslide.records.catalog import load_catalog
+    from floorslide.records.process import process
+    from floorslide.records.read import read_record
+
+    sources = []
+    if rs.catalog:
+        try:
+            for entry in load_catalog(rs.catalog, where=rs.where or None):
+                sources.append((entry.path.stem, str(entry.path.resolve()), entry.read))
+        except RecordError as exc:
+            failures.append(str(exc))
+            return []
+    for f in rs.files:
+
+        def reader(f=f):
+            return read_record(f, format=rs.format, units=rs.units, dt=rs.dt)
+
+        sources.append((f.rsplit("/", 1)[-1].rsplit(".", 1)[0], f, reader))
+    out = []
+    for record_id, label, reader in sources:
+        try:
+            stream = reader()
+            vert = None
+            if rs.component is not None:
+                picked = [tr for tr in stream if tr.stats.channel.endswith(rs.component)]
+                if not picked:
+                    raise RecordError(f"no component {rs.component!r}", label)
+                horizontal = picked[0]
+            else:
+                horizontal = stream[0]
+            if rs.vertical_component is not None:
+                picked = [tr for tr in stream if tr.stats.channel.endswith(rs.vertical_component)]
+                if not picked:
+                    raise RecordError(f"no vertical component {rs.vertical_component!r}", label)
+                vtr = picked[0]
+            tr = process(horizontal, **processing) if processing else horizontal
+            if rs.vertical_component is not None:
+                vtr = process(vtr, **processing) if processing else vtr
+                if vtr.stats.npts != tr.stats.npts or vtr.stats.delta != tr.stats.delta:
+                    raise RecordError(
+                        "vertical and horizontal components differ in dt or length", label
+                    )
+                vert = np.asarray(vtr.data, dtype=float)
+        except FloorslideError as exc:
+            failures.append(str(exc) if isinstance(exc, RecordError) else f"{label}: {exc}")
+            continue
+        acc = np.asarray(tr.data, dtype=float)
+        pga = float(np.abs(acc).max())
+        catalog_meta = dict(getattr(tr.stats, "catalog", {}) or {})
+        scales = rs.scale_pga or (None,)
+        for s in scales:
+            factor = 1.0 if s is None else (s * G / pga if pga > 0 else 1.0)
+            set_name = rs.set if s is None or len(scales) == 1 else f"{rs.set}@{s:g}g"
+            out.append(
+                LoadedRecord(
+                    set=set_name,
+                    record=record_id,
+                    label=label,
+                    acc=acc * factor,
+                    dt=float(tr.stats.delta),
+                    vertical=None if vert is None else vert * factor,
+                    scale=factor,
+                    meta={k: str(v) for k, v in catalog_meta.items()},
+                )
+            )
+    return out
+
+
+def plan(scene: Scene, *, force: bool = False, evaluate: bool = True) -> Plan:
+    """Turn a scene into tasks.
+
+    Parameters
+    ----------
+    scene
+        A validated scene.
+    force
+        Integrate every object even where the answer is known (to check the skip rules).
+    evaluate
+        Also evaluate the per-object rules (true PFA per task and floor) so the plan counts them.
+    """
+    failures: list[str] = []
+    records: list[LoadedRecord] = []
+    for rs in scene.records:
+        records += _load_set(rs, scene.processing, failures)
+    history = scene.report.get("history_record")
+    if history is None and records:
+        history = records[0].record
+    tasks: list[Task] = []
+    p = Plan(scene, tasks, records, failures)
+    needs_vertical = [c.id for c in scene.contents if c.vertical]
+    if needs_vertical:
+        for r in records:
+            if r.vertical is None:
+                failures.append(
+                    f"{r.label}: contents {needs_vertical} need a vertical record; give the set a "
+                    f"vertical_component"
+                )
+        records[:] = [r for r in records if r.vertical is not None or not needs_vertical]
+    hist_done = False
+    for r in records:
+        for b in scene.buildings:
+            floors_all = set(range(b.stories + 1))
+            items = tuple((c, f) for c in scene.contents for f in c.floors_of(b.stories))
+            sfloors = scene.spectra.floors_of(b.stories) if scene.spectra else ()
+            out = tuple(sorted({f for _, f in items} | set(sfloors)))
+            skipped_floors = len(floors_all) - len(out)
+            if skipped_floors:
+                p.skipped["floor outputs nobody asked for (not output)"] += skipped_floors
+            if b.kind == "fixed" and 0 in out:
+                p.skipped[
+                    "floor-0 outputs of fixed-base buildings: the ground, no building model"
+                ] += 1
+            want_hist = not hist_done and r.record == history
+            hist_done = hist_done or want_hist
+            tid = f"t{len(tasks):05d}"
+            tasks.append(Task(tid, r, b, out, items, tuple(sfloors), scene.spectra, want_hist))
+            p.runs["tasks (record × building)"] += 1
+            p.runs["floor spectra"] += len(sfloors)
+            for c, _ in items:
+                if c.vertical:
+                    p.runs["objects with vertical shaking"] += len(c.mu)
+    if not any(c.vertical for c in scene.contents):
+        p.skipped["vertical shaking: declared by no content, not simulated"] += 1
+    if evaluate and tasks:
+        from floorslide.building.motions import peak_floor_acceleration
+
+        for t in tasks:
+            if not t.contents:
+                continue
+            floors = sorted({f for _, f in t.contents})
+            model = t.building.build()
+            pk = peak_floor_acceleration(model, t.record.acc, t.record.dt, floors=floors)
+            pfa = dict(zip(floors, pk.peak, strict=True))
+            for c, f in t.contents:
+                _modes, integrate, reasons = decide(c, pfa[f], force)
+                p.skipped.update(reasons)
+                label = "2-DOF sliding oscillators" if c.model == "oscillator" else "rigid blocks"
+                p.runs[f"{label} integrated (object × floor × task)"] += int(integrate.sum())
+    return p

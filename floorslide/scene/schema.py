@@ -1,0 +1,656 @@
+"""Scene files (TOML, DESIGN §4): loading and validation with every problem at once.
+
+A scene declares record sets, optional processing, buildings (lists sweep: one building per
+value), contents (equipment with friction coefficients on chosen floors), floor response
+spectra and report options. :func:`load_scene` returns a frozen :class:`Scene` or raises one
+:class:`~floorslide.errors.SceneError` listing every problem with its key path, e.g.
+``buildings[1].period: must be > 0``.
+"""
+
+from __future__ import annotations
+
+import glob
+import itertools
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from floorslide.errors import SceneError
+
+TOP_KEYS = {"scene", "records", "processing", "buildings", "contents", "spectra", "report"}
+RECORD_KEYS = {
+    "set",
+    "files",
+    "catalog",
+    "where",
+    "scale_pga",
+    "format",
+    "units",
+    "dt",
+    "component",
+    "vertical_component",
+}
+PROCESSING_KEYS = {
+    "demean",
+    "detrend",
+    "detrend_order",
+    "taper",
+    "highpass",
+    "lowpass",
+    "bandpass",
+    "filter_order",
+    "zerophase",
+    "baseline",
+    "resample",
+    "scale_pga",
+    "scale",
+}
+FIXED_KEYS = {"id", "kind", "stories", "period", "damping", "mass", "profile"}
+ISOLATED_KEYS = {"id", "kind", "superstructure", "base_mass_ratio", "period", "damping"}
+CONTENT_KEYS = {
+    "id",
+    "floors",
+    "mu",
+    "mu_s",
+    "width",
+    "height",
+    "model",
+    "frequency",
+    "damping",
+    "mass_ratio",
+    "vertical",
+    "direction",
+}
+SPECTRA_KEYS = {"floors", "damping", "periods", "broadening"}
+REPORT_KEYS = {"periods", "damping", "compare", "history_record"}
+
+
+@dataclass(frozen=True)
+class RecordSetSpec:
+    """A record set: files by glob or a catalog, with optional scaling (a list sweeps)."""
+
+    set: str
+    files: tuple[str, ...] = ()
+    catalog: str | None = None
+    where: dict = field(default_factory=dict)
+    scale_pga: tuple[float, ...] = ()
+    format: str | None = None
+    units: str | None = None
+    dt: float | None = None
+    component: str | None = None
+    vertical_component: str | None = None
+
+
+@dataclass(frozen=True)
+class BuildingSpec:
+    """One building of the study (one value of every swept parameter)."""
+
+    id: str
+    base: str
+    kind: str
+    stories: int
+    period: float
+    damping: float
+    mass: float = 1.0
+    profile: str = "uniform"
+    superstructure: str = ""
+    super_period: float = math.nan
+    super_damping: float = math.nan
+    base_mass_ratio: float = math.nan
+
+    def build(self):
+        """The building model."""
+        from floorslide.building.model import IsolatedBuilding, ShearBuilding
+
+        if self.kind == "fixed":
+            return ShearBuilding.from_period(
+                self.stories, self.period, self.damping, mass=self.mass, profile=self.profile
+            )
+        sup = ShearBuilding.from_period(
+            self.stories,
+            self.super_period,
+            self.super_damping,
+            mass=self.mass,
+            profile=self.profile,
+        )
+        return IsolatedBuilding(sup, self.base_mass_ratio, self.period, self.damping)
+
+
+@dataclass(frozen=True)
+class ContentSpec:
+    """Equipment: friction values (a list sweeps) on chosen floors."""
+
+    id: str
+    floors: Any  # tuple of ints, "all" or "roof"
+    mu: tuple[float, ...]
+    mu_s: tuple[float, ...] | None = None
+    width: float | None = None
+    height: float | None = None
+    model: str = "rigid"
+    frequency: float | None = None
+    damping: float = 0.02
+    mass_ratio: float = 1.0
+    vertical: bool = False
+    direction: str = "both"
+
+    def floors_of(self, stories: int) -> tuple[int, ...]:
+        """The floors of a building with `stories` storeys this content stands on."""
+        return _floors(self.floors, stories)
+
+
+@dataclass(frozen=True)
+class SpectraSpec:
+    """Floor response spectra to compute."""
+
+    floors: Any
+    damping: tuple[float, ...]
+    periods: tuple[float, ...]
+    broadening: float = 0.0
+
+    def floors_of(self, stories: int) -> tuple[int, ...]:
+        return _floors(self.floors, stories)
+
+
+@dataclass(frozen=True)
+class Scene:
+    """A validated scene."""
+
+    name: str
+    path: str
+    text: str
+    records: tuple[RecordSetSpec, ...]
+    processing: dict
+    buildings: tuple[BuildingSpec, ...]
+    contents: tuple[ContentSpec, ...]
+    spectra: SpectraSpec | None
+    report: dict
+
+
+def _floors(spec, stories: int) -> tuple[int, ...]:
+    if spec == "all":
+        return tuple(range(stories + 1))
+    if spec == "roof":
+        return (stories,)
+    return tuple(sorted(set(int(f) for f in spec)))
+
+
+class _Checker:
+    """Collects problems with their key paths."""
+
+    def __init__(self):
+        self.problems: list[str] = []
+
+    def add(self, where: str, message: str) -> None:
+        self.problems.append(f"{where}: {message}")
+
+    def keys(self, table: dict, allowed: set, where: str) -> None:
+        for key in table:
+            if key not in allowed:
+                self.add(
+                    f"{where}.{key}" if where else key,
+                    f"unknown key; expected one of {', '.join(sorted(allowed))}",
+                )
+
+    def number(
+        self, value, where, *, lo=None, hi=None, lo_open=False, hi_open=False, integer=False
+    ):
+        if (
+            isinstance(value, bool)
+            or not isinstance(value, int | float)
+            or not math.isfinite(value)
+        ):
+            self.add(where, f"must be a {'whole ' if integer else ''}number, got {value!r}")
+            return None
+        if integer and int(value) != value:
+            self.add(where, f"must be a whole number, got {value!r}")
+            return None
+        bad = (lo is not None and (value <= lo if lo_open else value < lo)) or (
+            hi is not None and (value >= hi if hi_open else value > hi)
+        )
+        if bad:
+            lo_s = "" if lo is None else f"{'>' if lo_open else '≥'} {lo:g}"
+            hi_s = "" if hi is None else f"{'<' if hi_open else '≤'} {hi:g}"
+            self.add(where, f"must be {' and '.join(s for s in (lo_s, hi_s) if s)}, got {value!r}")
+            return None
+        return int(value) if integer else float(value)
+
+    def numbers(self, value, where, **kw) -> tuple[float, ...]:
+        """A number or a non-empty list of numbers (a sweep)."""
+        items = value if isinstance(value, list) else [value]
+        if not items:
+            self.add(where, "must not be an empty list")
+            return ()
+        out = []
+        for i, v in enumerate(items):
+            got = self.number(v, f"{where}[{i}]" if isinstance(value, list) else where, **kw)
+            if got is not None:
+                out.append(got)
+        return tuple(out) if len(out) == len(items) else ()
+
+    def string(self, value, where) -> str | None:
+        if not isinstance(value, str) or not value:
+            self.add(where, f"must be a non-empty string, got {value!r}")
+            return None
+        return value
+
+
+def _fmt(x: float) -> str:
+    return f"{x:g}"
+
+
+def load_scene(path: str | Path) -> Scene:
+    """Read and validate a scene file (all problems reported at once)."""
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise SceneError("no such scene file", str(path)) from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise SceneError(f"cannot read the scene file: {exc}", str(path)) from None
+    return parse_scene(text, path)
+
+
+def parse_scene(text: str, path: str | Path = "scene.toml") -> Scene:
+    """Validate scene `text`; relative record paths are relative to `path`'s folder."""
+    path = Path(path)
+    try:
+        doc = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise SceneError(f"not valid TOML: {exc}", str(path)) from None
+    ck = _Checker()
+    ck.keys(doc, TOP_KEYS, "")
+    base = path.parent
+    name = path.stem
+    if "scene" in doc:
+        if not isinstance(doc["scene"], dict):
+            ck.add("scene", "must be a table")
+        else:
+            ck.keys(doc["scene"], {"name"}, "scene")
+            if "name" in doc["scene"]:
+                name = ck.string(doc["scene"]["name"], "scene.name") or name
+    records = _records(doc.get("records"), ck, base)
+    processing = _processing(doc.get("processing", {}), ck)
+    buildings = _buildings(doc.get("buildings"), ck)
+    stories = {b.stories for b in buildings}
+    contents = _contents(doc.get("contents", []), ck, stories)
+    spectra = _spectra(doc.get("spectra"), ck, stories)
+    report = _report(doc.get("report", {}), ck, {b.base for b in buildings})
+    if not contents and spectra is None:
+        ck.add("contents", "the scene asks for nothing: give [[contents]] or [spectra]")
+    if ck.problems:
+        raise SceneError(ck.problems, str(path))
+    return Scene(name, str(path), text, records, processing, buildings, contents, spectra, report)
+
+
+def _records(value, ck: _Checker, base: Path) -> tuple[RecordSetSpec, ...]:
+    if value is None:
+        ck.add("records", "missing: give at least one [[records]] set")
+        return ()
+    if not isinstance(value, list) or not value:
+        ck.add("records", "must be a list of tables ([[records]])")
+        return ()
+    out, names = [], set()
+    for i, r in enumerate(value):
+        w = f"records[{i}]"
+        if not isinstance(r, dict):
+            ck.add(w, "must be a table")
+            continue
+        ck.keys(r, RECORD_KEYS, w)
+        name = ck.string(r.get("set"), f"{w}.set") if "set" in r else None
+        if "set" not in r:
+            ck.add(f"{w}.set", "missing: name the record set")
+        elif name in names:
+            ck.add(f"{w}.set", f"duplicate set name {name!r}")
+        names.add(name)
+        has_files, has_cat = "files" in r, "catalog" in r
+        if has_files == has_cat:
+            ck.add(w, "give exactly one of files (globs) or catalog (a CSV flatfile)")
+        files: list[str] = []
+        if has_files:
+            pats = r["files"] if isinstance(r["files"], list) else [r["files"]]
+            for j, pat in enumerate(pats):
+                if not isinstance(pat, str) or not pat:
+                    ck.add(f"{w}.files[{j}]", f"must be a path or glob, got {pat!r}")
+                    continue
+                full = pat if Path(pat).is_absolute() else str(base / pat)
+                hits = sorted(glob.glob(full, recursive=True))
+                if not hits:
+                    ck.add(f"{w}.files[{j}]", f"matches no file ({full})")
+                files += [h for h in hits if Path(h).is_file()]
+        catalog = None
+        if has_cat:
+            cat = ck.string(r["catalog"], f"{w}.catalog")
+            if cat:
+                catalog = cat if Path(cat).is_absolute() else str(base / cat)
+                if not Path(catalog).is_file():
+                    ck.add(f"{w}.catalog", f"no such catalog file ({catalog})")
+        where = r.get("where", {})
+        if "where" in r and not has_cat:
+            ck.add(f"{w}.where", "only applies to a catalog")
+        if not isinstance(where, dict):
+            ck.add(f"{w}.where", "must be a table of column = value")
+            where = {}
+        scale = (
+            ck.numbers(r["scale_pga"], f"{w}.scale_pga", lo=0, lo_open=True)
+            if "scale_pga" in r
+            else ()
+        )
+        dt = ck.number(r["dt"], f"{w}.dt", lo=0, lo_open=True) if "dt" in r else None
+        opts = {}
+        for key in ("format", "units", "component", "vertical_component"):
+            if key in r:
+                opts[key] = ck.string(r[key], f"{w}.{key}")
+        if "units" in r and isinstance(r["units"], str):
+            from floorslide.errors import UnitsError
+            from floorslide.records.units import canonical_units
+
+            try:
+                canonical_units(r["units"])
+            except UnitsError as exc:
+                ck.add(f"{w}.units", exc.message)
+        out.append(
+            RecordSetSpec(
+                set=name or f"set{i}",
+                files=tuple(dict.fromkeys(files)),
+                catalog=catalog,
+                where=dict(where),
+                scale_pga=scale,
+                dt=dt,
+                **opts,
+            )
+        )
+    return tuple(out)
+
+
+def _processing(value, ck: _Checker) -> dict:
+    if not isinstance(value, dict):
+        ck.add("processing", "must be a table")
+        return {}
+    ck.keys(value, PROCESSING_KEYS, "processing")
+    for key in ("highpass", "lowpass", "resample", "scale_pga", "scale"):
+        if key in value:
+            ck.number(value[key], f"processing.{key}", lo=0, lo_open=True)
+    if "taper" in value:
+        ck.number(value["taper"], "processing.taper", lo=0, hi=0.5)
+    if "highpass" in value and "lowpass" in value:
+        hp, lp = value["highpass"], value["lowpass"]
+        if isinstance(hp, int | float) and isinstance(lp, int | float) and hp >= lp:
+            ck.add("processing.lowpass", f"must be above highpass ({hp} Hz), got {lp}")
+    if "detrend" in value and value["detrend"] not in (
+        "linear",
+        "constant",
+        "demean",
+        "polynomial",
+        True,
+        False,
+    ):
+        ck.add(
+            "processing.detrend",
+            f"must be linear, constant or polynomial, got {value['detrend']!r}",
+        )
+    return {k: v for k, v in value.items() if k in PROCESSING_KEYS}
+
+
+def _buildings(value, ck: _Checker) -> tuple[BuildingSpec, ...]:
+    if value is None:
+        ck.add("buildings", "missing: give at least one [[buildings]]")
+        return ()
+    if not isinstance(value, list) or not value:
+        ck.add("buildings", "must be a list of tables ([[buildings]])")
+        return ()
+    fixed: dict[str, list[BuildingSpec]] = {}
+    out: list[BuildingSpec] = []
+    ids: set[str] = set()
+    isolated = []
+    for i, b in enumerate(value):
+        w = f"buildings[{i}]"
+        if not isinstance(b, dict):
+            ck.add(w, "must be a table")
+            continue
+        bid = ck.string(b.get("id"), f"{w}.id") if "id" in b else None
+        if "id" not in b:
+            ck.add(f"{w}.id", "missing: name the building")
+        elif bid in ids:
+            ck.add(f"{w}.id", f"duplicate building id {bid!r}")
+        ids.add(bid)
+        kind = b.get("kind")
+        if kind not in ("fixed", "isolated"):
+            ck.add(f"{w}.kind", f"must be 'fixed' or 'isolated', got {kind!r}")
+            continue
+        if kind == "isolated":
+            ck.keys(b, ISOLATED_KEYS, w)
+            isolated.append((i, b, bid))
+            continue
+        ck.keys(b, FIXED_KEYS, w)
+        stories = ck.number(b.get("stories", 1), f"{w}.stories", lo=1, integer=True)
+        periods = (
+            ck.numbers(b["period"], f"{w}.period", lo=0, lo_open=True) if "period" in b else ()
+        )
+        if "period" not in b:
+            ck.add(f"{w}.period", "missing: the fundamental period, s")
+        damps = ck.numbers(b.get("damping", 0.05), f"{w}.damping", lo=0, hi=1, hi_open=True)
+        mass = ck.number(b.get("mass", 1.0), f"{w}.mass", lo=0, lo_open=True)
+        profile = b.get("profile", "uniform")
+        if profile not in ("uniform", "shear"):
+            ck.add(f"{w}.profile", f"must be 'uniform' or 'shear', got {profile!r}")
+        if stories is None or mass is None or not bid:
+            continue
+        variants = []
+        for T, z in itertools.product(periods, damps):
+            vid = bid
+            tags = []
+            if len(periods) > 1:
+                tags.append(f"T={_fmt(T)}")
+            if len(damps) > 1:
+                tags.append(f"xi={_fmt(z)}")
+            if tags:
+                vid += "@" + ",".join(tags)
+            variants.append(BuildingSpec(vid, bid, "fixed", stories, T, z, mass, str(profile)))
+        fixed[bid] = variants
+        out += variants
+    for i, b, bid in isolated:
+        w = f"buildings[{i}]"
+        sup = b.get("superstructure")
+        if sup not in fixed:
+            ck.add(f"{w}.superstructure", f"must be the id of a fixed building, got {sup!r}")
+            continue
+        if len(fixed[sup]) != 1:
+            ck.add(
+                f"{w}.superstructure",
+                f"{sup!r} is swept; isolate a building with one period and damping",
+            )
+            continue
+        s = fixed[sup][0]
+        ratios = ck.numbers(
+            b.get("base_mass_ratio", 1.0), f"{w}.base_mass_ratio", lo=0, lo_open=True
+        )
+        periods = (
+            ck.numbers(b["period"], f"{w}.period", lo=0, lo_open=True) if "period" in b else ()
+        )
+        if "period" not in b:
+            ck.add(f"{w}.period", "missing: the isolation period, s")
+        damps = ck.numbers(b.get("damping", 0.1), f"{w}.damping", lo=0, hi=1, hi_open=True)
+        if not bid:
+            continue
+        for R, T, z in itertools.product(ratios, periods, damps):
+            tags = []
+            if len(ratios) > 1:
+                tags.append(f"mb={_fmt(R)}")
+            if len(periods) > 1:
+                tags.append(f"T={_fmt(T)}")
+            if len(damps) > 1:
+                tags.append(f"xi={_fmt(z)}")
+            vid = bid + ("@" + ",".join(tags) if tags else "")
+            out.append(
+                BuildingSpec(
+                    vid,
+                    bid,
+                    "isolated",
+                    s.stories,
+                    T,
+                    z,
+                    s.mass,
+                    s.profile,
+                    sup,
+                    s.period,
+                    s.damping,
+                    R,
+                )
+            )
+    return tuple(out)
+
+
+def _floor_spec(value, where, ck: _Checker, stories: set[int]):
+    if value in ("all", "roof"):
+        return value
+    items = value if isinstance(value, list) else [value]
+    out = []
+    for j, f in enumerate(items):
+        got = ck.number(
+            f, f"{where}[{j}]" if isinstance(value, list) else where, lo=0, integer=True
+        )
+        if got is None:
+            continue
+        for n in sorted(stories):
+            if got > n:
+                ck.add(
+                    f"{where}",
+                    f"floor {got} does not exist in a {n}-storey building (floors 0..{n})",
+                )
+                break
+        out.append(got)
+    if not items:
+        ck.add(where, "must list at least one floor, or be 'all' or 'roof'")
+    return tuple(out)
+
+
+def _contents(value, ck: _Checker, stories: set[int]) -> tuple[ContentSpec, ...]:
+    if not isinstance(value, list):
+        ck.add("contents", "must be a list of tables ([[contents]])")
+        return ()
+    out, ids = [], set()
+    for i, c in enumerate(value):
+        w = f"contents[{i}]"
+        if not isinstance(c, dict):
+            ck.add(w, "must be a table")
+            continue
+        ck.keys(c, CONTENT_KEYS, w)
+        cid = ck.string(c.get("id"), f"{w}.id") if "id" in c else None
+        if "id" not in c:
+            ck.add(f"{w}.id", "missing: name the content")
+        elif cid in ids:
+            ck.add(f"{w}.id", f"duplicate content id {cid!r}")
+        ids.add(cid)
+        floors = _floor_spec(c.get("floors", "roof"), f"{w}.floors", ck, stories)
+        if "mu" not in c:
+            ck.add(f"{w}.mu", "missing: kinetic friction coefficient(s)")
+        mu = ck.numbers(c.get("mu", []), f"{w}.mu", lo=0) if "mu" in c else ()
+        mu_s = None
+        if "mu_s" in c:
+            mu_s = ck.numbers(c["mu_s"], f"{w}.mu_s", lo=0)
+            if mu_s and len(mu_s) not in (1, len(mu)):
+                ck.add(f"{w}.mu_s", f"must be one value or one per mu ({len(mu)}), got {len(mu_s)}")
+            elif mu_s and len(mu_s) == 1:
+                mu_s = mu_s * len(mu)
+        width = height = None
+        if ("width" in c) != ("height" in c):
+            ck.add(w, "give both width and height (the rocking check), or neither")
+        if "width" in c:
+            width = ck.number(c["width"], f"{w}.width", lo=0, lo_open=True)
+            height = ck.number(c.get("height"), f"{w}.height", lo=0, lo_open=True)
+        model = c.get("model", "rigid")
+        freq = None
+        damping, ratio = 0.02, 1.0
+        if model not in ("rigid", "oscillator"):
+            ck.add(f"{w}.model", f"must be 'rigid' or 'oscillator', got {model!r}")
+        elif model == "oscillator":
+            if "frequency" not in c:
+                ck.add(
+                    f"{w}.frequency", "missing: the clamped-base frequency of the oscillator, Hz"
+                )
+            else:
+                freq = ck.number(c["frequency"], f"{w}.frequency", lo=0, lo_open=True)
+            damping = ck.number(c.get("damping", 0.02), f"{w}.damping", lo=0, hi=1, hi_open=True)
+            ratio = ck.number(c.get("mass_ratio", 1.0), f"{w}.mass_ratio", lo=0, lo_open=True)
+        else:
+            for key in ("frequency", "mass_ratio"):
+                if key in c:
+                    ck.add(f"{w}.{key}", "only applies to model = 'oscillator'")
+        vertical = c.get("vertical", False)
+        if not isinstance(vertical, bool):
+            ck.add(f"{w}.vertical", f"must be true or false, got {vertical!r}")
+        direction = c.get("direction", "both")
+        if direction not in ("both", "positive", "negative"):
+            ck.add(f"{w}.direction", f"must be both, positive or negative, got {direction!r}")
+        out.append(
+            ContentSpec(
+                cid or f"content{i}",
+                floors,
+                mu,
+                mu_s or None,
+                width,
+                height,
+                str(model),
+                freq,
+                damping if damping is not None else 0.02,
+                ratio if ratio is not None else 1.0,
+                bool(vertical),
+                str(direction),
+            )
+        )
+    return tuple(out)
+
+
+def _spectra(value, ck: _Checker, stories: set[int]) -> SpectraSpec | None:
+    if value is None:
+        return None
+    if not isinstance(value, dict):
+        ck.add("spectra", "must be a table")
+        return None
+    ck.keys(value, SPECTRA_KEYS, "spectra")
+    floors = _floor_spec(value.get("floors", "all"), "spectra.floors", ck, stories)
+    damping = ck.numbers(value.get("damping", 0.05), "spectra.damping", lo=0, hi=1, hi_open=True)
+    periods = value.get("periods", {"min": 0.02, "max": 5.0, "n": 100})
+    grid: tuple[float, ...] = ()
+    if isinstance(periods, dict):
+        ck.keys(periods, {"min", "max", "n"}, "spectra.periods")
+        lo = ck.number(periods.get("min"), "spectra.periods.min", lo=0, lo_open=True)
+        hi = ck.number(periods.get("max"), "spectra.periods.max", lo=0, lo_open=True)
+        n = ck.number(periods.get("n"), "spectra.periods.n", lo=2, integer=True)
+        if lo is not None and hi is not None and lo >= hi:
+            ck.add("spectra.periods.max", f"must be above min ({lo:g} s)")
+        elif None not in (lo, hi, n):
+            grid = tuple(np.geomspace(lo, hi, n).tolist())
+    else:
+        grid = ck.numbers(periods, "spectra.periods", lo=0)
+    broadening = ck.number(
+        value.get("broadening", 0.0), "spectra.broadening", lo=0, hi=1, hi_open=True
+    )
+    return SpectraSpec(floors, damping, grid, broadening or 0.0)
+
+
+def _report(value, ck: _Checker, building_ids: set[str]) -> dict:
+    if not isinstance(value, dict):
+        ck.add("report", "must be a table")
+        return {}
+    ck.keys(value, REPORT_KEYS, "report")
+    if "periods" in value:
+        ck.numbers(value["periods"], "report.periods", lo=0)
+    if "damping" in value:
+        ck.number(value["damping"], "report.damping", lo=0, hi=1, hi_open=True)
+    comps = value.get("compare", [])
+    if not isinstance(comps, list):
+        comps = [comps]
+    for j, comp in enumerate(comps):
+        parts = comp.split(":") if isinstance(comp, str) else []
+        if len(parts) != 2 or not all(parts):
+            ck.add(f"report.compare[{j}]", f"must be 'A:B' (two building ids), got {comp!r}")
+            continue
+        for p in parts:
+            if p.split("@")[0] not in building_ids:
+                ck.add(f"report.compare[{j}]", f"unknown building {p!r}")
+    return dict(value)
