@@ -1,0 +1,1 @@
+"""Reports: design tables and figures from a result file."""
