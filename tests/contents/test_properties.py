@@ -1,0 +1,65 @@
+"""Properties of the exact sliding solver on random piecewise-linear records (hypothesis)."""
+
+from __future__ import annotations
+
+import numpy as np
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from floorslide.building.model import ShearBuilding
+from floorslide.constants import G
+from floorslide.contents.sliding import slide
+
+records = st.integers(min_value=0, max_value=2**32 - 1).map(
+    lambda seed: np.random.default_rng(seed).normal(scale=3.0, size=80)
+)
+mus = st.floats(min_value=0.01, max_value=0.6)
+dts = st.sampled_from([0.005, 0.01, 0.02])
+SETTINGS = settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+
+
+@SETTINGS
+@given(acc=records, mu=mus, ratio=st.floats(min_value=1.0, max_value=1.6), dt=dts)
+def test_negating_the_record_negates_the_slide(acc, mu, ratio, dt):
+    a = slide(acc, dt, mu, mu * ratio)
+    b = slide(-acc, dt, mu, mu * ratio)
+    np.testing.assert_allclose(b.peak_slide, a.peak_slide, rtol=1e-12, atol=1e-15)
+    np.testing.assert_allclose(b.residual_slide, -a.residual_slide, rtol=1e-12, atol=1e-15)
+    assert np.array_equal(a.slip_phases, b.slip_phases)
+
+
+@SETTINGS
+@given(acc=records, mu=mus, c=st.floats(min_value=0.1, max_value=10.0), dt=dts)
+def test_scaling_record_and_friction_together_scales_the_slide(acc, mu, c, dt):
+    """u'' = −a − mu g sign(u'): (c·a, c·mu) gives c·u exactly."""
+    a = slide(acc, dt, mu)
+    b = slide(c * acc, dt, c * mu)
+    np.testing.assert_allclose(b.peak_slide, c * a.peak_slide, rtol=1e-10, atol=1e-15)
+    np.testing.assert_allclose(b.residual_slide, c * a.residual_slide, rtol=1e-10, atol=1e-14)
+
+
+@SETTINGS
+@given(acc=records, mu=mus, dt=dts, vscale=st.floats(min_value=0.0, max_value=0.8))
+def test_object_acceleration_never_exceeds_friction_while_sliding(acc, mu, dt, vscale):
+    vert = vscale * G * np.sin(np.arange(acc.size) * 0.37)
+    res = slide(acc, dt, mu, vertical=vert, histories=True)
+    sliding = res.v[0] != 0.0
+    limit = mu * (G + vert) * (1 + 1e-12) + 1e-12
+    assert np.all(np.abs(res.abs_accel[0][sliding]) <= limit[sliding])
+    assert res.peak_abs_accel[0] <= mu * (G + np.abs(vert).max()) * (1 + 1e-12)
+    # where it sticks it moves with the ground
+    stuck = ~sliding
+    stuck[0] = False
+    np.testing.assert_allclose(res.abs_accel[0][stuck], acc[stuck], rtol=0, atol=1e-12)
+
+
+@settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(acc=records, mu=st.floats(min_value=0.05, max_value=0.3), on_floor=st.booleans())
+def test_exact_agrees_with_fine_step_reference(acc, mu, on_floor):
+    acc = np.concatenate([[0.0], acc[:40]])
+    kw = dict(building=ShearBuilding.from_period(1, 0.15, 0.05), floor=1) if on_floor else {}
+    exact = slide(acc, 0.01, mu, **kw)
+    ref = slide(acc, 0.01, mu, method="solve_ivp", rtol=1e-12, max_step=0.01 / 16, **kw)
+    scale = max(exact.peak_slide[0], 1e-6)
+    assert abs(exact.peak_slide[0] - ref.peak_slide[0]) <= 1e-7 * scale
+    assert abs(exact.residual_slide[0] - ref.residual_slide[0]) <= 1e-7 * scale
