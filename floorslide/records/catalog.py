@@ -128,8 +128,26 @@ class CatalogEntry:
                 where=exc.where or str(self.path),
             ) from None
         for trace in stream:
+            self.check_npts(trace)
             self.attach(trace)
         return stream
+
+    def check_npts(self, trace: Trace) -> None:
+        """Refuse a record whose sample count differs from the row's ``npts`` column (when the
+        catalog has one): a truncated file must never read as a shorter record."""
+        text = self.row.get("npts", "").strip()
+        if not text:
+            return
+        try:
+            expected = int(float(text))
+        except ValueError:
+            raise RecordError(f"npts {text!r} is not a whole number", self.where) from None
+        if trace.stats.npts != expected:
+            raise RecordError(
+                f"holds {trace.stats.npts} samples but {self.catalog.name} line {self.line} says "
+                f"npts={expected} (truncated or not the catalogued file)",
+                where=str(self.path),
+            )
 
     def attach(self, trace: Trace) -> None:
         """Keep this row's columns in ``trace.stats`` (see the module notes)."""

@@ -227,6 +227,7 @@ def _read_record(
     stream = _select(stream, component, where)
     if entry is not None:
         for trace in stream:
+            entry.check_npts(trace)
             entry.attach(trace)
     return stream
 

@@ -75,9 +75,13 @@ def read_text(filename: str | os.PathLike) -> str:
 
 
 def parse_floats(
-    lines: list[str], first_line: int, where: str, what: str = "a number"
+    lines: list[str], first_line: int, where: str, what: str = "a number", commas: bool = True
 ) -> np.ndarray:
-    """All whitespace/comma separated numbers of ``lines`` as one float64 array.
+    """All whitespace (and, with `commas`, comma) separated numbers of ``lines`` as one array.
+
+    Formats whose data blocks are whitespace-separated (AT2, COSMOS) pass ``commas=False``: a
+    comma there is damage, not a separator (``.349E-01`` → ``,349E-01`` would otherwise read as
+    a different number).
 
     Parameters
     ----------
@@ -95,6 +99,15 @@ def parse_floats(
     RecordError
         At the first token that is not a number, giving its line and column.
     """
+    if not commas:
+        for offset, line in enumerate(lines):
+            col = line.find(",")
+            if col >= 0:
+                raise RecordError(
+                    f"line {first_line + offset}, column {col + 1}: ',' in a whitespace-separated "
+                    f"data block",
+                    where=where,
+                )
     body = " ".join(lines).replace(",", " ")
     try:
         return np.array(body.split(), dtype=np.float64)

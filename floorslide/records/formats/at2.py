@@ -219,7 +219,7 @@ def _read_at2(filename: str | os.PathLike, headonly: bool = False, **kwargs: obj
 
     body = lines[index + 1 :]
     first_line = index + 2
-    data = parse_floats(body, first_line, where)
+    data = parse_floats(body, first_line, where, commas=False)
     if data.size < npts:
         raise RecordError(
             f"truncated: the header says NPTS={npts} but the file holds only {data.size} values",

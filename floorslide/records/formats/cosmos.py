@@ -158,7 +158,7 @@ class _Reader:
             raise self.fail(f"truncated: the file ends inside the {what}")
         body = self.lines[start : start + nlines]
         self.pos += nlines
-        values = parse_floats(body, start + 1, self.where)
+        values = parse_floats(body, start + 1, self.where, commas=False)
         if values.size != count:
             fmt = _FORTRAN.search(header)
             if fmt is None or not fmt.group(1):
@@ -232,7 +232,7 @@ class _Reader:
             end += 1
         body = self.lines[start:end]
         self.pos = end
-        values = parse_floats(body, start + 1, self.where)
+        values = parse_floats(body, start + 1, self.where, commas=False)
         if values.size != npts:
             fmt = _FORTRAN.search(header)
             if values.size > npts and fmt and fmt.group(1):
