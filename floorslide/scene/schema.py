@@ -67,6 +67,10 @@ CONTENT_KEYS = {
 }
 SPECTRA_KEYS = {"floors", "damping", "periods", "broadening"}
 REPORT_KEYS = {"periods", "damping", "compare", "history_record"}
+MAX_STORIES = 200
+"""Largest building a scene may declare (a 200-storey shear building has 400 states)."""
+MAX_LIST = 10_000
+"""Longest list (sweep, period grid) a scene may declare."""
 
 
 @dataclass(frozen=True)
@@ -223,6 +227,9 @@ class _Checker:
         items = value if isinstance(value, list) else [value]
         if not items:
             self.add(where, "must not be an empty list")
+            return ()
+        if len(items) > MAX_LIST:
+            self.add(where, f"at most {MAX_LIST} values, got {len(items)}")
             return ()
         out = []
         for i, v in enumerate(items):
@@ -426,7 +433,7 @@ def _buildings(value, ck: _Checker) -> tuple[BuildingSpec, ...]:
             isolated.append((i, b, bid))
             continue
         ck.keys(b, FIXED_KEYS, w)
-        stories = ck.number(b.get("stories", 1), f"{w}.stories", lo=1, integer=True)
+        stories = ck.number(b.get("stories", 1), f"{w}.stories", lo=1, hi=MAX_STORIES, integer=True)
         periods = (
             ck.numbers(b["period"], f"{w}.period", lo=0, lo_open=True) if "period" in b else ()
         )
@@ -455,7 +462,7 @@ def _buildings(value, ck: _Checker) -> tuple[BuildingSpec, ...]:
     for i, b, bid in isolated:
         w = f"buildings[{i}]"
         sup = b.get("superstructure")
-        if sup not in fixed:
+        if not isinstance(sup, str) or sup not in fixed:
             ck.add(f"{w}.superstructure", f"must be the id of a fixed building, got {sup!r}")
             continue
         if len(fixed[sup]) != 1:
@@ -620,7 +627,7 @@ def _spectra(value, ck: _Checker, stories: set[int]) -> SpectraSpec | None:
         ck.keys(periods, {"min", "max", "n"}, "spectra.periods")
         lo = ck.number(periods.get("min"), "spectra.periods.min", lo=0, lo_open=True)
         hi = ck.number(periods.get("max"), "spectra.periods.max", lo=0, lo_open=True)
-        n = ck.number(periods.get("n"), "spectra.periods.n", lo=2, integer=True)
+        n = ck.number(periods.get("n"), "spectra.periods.n", lo=2, hi=MAX_LIST, integer=True)
         if lo is not None and hi is not None and lo >= hi:
             ck.add("spectra.periods.max", f"must be above min ({lo:g} s)")
         elif None not in (lo, hi, n):
