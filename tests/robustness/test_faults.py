@@ -1,0 +1,152 @@
+"""Faults: a full disk, an unwritable output, a corrupt result file, a Dask worker killed."""
+
+from __future__ import annotations
+
+import errno
+import os
+import signal
+import subprocess
+import sys
+import threading
+import time
+
+import numpy as np
+import pytest
+
+from floorslide.errors import ResultFileError
+from floorslide.run import store
+from floorslide.run.execute import execute
+from floorslide.run.store import ResultFile, journal_dir
+from floorslide.scene.planner import plan
+from floorslide.scene.schema import parse_scene
+from tests.conftest import ROOT
+from tests.run.test_runs import SCENE, assert_same, results
+
+
+@pytest.fixture(scope="module")
+def the_plan(tmp_path_factory):
+    path = tmp_path_factory.mktemp("scene") / "study.toml"
+    path.write_text(SCENE)
+    return plan(parse_scene(SCENE, path))
+
+
+@pytest.fixture(scope="module")
+def reference(the_plan, tmp_path_factory):
+    out = tmp_path_factory.mktemp("ref") / "ref.h5"
+    execute(the_plan, str(out), workers=1, progress=False)
+    return results(out)
+
+
+def fail_after(monkeypatch, n):
+    """Make the n-th write of a task to the HDF5 file fail as on a full disk."""
+    real = store.ResultWriter._write_h5
+    calls = {"n": 0}
+
+    def flaky(self, result):
+        calls["n"] += 1
+        if calls["n"] == n:
+            raise OSError(errno.ENOSPC, "No space left on device")
+        return real(self, result)
+
+    monkeypatch.setattr(store.ResultWriter, "_write_h5", flaky)
+
+
+def test_full_disk_gives_a_clear_error_and_keeps_what_finished(
+    the_plan, reference, tmp_path, monkeypatch
+):
+    out = tmp_path / "full.h5"
+    fail_after(monkeypatch, 4)
+    with pytest.raises(ResultFileError) as err:
+        execute(the_plan, str(out), workers=1, progress=False)
+    msg = str(err.value)
+    assert "No space left on device" in msg and "--resume" in msg and "\n" not in msg
+    assert len(ResultFile(out).done_tasks()) == 3  # the file is readable with what finished
+    monkeypatch.undo()
+    summary = execute(the_plan, str(out), workers=1, progress=False, resume=True)
+    assert summary.resumed == 4  # the 4th task was journaled before the disk filled
+    assert_same(results(out), reference)
+
+
+def test_corrupt_result_file_is_detected_then_rebuilt_from_the_journal(
+    the_plan, reference, tmp_path, monkeypatch
+):
+    out = tmp_path / "c.h5"
+    fail_after(monkeypatch, 6)
+    with pytest.raises(ResultFileError):
+        execute(the_plan, str(out), workers=1, progress=False)
+    monkeypatch.undo()
+    raw = out.read_bytes()
+    out.write_bytes(raw[: len(raw) // 2])  # a kill in the middle of a write
+    with pytest.raises(ResultFileError, match=r"corrupt or unreadable.*--resume"):
+        ResultFile(out)
+    assert journal_dir(out).exists()
+    summary = execute(the_plan, str(out), workers=1, progress=False, resume=True)
+    assert summary.resumed == 6
+    assert_same(results(out), reference)
+
+
+@pytest.mark.parametrize("garbage", [b"", b"not an hdf5 file at all\n" * 10, os.urandom(4096)])
+def test_garbage_is_not_a_result_file(garbage, tmp_path):
+    path = tmp_path / "x.h5"
+    path.write_bytes(garbage)
+    with pytest.raises(ResultFileError):
+        ResultFile(path)
+
+
+def test_hdf5_that_is_not_ours(tmp_path):
+    import h5py
+
+    path = tmp_path / "other.h5"
+    with h5py.File(path, "w") as f:
+        f["x"] = np.arange(3)
+    with pytest.raises(ResultFileError, match="not a floorslide result file"):
+        ResultFile(path)
+
+
+def test_unwritable_output_gives_one_line(tmp_path):
+    blocker = tmp_path / "file"
+    blocker.write_text("x")
+    scene = tmp_path / "s.toml"
+    scene.write_text(SCENE)
+    env = dict(os.environ, PYTHONPATH=str(ROOT))
+    out = subprocess.run(
+        [sys.executable, "-m", "floorslide.cli", "run", str(scene), "-o", str(blocker / "out.h5")],
+        capture_output=True,
+        text=True,
+        env=env,
+    )
+    assert out.returncode == 1
+    assert "Traceback" not in out.stderr and len(out.stderr.strip().splitlines()) == 1
+    assert "cannot create the output folder" in out.stderr
+
+
+def test_dask_worker_killed_mid_run_is_recovered(the_plan, reference, tmp_path):
+    from dask.distributed import Client, LocalCluster
+
+    out = tmp_path / "d.h5"
+    with LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+    ) as lc:
+        errors = []
+
+        def go():
+            try:
+                execute(the_plan, str(out), scheduler=lc.scheduler_address, progress=False)
+            except Exception as exc:
+                errors.append(exc)
+
+        th = threading.Thread(target=go)
+        th.start()
+        journal = journal_dir(out)
+        deadline = time.time() + 60
+        while time.time() < deadline and not (journal.exists() and any(journal.glob("*.pkl"))):
+            time.sleep(0.01)
+        with Client(lc.scheduler_address) as client:
+            pids = list(client.run(os.getpid).values())
+        assert len(pids) == 2 and journal.exists()
+        done_before = len(list(journal.glob("*.pkl")))
+        os.kill(pids[0], signal.SIGKILL)  # a worker process dies mid-run
+        th.join(timeout=120)
+        assert not th.is_alive() and not errors, errors
+        assert done_before < len(the_plan.tasks)
+    assert_same(results(out), reference)
