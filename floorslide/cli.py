@@ -376,6 +376,168 @@ def run(scene, out, dry_run, resume, workers, scheduler, force):
         sys.exit(EXIT_RECORD)
 
 
+REPORT_TABLES = ("slides", "pfa", "frs", "slide_ratios", "pfa_ratios")
+"""The design tables, in output order (floorslide.report.tables.TABLE_NAMES)."""
+
+
+def _compare_option(ctx, param, value: tuple[str, ...]) -> tuple[str, ...]:
+    """``--compare A:B``: the syntax here; the building ids once the file is read."""
+    from floorslide.report.tables import parse_comparison
+
+    for spec in value:
+        try:
+            parse_comparison(spec)
+        except ValueError as exc:
+            raise click.BadParameter(str(exc), ctx=ctx, param=param) from None
+    return value
+
+
+def _report_call(ctx, func, *args, **kwargs):
+    """Call a report function; a bad --compare/--periods/--damping becomes a usage error."""
+    from floorslide.errors import ModelError
+
+    try:
+        return func(*args, **kwargs)
+    except ModelError as exc:
+        if exc.where in ("compare", "periods", "damping"):
+            raise click.BadParameter(exc.message, ctx=ctx, param_hint=f"--{exc.where}") from None
+        raise
+
+
+@cli.command()
+@click.argument("result", metavar="OUT.h5")
+@click.option(
+    "--format",
+    "fmt",
+    type=click.Choice(["md", "csv", "json"]),
+    default="md",
+    show_default=True,
+    help="Markdown, CSV or JSON.",
+)
+@click.option("--json", "as_json", is_flag=True, help="Same as --format json.")
+@click.option(
+    "--compare",
+    multiple=True,
+    metavar="A:B",
+    callback=_compare_option,
+    help="Ratios A / B between buildings (ids or base ids; repeatable). Default: the scene's "
+    "[report] compare, else each isolated building over its superstructure.",
+)
+@click.option(
+    "--periods",
+    metavar="T[,T...]",
+    help="FRS periods in s (default: [report] periods, else 0.1,0.2,0.3,0.5,1,2,3).",
+)
+@click.option("--damping", type=float, metavar="Z", help="FRS damping ratio (one stored).")
+@click.option(
+    "--table",
+    "only",
+    multiple=True,
+    type=click.Choice(REPORT_TABLES),
+    help="Only this table (repeatable; default all).",
+)
+@click.option(
+    "-o",
+    "--out",
+    metavar="FILE|DIR",
+    help="Write to FILE (md, json) or one NAME.csv per table into DIR (csv) instead of stdout.",
+)
+def table(result, fmt, as_json, compare, periods, damping, only, out):
+    """Design tables from a result file OUT.h5: per record set, building, floor, content and
+    friction coefficient the number of records, mean, median and 84th percentile (empirical,
+    numpy 'linear') of peak slide, |residual| slide and peak object acceleration, and how
+    many records made the object slide or rock; PFA per floor; FRS ordinates; ratios between
+    buildings (--compare A:B).
+
+    Markdown goes to stdout by default. CSV on stdout gives each table after a line
+    '# table: NAME'; with -o DIR it writes one NAME.csv per table. NaN (undefined, e.g. 0/0
+    ratios) is '—' in Markdown, empty in CSV and null in JSON; x/0 is '∞', 'inf' and null.
+    """
+    from pathlib import Path
+
+    from floorslide.errors import FloorslideError
+    from floorslide.report import tables as tb
+
+    if as_json:
+        if fmt not in ("md", "json"):
+            raise click.UsageError(f"--json and --format {fmt} conflict")
+        fmt = "json"
+    names = tuple(n for n in REPORT_TABLES if n in only) if only else REPORT_TABLES
+    study = tb.load_study(result)
+    dt = _report_call(
+        click.get_current_context(),
+        tb.design_tables,
+        study,
+        compare=list(compare) or None,
+        periods=_floats(periods, "--periods") if periods is not None else None,
+        damping=damping,
+    )
+    if fmt == "csv":
+        if out:
+            for path in tb.write_csv(dt, out, names):
+                click.echo(str(path))
+            return
+        click.echo(tb.format_csv_sections(dt, names), nl=False)
+        return
+    text = tb.format_json(dt, names) + "\n" if fmt == "json" else tb.format_markdown(dt, names)
+    if out:
+        try:
+            Path(out).parent.mkdir(parents=True, exist_ok=True)
+            Path(out).write_text(text, encoding="utf-8")
+        except OSError as exc:
+            raise FloorslideError(f"cannot write: {exc.strerror or exc}", out) from None
+        click.echo(out)
+        return
+    click.echo(text, nl=False)
+
+
+@cli.command()
+@click.argument("result", metavar="OUT.h5")
+@click.option(
+    "-o",
+    "--out",
+    metavar="DIR",
+    help="Folder of the figures (default: OUT-figures/ beside OUT.h5).",
+)
+@click.option(
+    "--compare",
+    multiple=True,
+    metavar="A:B",
+    callback=_compare_option,
+    help="Peak-slide ratio figures A / B (default as for floorslide table).",
+)
+@click.option("--damping", type=float, metavar="Z", help="FRS damping ratio (one stored).")
+@click.option("--json", "as_json", is_flag=True, help="Print the files written as a JSON list.")
+def plot(result, out, compare, damping, as_json):
+    """Figures (PNG) from a result file OUT.h5, one per kind and record set: floor motions and
+    sliding histories of the stored history record; median floor response spectra per floor;
+    peak slide versus friction per floor (median and 84th percentile per building); median
+    peak-slide ratio A / B versus isolation period, one curve per friction coefficient.
+    Prints the files written.
+    """
+    import json
+    from pathlib import Path
+
+    from floorslide.report import tables as tb
+    from floorslide.report.plots import plot_figures
+
+    study = tb.load_study(result)
+    folder = Path(out) if out else Path(result).with_name(f"{Path(result).stem}-figures")
+    paths = _report_call(
+        click.get_current_context(),
+        plot_figures,
+        study,
+        folder,
+        compare=list(compare) or None,
+        damping=damping,
+    )
+    if as_json:
+        click.echo(json.dumps([str(p) for p in paths], indent=1))
+        return
+    for p in paths:
+        click.echo(str(p))
+
+
 def main() -> None:
     """Entry point of the ``floorslide`` console script."""
     try:

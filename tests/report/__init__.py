@@ -1,0 +1,1 @@
+"""Tests of the design tables and figures (floorslide.report)."""
