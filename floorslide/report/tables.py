@@ -25,9 +25,9 @@ Conventions
   method (Hyndman & Fan 1996, definition 7). A lognormal fit is not used because slides are
   often exactly zero (the object does not slide under some records).
 - **Rocking**: an object that would rock (Shenton 1996) is not simulated as a slider; its slide
-  and acceleration are not known. Statistics are taken over the records in which it did not
-  rock (``n_stats`` of ``n_records``); ``n_rocked`` counts records with mode ``rock`` or
-  ``slide-rock``. With ``n_stats = 0`` the statistics are NaN.
+  and acceleration are not known (NaN in the file). Statistics are taken over the records whose
+  slide is known (``n_stats`` of ``n_records``: all but mode ``rock``); ``n_rocked`` counts
+  records with mode ``rock`` or ``slide-rock``. With ``n_stats = 0`` the statistics are NaN.
 - **Ratios** are ratios of statistics (median of A / median of B), not statistics of per-record
   ratios. ``0/0`` (neither slides) is NaN; ``x/0`` with ``x > 0`` is ``inf``; a NaN statistic
   gives a NaN ratio. The numerator and denominator are in the row beside the ratio.
@@ -124,7 +124,7 @@ COLUMNS: dict[str, tuple[Column, ...]] = {
         Column("mu_k", "1", "kinetic friction coefficient"),
         Column("mu_s", "1", "static friction coefficient"),
         _N_RECORDS,
-        Column("n_stats", "1", "records in the statistics (those in which it did not rock)"),
+        Column("n_stats", "1", "records in the statistics: all but those with mode rock"),
         Column("n_slid", "1", "records in which the object slid (peak slide > 0)"),
         Column("n_rocked", "1", "records in which the object rocks (rock or slide-rock)"),
         *_stat_columns("peak_slide", "m", "the peak slide max|u|"),
@@ -895,7 +895,7 @@ def design_tables(
         f"statistics over the records of each set; p84 = {PERCENTILE:g}th percentile, "
         "empirical (numpy.percentile, method 'linear')",
         "objects that rock (Shenton 1996) are not simulated as sliders: slide and acceleration "
-        "statistics are over the n_stats records in which the object did not rock",
+        "statistics are over the n_stats records whose slide is known (all but mode rock)",
         "residual_slide statistics are of |u(end)|",
         "ratios are ratios of statistics (A / B); 0/0 (neither slides) is NaN, x/0 is inf",
     ]
