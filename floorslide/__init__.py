@@ -25,12 +25,14 @@ from floorslide.contents import (
 from floorslide.errors import (
     FloorslideError,
     ModelError,
+    OutputError,
     RecordError,
     ResultFileError,
     SceneError,
     UnitsError,
 )
 from floorslide.records import measures, process, read_catalog, read_record
+from floorslide.report import design_tables, plot_figures
 from floorslide.spectra import Spectrum, broaden, envelope, response_spectrum
 
 try:
@@ -47,6 +49,8 @@ __all__ = [
     "SlideResult",
     "Spectrum",
     "broaden",
+    "design_tables",
+    "plot_figures",
     "envelope",
     "response_mode",
     "response_spectrum",
@@ -56,6 +60,7 @@ __all__ = [
     "slide",
     "FloorslideError",
     "ModelError",
+    "OutputError",
     "RecordError",
     "ResultFileError",
     "SceneError",

@@ -53,6 +53,13 @@ class ModelError(FloorslideError):
 
 
 class ResultFileError(FloorslideError):
-    """A result file is missing, corrupt or not a floorslide result file."""
+    """A result file given to floorslide is missing, corrupt or not a floorslide result file
+    (a bad argument: exit code 2)."""
+
+    exit_code = 2
+
+
+class OutputError(FloorslideError):
+    """Results cannot be written (full disk, unwritable folder); what finished is kept."""
 
     exit_code = 1

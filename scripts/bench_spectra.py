@@ -52,26 +52,43 @@ def main() -> None:
         exact = fs.response_spectrum(ag, dt, T, Z, **kw)
         t_exact = timeit(lambda kw=kw: fs.response_spectrum(ag, dt, T, Z, **kw), repeat=5)
         n = T.size * len(Z) * ag.size
-        rows.append([where, "floorslide exact", f"{t_exact * 1e3:.1f}", f"{n / t_exact:.2e}", "0", "1"])
+        rows.append(
+            [where, "floorslide exact", f"{t_exact * 1e3:.1f}", f"{n / t_exact:.2e}", "0", "1"]
+        )
         methods = [("floorslide peaks at samples", dict(method="samples"))]
-        methods += [(f"floorslide Newmark dt/{k}", dict(method="newmark", substeps=k)) for k in (1, 4)]
+        methods += [
+            (f"floorslide Newmark dt/{k}", dict(method="newmark", substeps=k)) for k in (1, 4)
+        ]
         methods += [("floorslide FFT", dict(method="fft"))]
         if kw:
             methods += [("floorslide re-interpolated floor", dict(method="reinterpolated"))]
         for name, mkw in methods:
-            t = timeit(lambda mkw=mkw, kw=kw: fs.response_spectrum(ag, dt, T, Z, **mkw, **kw), repeat=3)
+            t = timeit(
+                lambda mkw=mkw, kw=kw: fs.response_spectrum(ag, dt, T, Z, **mkw, **kw), repeat=3
+            )
             got = fs.response_spectrum(ag, dt, T, Z, **mkw, **kw).psa
             err = np.max(np.abs(got - exact.psa) / exact.psa)
-            rows.append([where, name, f"{t * 1e3:.1f}", f"{n / t:.2e}", f"{err:.1e}", f"{t / t_exact:.2f}"])
+            rows.append(
+                [where, name, f"{t * 1e3:.1f}", f"{n / t:.2e}", f"{err:.1e}", f"{t / t_exact:.2f}"]
+            )
         motion = fs.floor_motions(iso, ag, dt, floors=[3])[0] if kw else ag
         for name, fn in peers(motion, dt).items():
             t = timeit(fn, repeat=3)
             err = np.max(np.abs(fn() - exact.psa) / exact.psa)
-            rows.append([where, name, f"{t * 1e3:.1f}", f"{n / t:.2e}", f"{err:.1e}", f"{t / t_exact:.2f}"])
+            rows.append(
+                [where, name, f"{t * 1e3:.1f}", f"{n / t:.2e}", f"{err:.1e}", f"{t / t_exact:.2f}"]
+            )
     print(f"record: {ag.size} samples at dt = {dt} s; 100 periods × 3 damping ratios")
     print(
         markdown_table(
-            ["floor", "method", "ms", "oscillator·steps / s", "max rel. error of PSA", "time / exact"],
+            [
+                "floor",
+                "method",
+                "ms",
+                "oscillator·steps / s",
+                "max rel. error of PSA",
+                "time / exact",
+            ],
             rows,
         )
     )

@@ -50,7 +50,8 @@ damping = 0.02
 id = "isolated"
 kind = "isolated"
 superstructure = "fixed"
-period = [1.0, 1.25, 1.5, 1.75, 2.0, 2.25, 2.5, 2.75, 3.0, 3.25, 3.5, 3.75, 4.0, 4.25, 4.5, 4.75, 5.0]
+period = [1.0, 1.25, 1.5, 1.75, 2.0, 2.25, 2.5, 2.75, 3.0, 3.25, 3.5, 3.75, 4.0, 4.25, 4.5, 4.75,
+          5.0]
 damping = 0.10
 
 [[contents]]
@@ -72,7 +73,9 @@ def measure(cmd: list[str]) -> tuple[float, float]:
         p = psutil.Process(proc.pid)
         while not stop.is_set():
             try:
-                rss = p.memory_info().rss + sum(c.memory_info().rss for c in p.children(recursive=True))
+                rss = p.memory_info().rss + sum(
+                    c.memory_info().rss for c in p.children(recursive=True)
+                )
                 peak = max(peak, rss)
             except psutil.Error:
                 pass
@@ -97,14 +100,22 @@ def main() -> None:
         scene = Path(tmp) / "study.toml"
         scene.write_text(SCENE)
         exe = [sys.executable, "-m", "floorslide.cli", "run", str(scene)]
-        subprocess.run([*exe, "-o", str(Path(tmp) / "warm.h5"), "--workers", "1"], check=True,
-                       stdout=subprocess.DEVNULL)  # numba caches warm
+        subprocess.run(
+            [*exe, "-o", str(Path(tmp) / "warm.h5"), "--workers", "1"],
+            check=True,
+            stdout=subprocess.DEVNULL,
+        )  # numba caches warm
         for w in args.workers.split(","):
             out = Path(tmp) / f"w{w}.h5"
             wall, mem = measure([*exe, "-o", str(out), "--workers", w])
             rows.append([w, f"{wall:.1f}", f"{mem:.0f}", f"{out.stat().st_size / 1e6:.1f}"])
     print("40 records × 18 buildings (fixed + 17 isolation periods) = 720 tasks × 8 mu on the roof")
-    print(markdown_table(["workers", "wall time (s)", "peak memory (MB, all processes)", "result file (MB)"], rows))
+    print(
+        markdown_table(
+            ["workers", "wall time (s)", "peak memory (MB, all processes)", "result file (MB)"],
+            rows,
+        )
+    )
 
 
 if __name__ == "__main__":

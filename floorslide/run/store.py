@@ -6,8 +6,11 @@ Layout (every dataset carries a ``units`` attribute; ``1`` means dimensionless):
     /scene                   the scene file's text (attr path)
     /plan                    the plan as JSON text (what runs, what was skipped and why)
     /tasks/<task>            one group per (record × building); attrs: record_set, record,
-                             record_file, building, building_kind, stories, isolation_period,
-                             isolation_damping, dt, npts, pga, scale, seconds; done = 1 last
+                             record_file, building (the variant, e.g. "isolated@T=2.5"),
+                             building_base (the scene's id), building_kind, stories,
+                             isolation_period, isolation_damping (NaN when fixed),
+                             superstructure, fixed_period, dt, npts, pga, scale, seconds;
+                             done = 1, set last
       floors                 floors output (0 = ground or base mat)
       pfa                    true peak floor acceleration per floor (m/s**2)
       contents/<content>/floor_<f>/
@@ -19,7 +22,7 @@ Layout (every dataset carries a ``units`` attribute; ``1`` means dimensionless):
                              model, mode (the common mode or "mixed"), skipped (reasons and
                              counts, or ""), vertical
       spectra/floor_<f>/     periods (s), damping (1), psa, sa (m/s**2), sv (m/s), sd (m)
-      histories/             (one record of the study, for figures) attr dt; floors,
+      histories/             (one record of the study, every building, for figures) attr dt; floors,
                              floor_acceleration (m/s**2); slides/<content>/floor_<f>/u (m), mu_k
 
 A task is written, the file closed (flushed), then marked done. Beside the file, the journal
@@ -41,7 +44,7 @@ from pathlib import Path
 import h5py
 import numpy as np
 
-from floorslide.errors import ResultFileError
+from floorslide.errors import OutputError, ResultFileError
 from floorslide.run.results import ContentResult, Histories, SpectrumResult, TaskResult
 
 FORMAT = 1
@@ -108,7 +111,7 @@ class ResultWriter:
             self.path.parent.mkdir(parents=True, exist_ok=True)
             self.journal.mkdir(parents=True, exist_ok=True)
         except OSError as exc:
-            raise ResultFileError(
+            raise OutputError(
                 f"cannot create the output folder: {exc.strerror}", str(self.path)
             ) from None
         fresh = True
@@ -156,7 +159,7 @@ class ResultWriter:
                 f.create_group("tasks")
             os.replace(tmp, self.path)
         except OSError as exc:
-            raise ResultFileError(f"cannot write the result file: {exc}", str(self.path)) from None
+            raise OutputError(f"cannot write the result file: {exc}", str(self.path)) from None
 
     def write(self, result: TaskResult) -> None:
         """Journal the task atomically, write it to the file, close (flush), mark it done."""
@@ -170,7 +173,7 @@ class ResultWriter:
             os.replace(tmp, entry)
             self._write_h5(result)
         except OSError as exc:
-            raise ResultFileError(
+            raise OutputError(
                 f"cannot write task {result.task_id}: {exc.strerror or exc}; finished tasks are "
                 f"kept (resume with --resume)",
                 str(self.path),

@@ -242,7 +242,7 @@ def plan(scene: Scene, *, force: bool = False, evaluate: bool = True) -> Plan:
                     f"vertical_component"
                 )
         records[:] = [r for r in records if r.vertical is not None or not needs_vertical]
-    hist_done = False
+    hist_key = next(((r.set, r.record) for r in records if r.record == history), None)
     for r in records:
         for b in scene.buildings:
             floors_all = set(range(b.stories + 1))
@@ -256,8 +256,8 @@ def plan(scene: Scene, *, force: bool = False, evaluate: bool = True) -> Plan:
                 p.skipped[
                     "floor-0 outputs of fixed-base buildings: the ground, no building model"
                 ] += 1
-            want_hist = not hist_done and r.record == history
-            hist_done = hist_done or want_hist
+            # figures compare buildings: the history record keeps histories on every building
+            want_hist = (r.set, r.record) == hist_key
             tid = f"t{len(tasks):05d}"
             tasks.append(Task(tid, r, b, out, items, tuple(sfloors), scene.spectra, want_hist))
             p.runs["tasks (record × building)"] += 1

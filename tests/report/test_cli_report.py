@@ -130,7 +130,7 @@ def test_bad_result_files_give_one_line(monkeypatch, capsys, study, tmp_path, co
     files["truncated"][0].write_bytes(data[: len(data) // 2])
     path, text = files[case]
     code, out, err = invoke(monkeypatch, capsys, command, path, "-o", tmp_path / "o")
-    assert code == 1
+    assert code == 2  # a bad result file is a bad argument (DESIGN §3)
     assert err.count("\n") == 1 and err.startswith("floorslide: error: ") and text in err
     assert str(path) in err and out == ""
 
@@ -176,7 +176,7 @@ def test_no_traceback_from_the_console_script(tmp_path):
         capture_output=True,
         text=True,
     )
-    assert out.returncode == 1
+    assert out.returncode == 2
     assert out.stderr.strip() == f"floorslide: error: {tmp_path / 'nope.h5'}: no such result file"
 
 

@@ -13,7 +13,7 @@ import time
 import numpy as np
 import pytest
 
-from floorslide.errors import ResultFileError
+from floorslide.errors import OutputError, ResultFileError
 from floorslide.run import store
 from floorslide.run.execute import execute
 from floorslide.run.store import ResultFile, journal_dir
@@ -56,7 +56,7 @@ def test_full_disk_gives_a_clear_error_and_keeps_what_finished(
 ):
     out = tmp_path / "full.h5"
     fail_after(monkeypatch, 4)
-    with pytest.raises(ResultFileError) as err:
+    with pytest.raises(OutputError) as err:
         execute(the_plan, str(out), workers=1, progress=False)
     msg = str(err.value)
     assert "No space left on device" in msg and "--resume" in msg and "\n" not in msg
@@ -72,7 +72,7 @@ def test_corrupt_result_file_is_detected_then_rebuilt_from_the_journal(
 ):
     out = tmp_path / "c.h5"
     fail_after(monkeypatch, 6)
-    with pytest.raises(ResultFileError):
+    with pytest.raises(OutputError):
         execute(the_plan, str(out), workers=1, progress=False)
     monkeypatch.undo()
     raw = out.read_bytes()

@@ -1,0 +1,38 @@
+"""The demo runs on the bundled data and writes results, tables and figures."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+
+from floorslide.run.store import ResultFile
+from tests.conftest import ROOT
+
+
+def test_demo(tmp_path):
+    env = dict(os.environ, PYTHONPATH=str(ROOT))
+    out = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "floorslide.cli",
+            "demo",
+            "-o",
+            str(tmp_path / "d"),
+            "--workers",
+            "2",
+        ],
+        capture_output=True,
+        text=True,
+        env=env,
+        cwd=tmp_path,
+    )
+    assert out.returncode == 0, out.stderr
+    rf = ResultFile(tmp_path / "d" / "results.h5")
+    assert len(rf.done_tasks()) == 36 * 7
+    assert "pulse-like (18 records)" in out.stdout and "| isolated@T=2.5 |" in out.stdout
+    tables = sorted(p.name for p in (tmp_path / "d" / "tables").iterdir())
+    assert "tables.md" in tables and "slides.csv" in tables
+    figures = list((tmp_path / "d" / "figures").glob("*.png"))
+    assert len(figures) >= 6
