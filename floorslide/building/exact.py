@@ -68,7 +68,8 @@ def foh_matrices(A: np.ndarray, b: np.ndarray, tau: float) -> tuple[np.ndarray, 
     aug[:n, n] = b
     aug[n, n + 1] = 1.0
     E = scipy.linalg.expm(aug * tau)
-    return E[:n, :n], E[:n, n].copy(), E[:n, n + 1].copy()
+    # contiguous copies: compiled kernels are specialised on the memory layout
+    return np.ascontiguousarray(E[:n, :n]), E[:n, n].copy(), E[:n, n + 1].copy()
 
 
 def spectral_radius(A: np.ndarray) -> float:

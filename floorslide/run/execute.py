@@ -50,6 +50,12 @@ def _run_local(todo, workers: int, force: bool, on_result: Callable) -> None:
         for task in todo:
             on_result(run_task(task, force))
         return
+    # the first task here: the compiled kernels it needs are then loaded (or compiled, on a
+    # fresh install) once, in this process, and every forked worker inherits them
+    todo = list(todo)
+    if todo:
+        on_result(run_task(todo[0], force))
+        todo = todo[1:]
     ctx = multiprocessing.get_context("fork" if sys.platform != "win32" else "spawn")
     with ProcessPoolExecutor(
         max_workers=workers, mp_context=ctx, initializer=_single_threaded_blas
