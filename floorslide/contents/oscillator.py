@@ -76,6 +76,12 @@ def slide_oscillator(
     building: LinearBuilding | None = None,
     floor: int | None = None,
     histories: bool = False,
+    method: str = "exact",
+    substeps: int = 16,
+    rtol: float = 1e-6,
+    grip_frequency: float = 100.0,
+    grip_damping: float = 0.1,
+    integrator: str = "LSODA",
 ) -> OscillatorResult:
     """Peak slide, spring deformation and accelerations of a 2-DOF sliding oscillator.
 
@@ -97,7 +103,16 @@ def slide_oscillator(
     building, floor
         Put the oscillator on `floor` of `building` (exact chain ground → building → object).
     histories
-        Also return the histories of u, z and both absolute accelerations.
+        Also return the histories of u, z and both absolute accelerations (exact method only).
+    method
+        ``"exact"`` (default: both phases solved exactly, switches to machine precision);
+        approximate, for the accuracy-versus-cost study
+        (:mod:`floorslide.contents.oscillator_approx`):
+        ``"newmark"`` (average acceleration with stick/slip checks at ``dt/substeps``) or
+        ``"penalty"`` (Brochard & Gantenbein's grip spring of frequency `grip_frequency` and
+        damping ratio `grip_damping`, integrated by SciPy's `integrator` at `rtol`).
+    substeps, rtol, grip_frequency, grip_damping, integrator
+        Settings of the approximate methods.
 
     References
     ----------
@@ -123,6 +138,12 @@ def slide_oscillator(
     on_floor = building is not None and building.dof_of(floor) is not None
     if building is not None:
         building.check_floors([floor])
+    if method != "exact":
+        return _approximate(
+            a, dt, mk, ms, w, xi, r, building, floor, method, histories,
+            dict(substeps=substeps, rtol=rtol, grip_frequency=grip_frequency,
+                 grip_damping=grip_damping, integrator=integrator),
+        )  # fmt: skip
     if on_floor:
         A, B = building.state_matrices()
         rho = max(spectral_radius(A), rho_obj)
@@ -179,4 +200,27 @@ def slide_oscillator(
         z=hist[:, :, 1].copy() if histories else None,
         top_accel=hist[:, :, 2].copy() if histories else None,
         base_accel=hist[:, :, 3].copy() if histories else None,
+    )
+
+
+def _approximate(a, dt, mk, ms, w, xi, r, building, floor, method, histories, settings):
+    """Dispatch to :mod:`floorslide.contents.oscillator_approx` (no histories there)."""
+    from floorslide.contents import oscillator_approx
+
+    if histories:
+        raise ModelError(f"histories are only available with method='exact', not {method!r}")
+    out = oscillator_approx.slide_oscillator(
+        a, dt, mk, ms, w, xi, r, G, building, floor, method, **settings
+    )
+    duration = (a.size - 1) * dt
+    return OscillatorResult(
+        mu_k=mk,
+        mu_s=ms,
+        peak_slide=out[:, 0],
+        residual_slide=out[:, 1],
+        peak_deformation=out[:, 2],
+        peak_top_accel=out[:, 3],
+        peak_base_accel=out[:, 4],
+        slide_fraction=out[:, 5] / duration if duration > 0 else np.zeros(mk.size),
+        slip_phases=out[:, 6].astype(int),
     )
