@@ -632,6 +632,55 @@ def demo(out_dir, workers):
         sys.exit(EXIT_RECORD)
 
 
+@cli.command()
+@click.option(
+    "--quick", is_flag=True, help="The short study: one record, fewer settings and repeats."
+)
+@click.option("--json", "as_json", is_flag=True, help="Print the table as JSON on stdout.")
+@click.option(
+    "-o",
+    "--out",
+    default="floorslide-bench",
+    show_default=True,
+    metavar="DIR",
+    help="Directory for bench.csv, bench.md, bench.json and the figures.",
+)
+def bench(quick, as_json, out):
+    """The accuracy-versus-cost study (DESIGN §6): for every solver (rigid-block sliding on the
+    ground, a stiff floor and an isolated roof; the 2-DOF sliding oscillator; floor motions;
+    response and floor response spectra) the exact method and each approximate one over a
+    range of steps or tolerances, on bundled real records: relative error in peak and residual
+    slide, spring deformation, PFA, floor samples and PSA against the exact method, and CPU
+    time (median of repeats after a warm-up call, one thread; numba compilation apart — on a
+    fresh cache in a child process, except with --quick).
+
+    Writes a table (CSV, Markdown, JSON) and one work-precision figure per solver (error versus
+    CPU time, log-log) to DIR, and prints the Markdown table (or, with --json, the JSON).
+    --quick runs one record and fewer settings, in under a minute.
+    """
+    from floorslide.bench import run_bench, to_json, to_markdown, write_outputs
+    from floorslide.bench.compile import fresh_compile_times
+
+    show = sys.stderr.isatty()
+
+    def progress(message: str) -> None:
+        if show:
+            click.echo(f"\rbench: {message[:68]:<68}", err=True, nl=False)
+
+    result = run_bench(quick=quick, progress=progress)
+    if not quick:
+        progress("numba compilation on an empty cache")
+    compile_rows = None if quick else fresh_compile_times()
+    if show:
+        click.echo("\r" + " " * 76 + "\r", err=True, nl=False)
+    paths = write_outputs(result, out, compile_rows)
+    if as_json:
+        click.echo(to_json(result, compile_rows))
+        return
+    click.echo(to_markdown(result, compile_rows))
+    click.echo(f"{len(paths)} files written to {out}")
+
+
 def main() -> None:
     """Entry point of the ``floorslide`` console script."""
     try:

@@ -1,0 +1,458 @@
+"""What the accuracy-versus-cost study runs: the solvers, their methods and settings, and the
+quantities whose error is measured (DESIGN §6).
+
+Every solver has its exact method (the reference) and approximate methods, each either a single
+point or a *family* over a step (``dt/k``) or a tolerance. A method returns the quantities users
+use, keyed by metric name (:data:`METRICS`); :func:`error` turns two such results into a relative
+error.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from floorslide.building.model import IsolatedBuilding, LinearBuilding, ShearBuilding
+from floorslide.building.motions import floor_motions, peak_floor_acceleration
+from floorslide.constants import G
+from floorslide.contents.oscillator import slide_oscillator
+from floorslide.contents.sliding import slide
+from floorslide.spectra.core import response_spectrum
+
+METRICS = {
+    "peak_slide": "peak slide",
+    "residual_slide": "residual slide",
+    "peak_deformation": "peak spring deformation",
+    "pfa": "PFA",
+    "samples": "floor acceleration samples",
+    "psa": "PSA",
+}
+"""Metric key → what it measures. Relative errors: peak slide, peak deformation, PFA and PSA
+against the exact value of the same object, floor or period; the residual slide against the
+exact *peak* slide (a residual can be near zero); samples: ``max|y − y_exact| / max|y_exact|``
+per floor. Each is the maximum over objects (or floors, periods) and records."""
+
+ETA = (0.2, 0.5)
+"""Friction as a fraction of the peak acceleration of the motion the object stands on:
+``mu = eta·PFA/g`` (``eta = mu·g/A`` of DESIGN §7), so that every object slides on every floor."""
+
+OSCILLATOR = dict(frequency=6.0, damping=0.02, mass_ratio=0.5)
+"""The 2-DOF sliding oscillator of Brochard & Gantenbein (1989): clamped 6 Hz, 2 %, m1/m2 = 0.5."""
+
+DAMPING = 0.05
+
+Run = Callable[[np.ndarray, float, dict], dict]
+
+
+@dataclass(frozen=True)
+class Method:
+    """One method at one setting.
+
+    Attributes
+    ----------
+    method
+        The method's name (as the ``method=`` of the API, or a peer's name).
+    family
+        The line it belongs to in the work–precision figure.
+    setting
+        Its setting in words (``"dt/4"``, ``"rtol 1e-06"``, ``"grip 200 Hz"``, ``""``).
+    run
+        ``run(acc, dt, context) → {metric: array}``.
+    substeps, rtol, grip_hz
+        The setting as numbers (``None`` where it does not apply).
+    """
+
+    method: str
+    family: str
+    setting: str
+    run: Run = field(repr=False, compare=False)
+    substeps: int | None = None
+    rtol: float | None = None
+    grip_hz: float | None = None
+
+    @property
+    def exact(self) -> bool:
+        return self.method == "exact"
+
+
+@dataclass(frozen=True)
+class Solver:
+    """A solver of the study: what it computes, on what, by which methods.
+
+    Attributes
+    ----------
+    key
+        Short name (``"slide-ground"``), used for file names.
+    title
+        What is computed, in words (figure titles).
+    metrics
+        Metric keys whose errors are measured; the headline error is their maximum.
+    methods
+        The exact method first, then the approximate ones.
+    context
+        ``context(acc, dt) → dict`` of per-record settings (friction values, periods).
+    """
+
+    key: str
+    title: str
+    metrics: tuple[str, ...]
+    methods: tuple[Method, ...]
+    context: Callable[[np.ndarray, float], dict] = field(repr=False, compare=False)
+
+
+@dataclass(frozen=True)
+class Ladder:
+    """The settings a study uses (the default run and ``--quick`` differ only here)."""
+
+    substeps: tuple[int, ...]
+    rtols: tuple[float, ...]
+    grips_hz: tuple[float, ...]
+    fft_oversample: tuple[int, ...]
+    n_periods: int
+    penalty_rtol: float = 1e-7
+
+
+FULL = Ladder(
+    substeps=(1, 2, 4, 8, 16, 32, 64),
+    rtols=(1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10),
+    grips_hz=(25.0, 50.0, 100.0, 200.0, 400.0, 800.0, 1600.0),
+    fft_oversample=(1, 2, 4, 8),
+    n_periods=50,
+)
+QUICK = Ladder(
+    substeps=(1, 4, 16, 64),
+    rtols=(1e-3, 1e-7),
+    grips_hz=(50.0, 200.0, 800.0),
+    fft_oversample=(1, 4),
+    n_periods=20,
+)
+
+
+def stiff_building() -> ShearBuilding:
+    """A stiff 1-storey building: T = 0.1 s, 5 % damping."""
+    return ShearBuilding.from_period(1, 0.1, 0.05)
+
+
+def isolated_building() -> IsolatedBuilding:
+    """A 3-storey building (T = 0.4 s, 5 %) on linear isolation (T = 2.5 s, 10 %, m_b = m)."""
+    return IsolatedBuilding(ShearBuilding.from_period(3, 0.4, 0.05), 1.0, 2.5, 0.10)
+
+
+def resample(acc: np.ndarray, k: int) -> np.ndarray:
+    """The same piecewise-linear record sampled at ``dt/k``."""
+    if k == 1:
+        return acc
+    return np.interp(np.arange((acc.size - 1) * k + 1) / k, np.arange(acc.size), acc)
+
+
+def _mus(building: LinearBuilding | None, floor: int):
+    def context(acc: np.ndarray, dt: float) -> dict:
+        if building is None:
+            peak = float(np.abs(acc).max())
+        else:
+            peak = float(peak_floor_acceleration(building, acc, dt, floors=[floor]).peak[0])
+        return {"mu": np.array(ETA) * peak / G}
+
+    return context
+
+
+def _slide_result(res) -> dict:
+    return {"peak_slide": res.peak_slide, "residual_slide": res.residual_slide}
+
+
+def sliding_solver(
+    key: str, title: str, building: LinearBuilding | None, floor: int, ladder: Ladder
+) -> Solver:
+    """Rigid blocks (``mu = eta·PFA/g``) on the ground or on a floor: the exact event-driven
+    solver, SLAMMER's per-sample trapezoid (Jibson 1993), Newmark at ``dt/k``, SciPy's DOP853
+    restarted at every sample with events at ``rtol``, and (on a floor) the exact solver on
+    floor samples at ``dt/k`` joined by straight lines."""
+    kw = {} if building is None else {"building": building, "floor": floor}
+
+    def run(method: str, **settings) -> Run:
+        def go(acc, dt, ctx):
+            return _slide_result(slide(acc, dt, ctx["mu"], method=method, **settings, **kw))
+
+        return go
+
+    methods = [Method("exact", "exact", "", run("exact"))]
+    methods.append(Method("slammer", "SLAMMER per-sample trapezoid", "dt", run("slammer")))
+    methods += [
+        Method("newmark", "Newmark avg. acc., dt/k", f"dt/{k}", run("newmark", substeps=k), k)
+        for k in ladder.substeps
+    ]
+    if building is not None:
+
+        def reinterpolated(k: int) -> Run:
+            def go(acc, dt, ctx):
+                af = floor_motions(building, acc, dt, floors=[floor], oversample=k)[0]
+                return _slide_result(slide(af, dt / k, ctx["mu"]))
+
+            return go
+
+        methods += [
+            Method(
+                "reinterpolated",
+                "exact on floor samples at dt/k, re-interpolated",
+                f"dt/{k}",
+                reinterpolated(k),
+                k,
+            )
+            for k in ladder.substeps
+        ]
+    methods += [
+        Method(
+            "solve_ivp",
+            "solve_ivp DOP853, rtol",
+            f"rtol {r:.0e}",
+            run("solve_ivp", rtol=r, integrator="DOP853"),
+            rtol=r,
+        )
+        for r in ladder.rtols
+    ]
+    return Solver(
+        key, title, ("peak_slide", "residual_slide"), tuple(methods), _mus(building, floor)
+    )
+
+
+def oscillator_solver(ladder: Ladder) -> Solver:
+    """The 2-DOF sliding oscillator on the ground: exact, Newmark at ``dt/k``, and the grip
+    spring (penalty) at growing grip frequencies, integrated by LSODA."""
+
+    def run(method: str, **settings) -> Run:
+        def go(acc, dt, ctx):
+            res = slide_oscillator(acc, dt, ctx["mu"], **OSCILLATOR, method=method, **settings)
+            return {"peak_slide": res.peak_slide, "peak_deformation": res.peak_deformation}
+
+        return go
+
+    methods = [Method("exact", "exact", "", run("exact"))]
+    methods += [
+        Method("newmark", "Newmark avg. acc., dt/k", f"dt/{k}", run("newmark", substeps=k), k)
+        for k in ladder.substeps
+    ]
+    methods += [
+        Method(
+            "penalty",
+            f"grip spring (penalty), LSODA rtol {ladder.penalty_rtol:g}",
+            f"grip {f:g} Hz",
+            run("penalty", grip_frequency=f, rtol=ladder.penalty_rtol),
+            rtol=ladder.penalty_rtol,
+            grip_hz=f,
+        )
+        for f in ladder.grips_hz
+    ]
+    return Solver(
+        "oscillator-ground",
+        "2-DOF sliding oscillator (6 Hz, 2 %, m₁/m₂ = 0.5) on the ground",
+        ("peak_slide", "peak_deformation"),
+        tuple(methods),
+        _mus(None, 0),
+    )
+
+
+def floor_motion_solver(
+    key: str, title: str, building: LinearBuilding, floors: list[int], ladder: Ladder
+) -> Solver:
+    """Floor accelerations of `floors`: the exact first-order hold (samples) with the true
+    PFA inside steps, against exact samples at ``dt/k`` with the PFA read at them, zero-order hold
+    and Newmark at ``dt/k`` (PFA at their own steps), python-control's ``forced_response``."""
+
+    def sampled(method: str, k: int) -> Run:
+        def go(acc, dt, ctx):
+            y = floor_motions(building, acc, dt, floors, oversample=k, method=method)
+            return {"pfa": np.abs(y).max(axis=1), "samples": y[:, ::k]}
+
+        return go
+
+    def exact(acc, dt, ctx):
+        y = floor_motions(building, acc, dt, floors)
+        pfa = peak_floor_acceleration(building, acc, dt, floors).peak
+        return {"pfa": pfa, "samples": y}
+
+    methods = [Method("exact", "exact", "", exact)]
+    methods += [
+        Method(
+            "samples",
+            "exact samples at dt/k, PFA read at samples",
+            f"dt/{k}",
+            sampled("exact", k),
+            k,
+        )
+        for k in ladder.substeps
+    ]
+    methods += [
+        Method("zoh", "zero-order hold, dt/k", f"dt/{k}", sampled("zoh", k), k)
+        for k in ladder.substeps
+    ]
+    methods += [
+        Method("newmark", "Newmark avg. acc., dt/k", f"dt/{k}", sampled("newmark", k), k)
+        for k in ladder.substeps
+    ]
+    methods.append(
+        Method(
+            "forced_response", "python-control forced_response", "dt", sampled("forced_response", 1)
+        )
+    )
+    return Solver(key, title, ("pfa", "samples"), tuple(methods), lambda acc, dt: {})
+
+
+def _periods(ladder: Ladder):
+    def context(acc: np.ndarray, dt: float) -> dict:
+        return {"periods": np.geomspace(0.02, 5.0, ladder.n_periods)}
+
+    return context
+
+
+def spectrum_solver(
+    key: str, title: str, building: LinearBuilding | None, floor: int, ladder: Ladder
+) -> Solver:
+    """PSA at 5 % over log-spaced periods 0.02–5 s: exact (peaks inside steps), peaks at samples
+    of ``dt/k``, Newmark at ``dt/k``, FFT of the record sampled at ``dt/k``, (on a floor) the exact
+    spectrum of floor samples at ``dt/k`` re-interpolated, and the peers pyrotd and eqsig when
+    installed (given the exact floor samples on a floor)."""
+    kw = {} if building is None else {"building": building, "floor": floor}
+
+    def run(method: str, k: int = 1, **settings) -> Run:
+        def go(acc, dt, ctx):
+            sp = response_spectrum(
+                resample(acc, k), dt / k, ctx["periods"], DAMPING, method=method, **settings, **kw
+            )
+            return {"psa": sp.psa[0]}
+
+        return go
+
+    methods = [Method("exact", "exact", "", run("exact"))]
+    methods += [
+        Method("samples", "peaks at samples of dt/k", f"dt/{k}", run("samples", k), k)
+        for k in ladder.substeps
+    ]
+    methods += [
+        Method("newmark", "Newmark avg. acc., dt/k", f"dt/{k}", run("newmark", substeps=k), k)
+        for k in ladder.substeps
+    ]
+    methods += [
+        Method("fft", "FFT of the record at dt/k", f"dt/{k}", run("fft", k), k)
+        for k in ladder.fft_oversample
+    ]
+    if building is not None:
+
+        def reinterpolated(k: int) -> Run:
+            def go(acc, dt, ctx):
+                af = floor_motions(building, acc, dt, floors=[floor], oversample=k)[0]
+                return {"psa": response_spectrum(af, dt / k, ctx["periods"], DAMPING).psa[0]}
+
+            return go
+
+        methods += [
+            Method(
+                "reinterpolated",
+                "exact on floor samples at dt/k, re-interpolated",
+                f"dt/{k}",
+                reinterpolated(k),
+                k,
+            )
+            for k in ladder.substeps
+        ]
+    methods += _peers(building, floor)
+    return Solver(key, title, ("psa",), tuple(methods), _periods(ladder))
+
+
+def _peers(building: LinearBuilding | None, floor: int) -> list[Method]:
+    """pyrotd and eqsig, when installed (``pip install floorslide[bench]``)."""
+
+    def motion(acc, dt):
+        if building is None:
+            return acc
+        return floor_motions(building, acc, dt, floors=[floor])[0]
+
+    out = []
+    try:
+        import pyrotd
+
+        def run_pyrotd(acc, dt, ctx):
+            freqs = 1.0 / ctx["periods"]
+            return {"psa": pyrotd.calc_spec_accels(dt, motion(acc, dt), freqs, DAMPING).spec_accel}
+
+        out.append(Method("pyrotd", "pyrotd (frequency domain)", "dt", run_pyrotd))
+    except ImportError:
+        pass
+    try:
+        import eqsig
+
+        def run_eqsig(acc, dt, ctx):
+            T = ctx["periods"]
+            res = eqsig.sdof.pseudo_response_spectra(motion(acc, dt), dt, T, xi=DAMPING)
+            return {"psa": np.asarray(res[2])}
+
+        out.append(Method("eqsig", "eqsig (Nigam–Jennings, peaks at samples)", "dt", run_eqsig))
+    except ImportError:
+        pass
+    return out
+
+
+def solvers(ladder: Ladder) -> tuple[Solver, ...]:
+    """Every solver of the study, in the order of the table."""
+    stiff, iso = stiff_building(), isolated_building()
+    return (
+        sliding_solver("slide-ground", "Rigid block on the ground", None, 0, ladder),
+        sliding_solver(
+            "slide-stiff-floor",
+            "Rigid block on a stiff 1-storey building (T = 0.1 s)",
+            stiff,
+            1,
+            ladder,
+        ),
+        sliding_solver(
+            "slide-isolated-roof",
+            "Rigid block on the roof of a 3-storey isolated building",
+            iso,
+            3,
+            ladder,
+        ),
+        oscillator_solver(ladder),
+        floor_motion_solver(
+            "floor-motions-stiff",
+            "Floor motion of a stiff 1-storey building (T = 0.1 s)",
+            stiff,
+            [1],
+            ladder,
+        ),
+        floor_motion_solver(
+            "floor-motions-isolated",
+            "Floor motions of a 3-storey isolated building (base mat to roof)",
+            iso,
+            [0, 1, 2, 3],
+            ladder,
+        ),
+        spectrum_solver(
+            "spectra-ground", "Response spectrum (PSA, 5 %) of the ground", None, 0, ladder
+        ),
+        spectrum_solver(
+            "frs-stiff-floor",
+            "Floor response spectrum (PSA, 5 %), stiff 1-storey building",
+            stiff,
+            1,
+            ladder,
+        ),
+        spectrum_solver(
+            "frs-isolated-roof",
+            "Floor response spectrum (PSA, 5 %), roof of the 3-storey isolated building",
+            iso,
+            3,
+            ladder,
+        ),
+    )
+
+
+def error(metric: str, got: dict, ref: dict) -> float:
+    """Relative error of `metric` (see :data:`METRICS`), maximum over its entries."""
+    g = np.asarray(got[metric], dtype=float)
+    r = np.asarray(ref[metric], dtype=float)
+    if metric == "residual_slide":
+        return float(np.max(np.abs(g - r) / np.asarray(ref["peak_slide"], dtype=float)))
+    if metric == "samples":
+        return float(np.max(np.abs(g - r).max(axis=-1) / np.abs(r).max(axis=-1)))
+    return float(np.max(np.abs(g - r) / np.abs(r)))

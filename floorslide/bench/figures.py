@@ -1,0 +1,93 @@
+"""Work–precision diagrams: error versus CPU time, log–log, one line per method family, the exact
+method as a point at its own time on its rounding floor (Hairer, Nørsett & Wanner 1993, §II.1:
+the "work-precision diagram")."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from floorslide.bench.cases import METRICS
+from floorslide.bench.study import BenchResult
+
+ERROR_FLOOR = 1e-16
+"""Errors below this (including exact zeros) are drawn at it: a log axis has no zero."""
+
+MARKERS = "osD^v<>ph"
+
+
+def work_precision_figure(result: BenchResult, solver: str, path: str | Path) -> Path:
+    """Draw the work–precision diagram of `solver` to `path` (PNG).
+
+    Parameters
+    ----------
+    result
+        A study from :func:`floorslide.bench.run_bench`.
+    solver
+        The solver's key.
+    path
+        Where to write the figure.
+
+    Returns
+    -------
+    Path
+    """
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    rows = [r for r in result.rows if r.solver == solver]
+    exact = next(r for r in rows if r.method == "exact")
+    fig = Figure(figsize=(7.2, 6.0), dpi=110, layout="constrained")
+    FigureCanvasAgg(fig)
+    ax = fig.add_subplot()
+    families: dict[str, list] = {}
+    for r in rows:
+        if r.method != "exact":
+            families.setdefault(r.family, []).append(r)
+    for i, (family, members) in enumerate(families.items()):
+        x = [m.cpu_time * 1e3 for m in members]
+        y = [max(m.error, ERROR_FLOOR) for m in members]
+        marker = MARKERS[i % len(MARKERS)]
+        if len(members) > 1:
+            (line,) = ax.plot(x, y, linestyle="-", marker=marker, ms=5, label=family)
+        else:  # a single point: hollow and larger, visible on top of a family's point
+            (line,) = ax.plot(
+                x, y, linestyle="none", marker=marker, ms=9, mfc="none", mew=1.5, label=family
+            )
+        if len(members) > 1:
+            for m, xi, yi in ((members[0], x[0], y[0]), (members[-1], x[-1], y[-1])):
+                ax.annotate(
+                    m.setting,
+                    (xi, yi),
+                    textcoords="offset points",
+                    xytext=(4, 3),
+                    fontsize=7,
+                    color=line.get_color(),
+                )
+    t_exact = exact.cpu_time * 1e3
+    floor = max(exact.error, ERROR_FLOOR)
+    ax.axhline(floor, color="k", lw=0.8, ls=":")
+    ax.axvline(t_exact, color="k", lw=0.8, ls=":")
+    ax.plot(
+        [t_exact],
+        [floor],
+        marker="*",
+        ms=14,
+        color="k",
+        linestyle="none",
+        label=f"exact ({t_exact:.3g} ms); dotted: its time and rounding floor",
+    )
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    n = len(result.records)
+    ax.set_xlabel(f"CPU time per run, ms (median, one thread; sum over {n} record{'s' * (n > 1)})")
+    names = " and ".join(METRICS[m] for m in result.metrics[solver])
+    metrics = result.metrics[solver]
+    over = "periods" if "psa" in metrics else "floors" if "pfa" in metrics else "objects"
+    ax.set_ylabel(f"relative error of {names}\n(max over records and {over})")
+    recs = ", ".join(r["station_id"] for r in result.records)
+    ax.set_title(f"{result.solvers[solver]}\nrecords: {recs}", fontsize=10)
+    ax.grid(True, which="major", lw=0.4, alpha=0.6)
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2, frameon=False)
+    path = Path(path)
+    fig.savefig(path)
+    return path
