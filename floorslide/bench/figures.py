@@ -4,6 +4,7 @@ the "work-precision diagram")."""
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 from floorslide.bench.cases import METRICS
@@ -54,9 +55,13 @@ def work_precision_figure(result: BenchResult, solver: str, path: str | Path) ->
                 x, y, linestyle="none", marker=marker, ms=9, mfc="none", mew=1.5, label=family
             )
         if len(members) > 1:
-            for m, xi, yi in ((members[0], x[0], y[0]), (members[-1], x[-1], y[-1])):
+            ends = [(members[0].setting, x[0], y[0]), (members[-1].setting, x[-1], y[-1])]
+            if abs(math.log10(x[-1] / x[0])) < 0.15 and abs(math.log10(y[-1] / y[0])) < 0.3:
+                # first and last on top of each other: one label for the family
+                ends = [(f"{members[0].setting} … {members[-1].setting}", x[-1], y[-1])]
+            for text, xi, yi in ends:
                 ax.annotate(
-                    m.setting,
+                    text,
                     (xi, yi),
                     textcoords="offset points",
                     xytext=(4, 3),

@@ -107,8 +107,46 @@ def markdown_table(result: BenchResult, solver: str) -> str:
     return "\n".join(lines)
 
 
+def summary_markdown(result: BenchResult, target: float = 0.01) -> str:
+    """One line per method family: its error and time at the coarsest setting, the cheapest
+    setting within `target` (relative error), and the finest setting; the exact method's time
+    and rounding floor with the solver's name."""
+    head = (
+        "| solver (exact: CPU, rounding floor) | method | coarsest: error, ms "
+        f"| cheapest within {target:.0%}: setting, ms (× exact) | finest: setting, error, ms |"
+    )
+    lines = [head, "|---|---|---|---|---|"]
+    for key in result.solvers:
+        rows = [r for r in result.rows if r.solver == key]
+        exact = next(r for r in rows if r.method == "exact")
+        families: dict[str, list] = {}
+        for r in rows:
+            if r.method != "exact":
+                families.setdefault(r.family, []).append(r)
+        first = True
+        for family, members in families.items():
+            label = f"`{key}` ({_ms(exact.cpu_time)} ms, {_err(exact.error)})" if first else ""
+            first = False
+            coarse, fine = members[0], members[-1]
+            within = next((m for m in members if m.error <= target), None)
+            if within is None:
+                reach = "not reached"
+            else:
+                reach = f"{within.setting}, {_ms(within.cpu_time)} ({within.time_ratio:.3g}×)"
+            if len(members) > 1:
+                finest = f"{fine.setting}, {_err(fine.error)}, {_ms(fine.cpu_time)}"
+            else:
+                finest = "—"
+            lines.append(
+                f"| {label} | {family} | {_err(coarse.error)}, {_ms(coarse.cpu_time)} "
+                f"| {reach} | {finest} |"
+            )
+    return "\n".join(lines)
+
+
 def to_markdown(result: BenchResult, compile_rows: list[dict] | None = None) -> str:
-    """The study as Markdown: the records, one table per solver, the compile table."""
+    """The study as Markdown: the records, a summary, one table per solver, the compile
+    table."""
     recs = "; ".join(
         f"{r['label']}: {r['npts']} samples at dt = {r['dt']:g} s" for r in result.records
     )
@@ -117,6 +155,7 @@ def to_markdown(result: BenchResult, compile_rows: list[dict] | None = None) -> 
         "warm-up call, summed over the records; errors relative to the exact method, maximum "
         "over records, objects, floors and periods.",
     ]
+    parts.append(f"**Summary**\n\n{summary_markdown(result)}")
     for key, title in result.solvers.items():
         parts.append(f"**{title}** (`{key}`)\n\n{markdown_table(result, key)}")
     if compile_rows:

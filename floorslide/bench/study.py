@@ -118,6 +118,32 @@ class BenchResult:
     quick: bool
     machine: dict
 
+    @classmethod
+    def from_dict(cls, data: dict) -> BenchResult:
+        """The study back from :meth:`to_dict` (or a ``bench.json``)."""
+        rows = []
+        for r in data["rows"]:
+            metrics = data["metrics"][r["solver"]]
+            fields = {k: r[k] for k in Row.__dataclass_fields__ if k != "errors"}
+            nan = float("nan")
+            rows.append(
+                Row(
+                    **{
+                        k: (nan if v is None and k in ("time_ratio", "error") else v)
+                        for k, v in fields.items()
+                    },
+                    errors={m: r[f"err_{m}"] for m in metrics},
+                )
+            )
+        return cls(
+            rows=tuple(rows),
+            solvers=dict(data["solvers"]),
+            metrics={k: tuple(v) for k, v in data["metrics"].items()},
+            records=tuple(data["records"]),
+            quick=bool(data["quick"]),
+            machine=dict(data["machine"]),
+        )
+
     def to_dict(self) -> dict:
         """JSON-ready."""
         return dict(

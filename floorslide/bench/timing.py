@@ -25,8 +25,9 @@ from numba.core import event as numba_event
 
 
 class CompileTimer(numba_event.Listener):
-    """Sums the durations of top-level numba compilations (nested compilations of callees are
-    inside their caller's) and names the compiled kernels."""
+    """Sums the durations of top-level numba compilations (nested compilations of callees and
+    of numba's own overloads are inside their caller's) and names the floorslide kernels
+    compiled."""
 
     def __init__(self) -> None:
         self.total = 0.0
@@ -39,10 +40,13 @@ class CompileTimer(numba_event.Listener):
             self._start = time.perf_counter()
         self._depth += 1
         dispatcher = event.data.get("dispatcher") if isinstance(event.data, dict) else None
-        name = getattr(getattr(dispatcher, "py_func", None), "__qualname__", None)
-        if name and name not in self.kernels:
-            module = getattr(dispatcher.py_func, "__module__", "")
-            self.kernels.append(f"{module}.{name}" if module else name)
+        func = getattr(dispatcher, "py_func", None)
+        module = getattr(func, "__module__", "") or ""
+        # floorslide's own kernels only (numba's internal overloads compile along with them)
+        if module.startswith("floorslide"):
+            name = f"{module}.{func.__qualname__}"
+            if name not in self.kernels:
+                self.kernels.append(name)
 
     def on_end(self, event) -> None:
         self._depth -= 1

@@ -171,3 +171,18 @@ def test_cli_json(quick_cli):
 def test_unknown_solver_is_a_model_error():
     with pytest.raises(ModelError, match="unknown solver"):
         run_bench(quick=True, only=("slide-moon",))
+
+
+def test_json_round_trip_and_summary(quick):
+    from floorslide.bench import BenchResult, to_json, to_markdown
+    from floorslide.bench.output import summary_markdown
+
+    again = BenchResult.from_dict(json.loads(to_json(quick)))
+    assert again == quick
+    summary = summary_markdown(quick)
+    # one line per family and single-point method, each solver named once
+    n_lines = len({(r.solver, r.family) for r in quick.rows if r.method != "exact"})
+    assert len(summary.splitlines()) == n_lines + 2
+    for key in quick.solvers:
+        assert summary.count(f"`{key}`") == 1
+    assert summary in to_markdown(quick)
