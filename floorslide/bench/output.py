@@ -113,7 +113,8 @@ def summary_markdown(result: BenchResult, target: float = 0.01) -> str:
     and rounding floor with the solver's name."""
     head = (
         "| solver (exact: CPU, rounding floor) | method | coarsest: error, ms "
-        f"| cheapest within {target:.0%}: setting, ms (× exact) | finest: setting, error, ms |"
+        f"| cheapest within {target * 100:g} %: setting, ms (× exact) "
+        "| finest: setting, error, ms |"
     )
     lines = [head, "|---|---|---|---|---|"]
     for key in result.solvers:
