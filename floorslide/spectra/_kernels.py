@@ -27,7 +27,12 @@ import math
 import numpy as np
 from numba import njit
 
-from floorslide.building._instep import extreme_values, taylor_coefficients
+from floorslide.building._instep import (
+    extreme_values,
+    poly_der,
+    poly_val,
+    taylor_coefficients,
+)
 
 
 @njit(cache=True)
@@ -65,11 +70,13 @@ def _floor_bound(phi_s, p_s, q_s, R, beta, K, x, a, a1, ms, hs, c, xs, xn, f0, f
 
 @njit(cache=True, inline="always")
 def _hermite_max(f0, d0, f1, d1, h):
-    """max |H| on [0, h] of the cubic Hermite interpolant of values and slopes at the ends."""
+    """max |H| on [0, h] of the cubic Hermite interpolant of values and slopes at the ends, and
+    where it is (``-1.0`` when at an end)."""
     c1 = h * d0
     c2 = -3.0 * f0 - 2.0 * c1 + 3.0 * f1 - h * d1
     c3 = 2.0 * f0 + c1 - 2.0 * f1 + h * d1
     best = max(abs(f0), abs(f1))
+    where = -1.0
     # H'(t) = c1 + 2 c2 t + 3 c3 t², t in (0, 1)
     A = 3.0 * c3
     B = 2.0 * c2
@@ -77,20 +84,63 @@ def _hermite_max(f0, d0, f1, d1, h):
         if B != 0.0:
             t = -c1 / B
             if 0.0 < t < 1.0:
-                best = max(best, abs(f0 + t * (c1 + t * (c2 + t * c3))))
-        return best
+                v = abs(f0 + t * (c1 + t * (c2 + t * c3)))
+                if v > best:
+                    best, where = v, t * h
+        return best, where
     disc = B * B - 4.0 * A * c1
     if disc < 0.0:
-        return best
+        return best, where
     sq = math.sqrt(disc)
     qq = -0.5 * (B + (sq if B >= 0.0 else -sq))
     t1 = qq / A
     t2 = c1 / qq if qq != 0.0 else -1.0
     if 0.0 < t1 < 1.0:
-        best = max(best, abs(f0 + t1 * (c1 + t1 * (c2 + t1 * c3))))
+        v = abs(f0 + t1 * (c1 + t1 * (c2 + t1 * c3)))
+        if v > best:
+            best, where = v, t1 * h
     if 0.0 < t2 < 1.0:
-        best = max(best, abs(f0 + t2 * (c1 + t2 * (c2 + t2 * c3))))
-    return best
+        v = abs(f0 + t2 * (c1 + t2 * (c2 + t2 * c3)))
+        if v > best:
+            best, where = v, t2 * h
+    return best, where
+
+
+@njit(cache=True)
+def _interior_peak(c, K, h, t0):
+    """``|p|`` at the critical point of ``p = Σ_{j≤K} c_j τ^j`` inside ``(0, h)``, where ``p'``
+    changes sign: Newton on ``p'`` from the estimate ``t0``, safeguarded by bisection (``p'`` and
+    ``p''`` evaluated together, two independent Horner chains). Falls back to
+    :func:`extreme_values` when rounding leaves ``p'`` without a sign change."""
+    d_lo = poly_der(c, K, 0.0)
+    d_hi = poly_der(c, K, h)
+    if (d_lo > 0.0) == (d_hi > 0.0) or d_lo == 0.0 or d_hi == 0.0:
+        vmin, _, vmax, _ = extreme_values(c, K, 0.0, h)
+        return max(vmax, -vmin)
+    lo = 0.0
+    hi = h
+    x = t0 if 0.0 < t0 < h else 0.5 * h
+    for _ in range(100):
+        d = K * c[K]
+        d2 = K * (K - 1) * c[K]
+        for j in range(K - 1, 1, -1):
+            d = d * x + j * c[j]
+            d2 = d2 * x + j * (j - 1) * c[j]
+        d = d * x + c[1]
+        if d == 0.0:
+            break
+        if (d > 0.0) == (d_lo > 0.0):
+            lo = x
+        else:
+            hi = x
+        xn = x - d / d2 if d2 != 0.0 else 0.5 * (lo + hi)
+        if not (lo < xn < hi):
+            xn = 0.5 * (lo + hi)
+        if abs(xn - x) <= 4e-16 * max(abs(xn), h) or hi - lo <= 4e-16 * h:
+            x = xn
+            break
+        x = xn
+    return abs(poly_val(c, K, x))
 
 
 @njit(cache=True)
@@ -118,39 +168,29 @@ def _search_step(
     Q,
     poly,
 ):
-    """Peaks of oscillator `o` inside one record step, on its sub-steps.
+    """Peaks of oscillator `o` on a floor inside one record step, on its sub-steps.
 
     On every sub-step (``max(rho_building, w)·h <= 0.5``: at most one critical point) a
-    quantity is searched only if its derivative changes sign there; on the ground, also only if
-    the cubic Hermite interpolant of its end values and slopes plus the interpolation error bound
-    ``h^4/384 · max|f^(4)|`` can exceed the peak so far (the response is the exact particular
-    solution ``alpha + beta·tau`` plus a free vibration ``Re(C e^(lambda tau))`` whose k-th
-    derivative is at most ``|C| w^k``). Only then is the extremum of its Taylor polynomial found.
+    quantity is searched only if its derivative changes sign there; then the extremum of its
+    Taylor polynomial (from the floor's Taylor coefficients ``CG`` on that sub-step) is found.
+    ``n`` is the number of building states; the ground has its own :func:`_ground_search`.
     """
     m = gm
     K = gK
     h = dt / m
-    slope = (a1 - a) / dt
     c2 = 2.0 * xi * w
     w2 = w * w
-    wd = w * math.sqrt(1.0 - xi * xi)
     q = q0
     v = v0
     for r in range(m):
         aa = a + (a1 - a) * (r / m)
         ab = a + (a1 - a) * ((r + 1) / m) if r + 1 < m else a1
-        have_c = False
-        if n > 0:
-            for j in range(K + 1):
-                c[j] = CG[r, j]
-            have_c = True
-            f0 = c[0]
-            f1 = c[K]
-            for j in range(K - 1, -1, -1):
-                f1 = f1 * h + c[j]
-        else:
-            f0 = aa
-            f1 = ab
+        for j in range(K + 1):
+            c[j] = CG[r, j]
+        f0 = c[0]
+        f1 = c[K]
+        for j in range(K - 1, -1, -1):
+            f1 = f1 * h + c[j]
         # sub-step end state
         qn = S_Pqq[0, 0] * q + S_Pqq[0, 1] * v + S_pq[0] * aa + S_qq[0] * ab
         vn = S_Pqq[1, 0] * q + S_Pqq[1, 1] * v + S_pq[1] * aa + S_qq[1] * ab
@@ -159,32 +199,12 @@ def _search_step(
             vn += S_Pqx[1, j] * XG[r, j]
         dd0 = -(f0 + c2 * v + w2 * q)  # q'' at both ends
         dd1 = -(f1 + c2 * vn + w2 * qn)
-        A0 = w2 * q + c2 * v
-        A1 = w2 * qn + c2 * vn
         Ad0 = w2 * v + c2 * dd0
         Ad1 = w2 * vn + c2 * dd1
         nd = need[0] and ((v > 0.0) != (vn > 0.0))
         nv = need[1] and ((dd0 > 0.0) != (dd1 > 0.0))
         na = need[2] and ((Ad0 > 0.0) != (Ad1 > 0.0))
-        if n == 0 and (nd or nv or na):
-            bet = -slope / w2
-            alp = (-aa + c2 * slope / w2) / w2
-            e0 = q - alp
-            ci = (e0 * (-xi * w) - (v - bet)) / wd
-            cm = math.sqrt(e0 * e0 + ci * ci)
-            h4 = h * h * h * h / 384.0 * cm * w2 * w2
-            if nd:
-                nd = _hermite_max(q, v, qn, vn, h) + h4 > out[o, 0]
-            if nv:
-                nv = _hermite_max(v, dd0, vn, dd1, h) + h4 * w > out[o, 1]
-            if na:
-                na = _hermite_max(A0, Ad0, A1, Ad1, h) + h4 * w2 * (1.0 + 2.0 * xi) > out[o, 2]
         if nd or nv or na:
-            if not have_c:
-                for j in range(K + 1):
-                    c[j] = 0.0
-                c[0] = aa
-                c[1] = slope
             Q[0] = q
             Q[1] = v
             for j in range(K - 1):
@@ -209,18 +229,252 @@ def _search_step(
 
 
 @njit(cache=True)
+def _ground_search(
+    f, a, a1, dt, m, K, q0, v0, w, xi, s00, s01, s10, s11, sp0, sp1, sq0, sq1, pk, Q, poly
+):
+    """Peaks of one oscillator on the ground inside one record step, on its ``m`` sub-steps.
+
+    ``f`` says which quantities to search (bit 0: ``|q|``, 1: ``|q'|``, 2: ``|ω²q + 2ξωq'|``);
+    ``s..`` is the oscillator's exact sub-step recurrence ``q⁺ = s00 q + s01 q' + sp0 a + sq0 a⁺``,
+    ``q'⁺ = s10 q + s11 q' + sp1 a + sq1 a⁺``; ``pk`` holds the three peaks so far and is
+    updated. On a sub-step a quantity is searched only if its derivative changes sign there and
+    the cubic Hermite interpolant of its end values and slopes plus the interpolation error bound
+    ``h⁴/384·max|f⁗|`` can exceed its peak (the response is the exact particular solution
+    ``α + βτ`` plus a free vibration ``Re(C e^{λτ})`` whose k-th derivative is at most
+    ``|C|ω^k``); then the extremum of its Taylor polynomial of degree ``K`` (equal to the
+    response to rounding on the sub-step) is found.
+    """
+    h = dt / m
+    slope = (a1 - a) / dt
+    c2 = 2.0 * xi * w
+    w2 = w * w
+    wd = w * math.sqrt(1.0 - xi * xi)
+    q = q0
+    v = v0
+    for r in range(m):
+        aa = a + (a1 - a) * (r / m)
+        ab = a + (a1 - a) * ((r + 1) / m) if r + 1 < m else a1
+        qn = s00 * q + s01 * v + sp0 * aa + sq0 * ab
+        vn = s10 * q + s11 * v + sp1 * aa + sq1 * ab
+        dd0 = -(aa + c2 * v + w2 * q)  # q'' at both ends
+        dd1 = -(ab + c2 * vn + w2 * qn)
+        A0 = w2 * q + c2 * v
+        A1 = w2 * qn + c2 * vn
+        Ad0 = w2 * v + c2 * dd0
+        Ad1 = w2 * vn + c2 * dd1
+        nd = (f & 1) != 0 and ((v > 0.0) != (vn > 0.0))
+        nv = (f & 2) != 0 and ((dd0 > 0.0) != (dd1 > 0.0))
+        na = (f & 4) != 0 and ((Ad0 > 0.0) != (Ad1 > 0.0))
+        td = tv = ta = -1.0
+        if nd or nv or na:
+            bet = -slope / w2
+            alp = (-aa + c2 * slope / w2) / w2
+            e0 = q - alp
+            ci = (e0 * (-xi * w) - (v - bet)) / wd
+            cm = math.sqrt(e0 * e0 + ci * ci)
+            h4 = h * h * h * h / 384.0 * cm * w2 * w2
+            if nd:
+                hd, td = _hermite_max(q, v, qn, vn, h)
+                nd = hd + h4 > pk[0]
+            if nv:
+                hv, tv = _hermite_max(v, dd0, vn, dd1, h)
+                nv = hv + h4 * w > pk[1]
+            if na:
+                ha, ta = _hermite_max(A0, Ad0, A1, Ad1, h)
+                na = ha + h4 * w2 * (1.0 + 2.0 * xi) > pk[2]
+        if nd or nv or na:
+            Q[0] = q
+            Q[1] = v
+            # q'' = −a(τ) − c2 q' − w² q with a(τ) = aa + slope·τ
+            Q[2] = (-c2 * Q[1] - w2 * Q[0] - aa) / 2.0
+            if K >= 3:
+                Q[3] = (-c2 * 2.0 * Q[2] - w2 * Q[1] - slope) / 6.0
+            for j in range(2, K - 1):
+                Q[j + 2] = (-c2 * (j + 1) * Q[j + 1] - w2 * Q[j]) / ((j + 1) * (j + 2))
+            if nd:
+                pk[0] = max(pk[0], abs(q), abs(qn), _interior_peak(Q, K, h, td))
+            if nv:
+                for j in range(K):
+                    poly[j] = (j + 1) * Q[j + 1]
+                poly[K] = 0.0
+                pk[1] = max(pk[1], abs(v), abs(vn), _interior_peak(poly, K, h, tv))
+            if na:
+                for j in range(K):
+                    poly[j] = w2 * Q[j] + c2 * (j + 1) * Q[j + 1]
+                poly[K] = w2 * Q[K]
+                pk[2] = max(pk[2], abs(A0), abs(A1), _interior_peak(poly, K, h, ta))
+        q = qn
+        v = vn
+
+
+# Oscillators are processed in blocks of NB, their data held row by row in flat arrays whose row
+# stride NB is a compile-time constant: the compiler then sees that rows never overlap and
+# vectorises the per-step pass over the oscillators (with runtime strides it gives up: "too many
+# memory checks"). A block's rows fit in the L1 cache; blocks go through the record one by one.
+NB = 32
+# record steps per chunk (on a floor the building is stepped once per chunk for every block)
+CHUNK = 1024
+# coefficient rows: exact record-step recurrence, then constants of the skip tests
+P0, P1, P2, P3, P4, P5, X0, X1 = range(8)
+W, W2, C2, IW2, AS, XIW, IWD, KD2, KV2, KA2, SA, SA2, ONE, IH0, IH1, IH2 = range(8, 24)
+NCOEF = 24
+# state rows: q, q', q'' at the step end; peaks; q, q' at the step start; coupling terms
+_Q, _V, _D, _PD, _PV, _PA, _QS, _VS, _CP0, _CP1 = range(10)
+NSTATE = 10
+
+
+@njit(cache=True)
+def _stage_ground(C, S, flag, nb, a, a1, dt):
+    """Advance the first ``nb`` oscillators of a block by one record step on the ground and flag
+    those whose peaks may grow inside it; returns the number of flags set (bit 0: ``|q|``, bit 1:
+    ``|q'|``, bit 2: ``|ω²q + 2ξωq'|``).
+
+    Inside the step the response is ``q = α + βτ + e(τ)``: the exact particular solution for the
+    linear input plus a damped free vibration ``e = Re(C e^{λτ})`` with ``|e^(k)| ≤ |C| ω^k``. A
+    quantity is flagged when both its bound ``max|particular| + |C|·ω^k`` and its end values plus
+    the linear interpolation error ``dt²/8·max|f''|`` exceed its peak so far and, for
+    oscillators with at most one critical point per step (``ω·dt ≤ 0.5``, row ``ONE``), its
+    derivative changes sign. Comparisons are made on squares (no square root).
+    Branch-free on purpose: the compiler vectorises it (and spelled out: the update it shares
+    with :func:`_stage_floor` in an inlined helper stops the vectoriser).
+    """
+    nf = 0
+    amax = max(abs(a), abs(a1))
+    slope = (a1 - a) / dt
+    for o in range(nb):
+        q0 = S[_Q * NB + o]
+        v0 = S[_V * NB + o]
+        w2 = C[W2 * NB + o]
+        c2 = C[C2 * NB + o]
+        q1 = C[P0 * NB + o] * q0 + C[P1 * NB + o] * v0 + C[P4 * NB + o] * a + C[X0 * NB + o] * a1
+        v1 = C[P2 * NB + o] * q0 + C[P3 * NB + o] * v0 + C[P5 * NB + o] * a + C[X1 * NB + o] * a1
+        A0 = w2 * q0 + c2 * v0
+        A1 = w2 * q1 + c2 * v1
+        d0 = -(a + A0)
+        d1 = -(a1 + A1)
+        pd = max(S[_PD * NB + o], abs(q1))
+        pv = max(S[_PV * NB + o], abs(v1))
+        pa = max(S[_PA * NB + o], abs(A1))
+        S[_PD * NB + o] = pd
+        S[_PV * NB + o] = pv
+        S[_PA * NB + o] = pa
+        iw2 = C[IW2 * NB + o]
+        bet = -slope * iw2
+        alp = slope * C[AS * NB + o] - a * iw2
+        e0 = q0 - alp
+        ci = (v0 - bet + C[XIW * NB + o] * e0) * C[IWD * NB + o]
+        cm2 = e0 * e0 + ci * ci
+        # particular solution + free vibration: |C|·ω^k > peak − max|particular|
+        rd = pd - max(abs(alp), abs(alp + bet * dt))
+        rv = pv - abs(bet)
+        ra = pa - amax
+        bd = (rd < 0.0) | (cm2 > rd * rd)
+        bv = (rv < 0.0) | (w2 * cm2 > rv * rv)
+        ba = (ra < 0.0) | (C[SA2 * NB + o] * cm2 > ra * ra)
+        # ends + dt²/8·|C|ω^(k+2) > peak (linear interpolation error); with one critical point
+        # at most, the derivative changes sign
+        sd = pd - max(abs(q0), abs(q1))
+        sv = pv - max(abs(v0), abs(v1))
+        sa = pa - max(abs(A0), abs(A1))
+        ad0 = w2 * v0 + c2 * d0
+        ad1 = w2 * v1 + c2 * d1
+        ld = C[KD2 * NB + o] * cm2 > sd * sd
+        lv = C[KV2 * NB + o] * cm2 > sv * sv
+        la = C[KA2 * NB + o] * cm2 > sa * sa
+        many = C[ONE * NB + o] == 0.0
+        fd = bd & ld & (many | (v0 * v1 <= 0.0))
+        fv = bv & lv & (many | (d0 * d1 <= 0.0))
+        fa = ba & la & (many | (ad0 * ad1 <= 0.0))
+        f = fd + 2 * fv + 4 * fa
+        flag[o] = f
+        nf += f
+        S[_QS * NB + o] = q0
+        S[_VS * NB + o] = v0
+        S[_Q * NB + o] = q1
+        S[_V * NB + o] = v1
+    return nf
+
+
+@njit(cache=True)
+def _stage_floor(C, S, flag, nb, a, a1, dt, f0, f1, fdev, abound):
+    """Advance the first ``nb`` oscillators of a block by one record step on a floor (coupled to
+    the building state through rows ``_CP0, _CP1``) and flag those whose peaks may grow inside
+    it; returns the number of flags set.
+
+    The ground values ``a, a1`` drive the update; the floor acceleration is ``f0, f1`` at the
+    step ends, deviates from the line through them by at most ``fdev`` and is at most ``abound``
+    in magnitude. A quantity is flagged when its bound (particular solution for that line + free
+    vibration + response to the deviation, ``fdev·∫|h|``, see the module notes) exceeds its peak
+    so far and, for oscillators with at most one critical point per step (row ``ONE``), its
+    derivative changes sign. Branch-free on purpose: the compiler vectorises it.
+    """
+    nf = 0
+    fslope = (f1 - f0) / dt
+    for o in range(nb):
+        q0 = S[_Q * NB + o]
+        v0 = S[_V * NB + o]
+        d0 = S[_D * NB + o]
+        w2 = C[W2 * NB + o]
+        c2 = C[C2 * NB + o]
+        q1 = (
+            C[P0 * NB + o] * q0
+            + C[P1 * NB + o] * v0
+            + C[P4 * NB + o] * a
+            + C[X0 * NB + o] * a1
+            + S[_CP0 * NB + o]
+        )
+        v1 = (
+            C[P2 * NB + o] * q0
+            + C[P3 * NB + o] * v0
+            + C[P5 * NB + o] * a
+            + C[X1 * NB + o] * a1
+            + S[_CP1 * NB + o]
+        )
+        A1 = w2 * q1 + c2 * v1
+        d1 = -(f1 + A1)
+        pd = max(S[_PD * NB + o], abs(q1))
+        pv = max(S[_PV * NB + o], abs(v1))
+        pa = max(S[_PA * NB + o], abs(A1))
+        S[_PD * NB + o] = pd
+        S[_PV * NB + o] = pv
+        S[_PA * NB + o] = pa
+        iw2 = C[IW2 * NB + o]
+        bet = -fslope * iw2
+        alp = fslope * C[AS * NB + o] - f0 * iw2
+        e0 = q0 - alp
+        ci = (v0 - bet + C[XIW * NB + o] * e0) * C[IWD * NB + o]
+        cm = math.sqrt(e0 * e0 + ci * ci)
+        bd = max(abs(alp), abs(alp + bet * dt)) + cm + fdev * C[IH0 * NB + o]
+        bv = abs(bet) + C[W * NB + o] * cm + fdev * C[IH1 * NB + o]
+        ba = abound + C[SA * NB + o] * cm + fdev * C[IH2 * NB + o]
+        ad0 = w2 * v0 + c2 * d0
+        ad1 = w2 * v1 + c2 * d1
+        many = C[ONE * NB + o] == 0.0
+        fd = ((v0 * v1 <= 0.0) | many) & (bd > pd)
+        fv = ((d0 * d1 <= 0.0) | many) & (bv > pv)
+        fa = ((ad0 * ad1 <= 0.0) | many) & (ba > pa)
+        f = fd + 2 * fv + 4 * fa
+        flag[o] = f
+        nf += f
+        S[_QS * NB + o] = q0
+        S[_VS * NB + o] = v0
+        S[_Q * NB + o] = q1
+        S[_V * NB + o] = v1
+        S[_D * NB + o] = d1
+    return nf
+
+
+@njit(cache=True)
 def spectrum_kernel(
     phi,
     p,
     q,
     acc,
     dt,
+    C,
+    PX,
     w,
     xi,
-    P,
-    X,
-    PX,
-    one_crit,
     b_phi,
     b_p,
     b_q,
@@ -231,6 +485,7 @@ def spectrum_kernel(
     grp,
     G_m,
     G_K,
+    K_osc,
     G_phi,
     G_p,
     G_q,
@@ -240,10 +495,14 @@ def spectrum_kernel(
     S_Pqx,
     S_pq,
     S_qq,
-    Ih,
+    search_all,
     out,
 ):
     """Peaks of a bank of oscillators on one floor.
+
+    Every oscillator is advanced at the record step by its exact recurrence (coupled to the
+    building on a floor) in a vectorised pass (``_stage_ground``, ``_stage_floor``); the steps it
+    flags are then searched on the oscillator's sub-steps by :func:`_search_step`.
 
     Parameters
     ----------
@@ -251,29 +510,29 @@ def spectrum_kernel(
         Exact record-step recurrence of the building (empty on the ground).
     acc, dt
         Ground acceleration samples and time step.
+    C
+        ``(n_blocks, NCOEF·NB)``: per oscillator, in rows of ``NB``, its record-step recurrence
+        and the constants of the skip tests (see ``core._blocks``).
+    PX
+        ``(n_blocks, 2·n_states·NB)``: coupling of each oscillator's record-step update to the
+        building state (rows ``2j`` and ``2j+1`` for state ``j``); empty on the ground.
     w, xi
         Circular frequencies and damping ratios of the oscillators.
-    P, X, PX
-        Record-step recurrence of every oscillator coupled to the floor, one column per
-        oscillator: ``q_{k+1} = P0 q_k + P1 q'_k + P4 a_k + X0 a_{k+1} + PX[0]·x_k`` and
-        ``q'_{k+1} = P2 q_k + P3 q'_k + P5 a_k + X1 a_{k+1} + PX[1]·x_k`` (``P`` is ``(6, n)``,
-        ``X`` is ``(2, n)``, ``PX`` is ``(2, n_states, n)``).
-    one_crit
-        Per oscillator: ``ω·dt ≤ 0.5`` (the derivative sign test is valid at the record step).
     b_*
         The building's own sub-steps (exact floor-acceleration extrema for the bound).
     grp, G_*, S_*
         Sub-step data of the in-step search: per oscillator its group (sub-step count ``G_m``,
         Taylor degree ``G_K``, the building's sub-step recurrence and Taylor rows) and its own
         coupled sub-step recurrence ``S_*``.
-    Ih
-        ``(3, n_osc)``: ``∫₀^dt |h|``, ``∫₀^dt |h'|`` and ``∫₀^dt |ω²h + 2ξωh'|`` of each
-        oscillator's impulse response (bounds of the response to the floor's deviation from a
-        straight line inside a step).
+    K_osc
+        Per oscillator, the Taylor degree of its response on its sub-steps (at most its group's).
+    search_all
+        Search every step of every oscillator (tests: the skip rules change nothing).
     out
         ``(n_osc, 3)``: peaks of ``|q|``, ``|q'|`` and ``|ω² q + 2ξω q'|``.
     """
     n = phi.shape[0]
+    nblk = C.shape[0]
     nosc = w.size
     npts = acc.size
     x = np.zeros(n)
@@ -282,34 +541,37 @@ def spectrum_kernel(
     xs2 = np.empty(n)
     xe = np.empty(n)
     f0 = b_beta[0] * acc[0]  # the floor acceleration at t = 0 (building at rest)
+    f1 = f0
+    abound = 0.0
+    fdev = 0.0
     Kmax = max(G_K.max(), b_K)
     c = np.zeros(Kmax + 2)
     Q = np.zeros(Kmax + 2)
     poly = np.zeros(Kmax + 2)
-    qs = np.zeros(nosc)
-    vs = np.zeros(nosc)
-    ds = np.zeros(nosc)
-    qe = np.zeros(nosc)
-    ve = np.zeros(nosc)
-    flag = np.zeros(nosc, dtype=np.uint8)
-    coup = np.zeros((2, nosc))
-    c2 = 2.0 * xi * w
-    w2 = w * w
-    wd = w * np.sqrt(1.0 - xi * xi)
-    dt4 = dt * dt * dt * dt / 384.0
+    S = np.zeros((nblk, NSTATE * NB))
+    for blk in range(nblk):
+        for o in range(NB):
+            S[blk, _D * NB + o] = -f0  # q'' at rest
+    flag = np.zeros(NB, dtype=np.int64)
     need = np.zeros(3, dtype=np.bool_)
+    pk = np.zeros(3)
     ngroups = G_m.size
     ready = np.zeros(ngroups, dtype=np.bool_)
     CG = np.zeros((ngroups, G_m.max(), G_R.shape[1]))
     XG = np.zeros((ngroups, G_m.max(), n))
-    pk_d = out[:, 0]
-    pk_v = out[:, 1]
-    pk_a = out[:, 2]
-    for k in range(npts - 1):
-        a = acc[k]
-        a1 = acc[k + 1]
-        if n > 0:
+    L = CHUNK
+    XK = np.zeros((L, n))  # building state at the step starts of a chunk
+    FK = np.zeros((L, 4))  # floor: f0, f1, max|a_f|, deviation from the line
+    for k0 in range(0, npts - 1, L):
+        k1 = min(k0 + L, npts - 1)
+        # the building through this chunk, once for every block
+        for k in range(k0, k1):
+            if n == 0:
+                break
+            a = acc[k]
+            a1 = acc[k + 1]
             for i in range(n):  # building state at the step end
+                XK[k - k0, i] = x[i]
                 s_ = p[i] * a + q[i] * a1
                 for j in range(n):
                     s_ += phi[i, j] * x[j]
@@ -320,125 +582,146 @@ def spectrum_kernel(
             abound, fdev = _floor_bound(
                 b_phi, b_p, b_q, b_R, b_beta, b_K, x, a, a1, b_m, dt / b_m, c, xs, xn, f0, f1
             )
-            for o in range(nosc):
-                coup[0, o] = 0.0
-                coup[1, o] = 0.0
-            for j in range(n):
-                xj = x[j]
-                for o in range(nosc):
-                    coup[0, o] += PX[0, j, o] * xj
-                    coup[1, o] += PX[1, j, o] * xj
-        else:
-            abound = max(abs(a), abs(a1))
-            f1 = a1
-            fdev = 0.0
-        slope = (a1 - a) / dt  # of the ground record
-        fslope = (f1 - f0) / dt  # of the straight line through the floor's step-end values
-        # one vectorisable pass: exact update, end peaks, flags
-        for o in range(nosc):
-            q0 = qs[o]
-            v0 = vs[o]
-            q1 = P[0, o] * q0 + P[1, o] * v0 + P[4, o] * a + X[0, o] * a1 + coup[0, o]
-            v1 = P[2, o] * q0 + P[3, o] * v0 + P[5, o] * a + X[1, o] * a1 + coup[1, o]
-            d1 = -(f1 + c2[o] * v1 + w2[o] * q1)
-            A1 = w2[o] * q1 + c2[o] * v1
-            pk_d[o] = max(pk_d[o], abs(q1))
-            pk_v[o] = max(pk_v[o], abs(v1))
-            pk_a[o] = max(pk_a[o], abs(A1))
-            d0 = ds[o]
-            # q = q_p + e + q_δ: q_p = α + βτ the exact response to the straight line through
-            # the floor's step-end accelerations, e = Re(C e^{λτ}) a damped free vibration
-            # (|e^(k)| ≤ |C| ω^k) and q_δ the zero-state response to the floor's deviation δ
-            # from that line (0 on the ground), |q_δ| ≤ max|δ|·∫₀^dt |h|
-            bet = -fslope / w2[o]
-            alp = (-f0 + c2[o] * fslope / w2[o]) / w2[o]
-            e0 = q0 - alp
-            ci = (e0 * (-xi[o] * w[o]) - (v0 - bet)) / wd[o]
-            cm = math.sqrt(e0 * e0 + ci * ci)
-            fd = max(abs(alp), abs(alp + bet * dt)) + cm + fdev * Ih[0, o] > pk_d[o]
-            fv = abs(bet) + w[o] * cm + fdev * Ih[1, o] > pk_v[o]
-            fa = abound + w2[o] * (1.0 + 2.0 * xi[o]) * cm + fdev * Ih[2, o] > pk_a[o]
-            if one_crit[o]:
-                # one critical point at most: the derivative changes sign ...
-                ad0 = w2[o] * v0 + c2[o] * d0
-                ad1 = w2[o] * v1 + c2[o] * d1
-                fd = fd and ((v0 > 0.0) != (v1 > 0.0))
-                fv = fv and ((d0 > 0.0) != (d1 > 0.0))
-                fa = fa and ((ad0 > 0.0) != (ad1 > 0.0))
-                if n == 0:
-                    # ... and on the ground the cubic Hermite interpolant plus its error bound
-                    # dt⁴/384·max|f⁗| reaches the peak
-                    h4 = dt4 * cm * w2[o] * w2[o]
-                    if fd:
-                        fd = _hermite_max(q0, v0, q1, v1, dt) + h4 > pk_d[o]
-                    if fv:
-                        fv = _hermite_max(v0, d0, v1, d1, dt) + h4 * w[o] > pk_v[o]
-                    if fa:
-                        A0 = w2[o] * q0 + c2[o] * v0
-                        ha = h4 * w2[o] * (1.0 + 2.0 * xi[o])
-                        fa = _hermite_max(A0, ad0, A1, ad1, dt) + ha > pk_a[o]
-            flag[o] = fd + 2 * fv + 4 * fa
-            qe[o] = q1
-            ve[o] = v1
-            ds[o] = d1
-        for g in range(ngroups):
-            ready[g] = False
-        for o in range(nosc):
-            if flag[o]:
-                need[0] = (flag[o] & 1) != 0
-                need[1] = (flag[o] & 2) != 0
-                need[2] = (flag[o] & 4) != 0
-                g = grp[o]
-                K = G_K[g]
-                if n > 0 and not ready[g]:
-                    # the floor on this group's sub-steps: states and Taylor coefficients,
-                    # shared by every oscillator of the group
-                    mg = G_m[g]
-                    for i in range(n):
-                        xs2[i] = x[i]
-                    for r in range(mg):
-                        aa = a + (a1 - a) * (r / mg)
-                        ab = a + (a1 - a) * ((r + 1) / mg) if r + 1 < mg else a1
+            FK[k - k0, 0] = f0
+            FK[k - k0, 1] = f1
+            FK[k - k0, 2] = abound
+            FK[k - k0, 3] = fdev
+            for i in range(n):
+                x[i] = xe[i]
+            f0 = f1
+        # each block of oscillators through the chunk, its data staying in the L1 cache
+        for blk in range(nblk):
+            Cb = C[blk]
+            Sb = S[blk]
+            nb = min(NB, nosc - blk * NB)
+            for k in range(k0, k1):
+                a = acc[k]
+                a1 = acc[k + 1]
+                if n > 0:
+                    PXb = PX[blk]
+                    for o in range(NB):
+                        Sb[_CP0 * NB + o] = 0.0
+                        Sb[_CP1 * NB + o] = 0.0
+                    for j in range(n):
+                        xj = XK[k - k0, j]
+                        for o in range(NB):
+                            Sb[_CP0 * NB + o] += PXb[(2 * j) * NB + o] * xj
+                            Sb[_CP1 * NB + o] += PXb[(2 * j + 1) * NB + o] * xj
+                    nf = _stage_floor(
+                        Cb,
+                        Sb,
+                        flag,
+                        nb,
+                        a,
+                        a1,
+                        dt,
+                        FK[k - k0, 0],
+                        FK[k - k0, 1],
+                        FK[k - k0, 3],
+                        FK[k - k0, 2],
+                    )
+                    for g in range(ngroups):
+                        ready[g] = False
+                else:
+                    nf = _stage_ground(Cb, Sb, flag, nb, a, a1, dt)
+                if nf == 0 and not search_all:
+                    continue
+                slope = (a1 - a) / dt  # of the ground record
+                for o in range(nb):
+                    f = 7 if search_all else flag[o]
+                    if f == 0:
+                        continue
+                    og = blk * NB + o
+                    if n == 0:
+                        pk[0] = Sb[_PD * NB + o]
+                        pk[1] = Sb[_PV * NB + o]
+                        pk[2] = Sb[_PA * NB + o]
+                        _ground_search(
+                            f,
+                            a,
+                            a1,
+                            dt,
+                            G_m[grp[og]],
+                            K_osc[og],
+                            Sb[_QS * NB + o],
+                            Sb[_VS * NB + o],
+                            w[og],
+                            xi[og],
+                            S_Pqq[og, 0, 0],
+                            S_Pqq[og, 0, 1],
+                            S_Pqq[og, 1, 0],
+                            S_Pqq[og, 1, 1],
+                            S_pq[og, 0],
+                            S_pq[og, 1],
+                            S_qq[og, 0],
+                            S_qq[og, 1],
+                            pk,
+                            Q,
+                            poly,
+                        )
+                        Sb[_PD * NB + o] = pk[0]
+                        Sb[_PV * NB + o] = pk[1]
+                        Sb[_PA * NB + o] = pk[2]
+                        continue
+                    need[0] = (f & 1) != 0
+                    need[1] = (f & 2) != 0
+                    need[2] = (f & 4) != 0
+                    out[og, 0] = Sb[_PD * NB + o]
+                    out[og, 1] = Sb[_PV * NB + o]
+                    out[og, 2] = Sb[_PA * NB + o]
+                    g = grp[og]
+                    if n > 0 and not ready[g]:
+                        # the floor on this group's sub-steps: states and Taylor coefficients,
+                        # shared by the oscillators of the group in this block
+                        mg = G_m[g]
                         for i in range(n):
-                            XG[g, r, i] = xs2[i]
-                        for j in range(CG.shape[2]):
-                            CG[g, r, j] = 0.0
-                        taylor_coefficients(G_R[g], G_beta[g], xs2, aa, slope, CG[g, r])
-                        for i in range(n):
-                            s_ = G_p[g, i] * aa + G_q[g, i] * ab
-                            for j in range(n):
-                                s_ += G_phi[g, i, j] * xs2[j]
-                            xn[i] = s_
-                        for i in range(n):
-                            xs2[i] = xn[i]
-                    ready[g] = True
-                _search_step(
-                    o,
-                    n,
-                    a,
-                    a1,
-                    dt,
-                    qs[o],
-                    vs[o],
-                    w[o],
-                    xi[o],
-                    G_m[g],
-                    K,
-                    CG[g],
-                    XG[g],
-                    S_Pqq[o],
-                    S_Pqx[o],
-                    S_pq[o],
-                    S_qq[o],
-                    need,
-                    out,
-                    c,
-                    Q,
-                    poly,
-                )
-        for o in range(nosc):
-            qs[o] = qe[o]
-            vs[o] = ve[o]
-        for i in range(n):
-            x[i] = xe[i]
-        f0 = f1
+                            xs2[i] = XK[k - k0, i]
+                        for r in range(mg):
+                            aa = a + (a1 - a) * (r / mg)
+                            ab = a + (a1 - a) * ((r + 1) / mg) if r + 1 < mg else a1
+                            for i in range(n):
+                                XG[g, r, i] = xs2[i]
+                            for j in range(CG.shape[2]):
+                                CG[g, r, j] = 0.0
+                            taylor_coefficients(G_R[g], G_beta[g], xs2, aa, slope, CG[g, r])
+                            for i in range(n):
+                                s_ = G_p[g, i] * aa + G_q[g, i] * ab
+                                for j in range(n):
+                                    s_ += G_phi[g, i, j] * xs2[j]
+                                xn[i] = s_
+                            for i in range(n):
+                                xs2[i] = xn[i]
+                        ready[g] = True
+                    _search_step(
+                        og,
+                        n,
+                        a,
+                        a1,
+                        dt,
+                        Sb[_QS * NB + o],
+                        Sb[_VS * NB + o],
+                        w[og],
+                        xi[og],
+                        G_m[g],
+                        K_osc[og],
+                        CG[g],
+                        XG[g],
+                        S_Pqq[og],
+                        S_Pqx[og],
+                        S_pq[og],
+                        S_qq[og],
+                        need,
+                        out,
+                        c,
+                        Q,
+                        poly,
+                    )
+                    Sb[_PD * NB + o] = out[og, 0]
+                    Sb[_PV * NB + o] = out[og, 1]
+                    Sb[_PA * NB + o] = out[og, 2]
+    for og in range(nosc):
+        blk = og // NB
+        o = og - blk * NB
+        out[og, 0] = S[blk, _PD * NB + o]
+        out[og, 1] = S[blk, _PV * NB + o]
+        out[og, 2] = S[blk, _PA * NB + o]

@@ -26,7 +26,8 @@ from floorslide.building.exact import ExactStepper, spectral_radius, taylor_degr
 from floorslide.building.model import LinearBuilding
 from floorslide.building.motions import check_record, floor_motions, peak_floor_acceleration
 from floorslide.errors import ModelError
-from floorslide.spectra._kernels import spectrum_kernel
+from floorslide.spectra import _kernels as K
+from floorslide.spectra._kernels import NB, NCOEF, spectrum_kernel
 
 MAX_PHASE = 0.5
 METHODS = ("exact", "samples", "newmark", "fft", "reinterpolated")
@@ -137,7 +138,55 @@ def _impulse_integrals(w, xi, dt, n=513):
     return np.ascontiguousarray(out * 1.02)
 
 
-def _exact(a, dt, T, Z, building, floor):
+def _blocks(w, xi, dt, Pqq, Pqx, pq, qq, one_crit, Ih):
+    """Kernel data in blocks of ``NB`` oscillators, row by row (see ``_kernels._stage_ground``).
+
+    Returns the coefficient rows ``(n_blocks, NCOEF·NB)`` and the coupling rows
+    ``(n_blocks, 2·n_states·NB)``.
+    """
+    nosc = w.size
+    n = Pqx.shape[2]
+    nblk = -(-nosc // NB)
+    w2 = w * w
+    kd = w2 * dt * dt / 8.0
+    sa = w2 * (1 + 2 * xi)
+    rows = np.zeros((NCOEF, nblk * NB))
+    for r, v in (
+        (K.P0, Pqq[:, 0, 0]),
+        (K.P1, Pqq[:, 0, 1]),
+        (K.P2, Pqq[:, 1, 0]),
+        (K.P3, Pqq[:, 1, 1]),
+        (K.P4, pq[:, 0]),
+        (K.P5, pq[:, 1]),
+        (K.X0, qq[:, 0]),
+        (K.X1, qq[:, 1]),
+        (K.W, w),
+        (K.W2, w2),
+        (K.C2, 2 * xi * w),
+        (K.IW2, 1 / w2),
+        (K.AS, 2 * xi * w / w2**2),
+        (K.XIW, xi * w),
+        (K.IWD, 1 / (w * np.sqrt(1 - xi**2))),
+        (K.KD2, kd**2),
+        (K.KV2, (kd * w) ** 2),
+        (K.KA2, (kd * sa) ** 2),
+        (K.SA, sa),
+        (K.SA2, sa**2),
+        (K.ONE, one_crit.astype(float)),
+        (K.IH0, Ih[0]),
+        (K.IH1, Ih[1]),
+        (K.IH2, Ih[2]),
+    ):
+        rows[r, :nosc] = v
+    C = np.ascontiguousarray(rows.reshape(NCOEF, nblk, NB).transpose(1, 0, 2).reshape(nblk, -1))
+    px = np.zeros((2 * n, nblk * NB))
+    px[0::2, :nosc] = Pqx[:, 0, :].T
+    px[1::2, :nosc] = Pqx[:, 1, :].T
+    PX = np.ascontiguousarray(px.reshape(2 * n, nblk, NB).transpose(1, 0, 2).reshape(nblk, -1))
+    return C, PX
+
+
+def _exact(a, dt, T, Z, building, floor, search_all=False):
     """Exact spectra on the ground or a floor; returns sd, sv, sa of shape (len(Z), len(T))."""
     on_floor = building is not None and building.dof_of(floor) is not None
     if on_floor:
@@ -156,11 +205,6 @@ def _exact(a, dt, T, Z, building, floor):
     nosc = w.size
     # record-step recurrence of every oscillator coupled to the floor
     Pqq, Pqx, pq, qq = _oscillator_blocks(A, b, Ca, da, w, xi, dt)
-    P = np.ascontiguousarray(
-        np.stack([Pqq[:, 0, 0], Pqq[:, 0, 1], Pqq[:, 1, 0], Pqq[:, 1, 1], pq[:, 0], pq[:, 1]])
-    )
-    X = np.ascontiguousarray(qq.T)
-    PX = np.ascontiguousarray(np.transpose(Pqx, (1, 2, 0)))
     one_crit = np.maximum(w, rho_b) * dt <= MAX_PHASE
     # the building: record step, and its own sub-steps for the floor-acceleration bound
     if on_floor:
@@ -174,12 +218,17 @@ def _exact(a, dt, T, Z, building, floor):
         phi, p, q = np.zeros((0, 0)), np.zeros(0), np.zeros(0)
         b_phi, b_p, b_q = phi, p, q
         b_R, b_beta, b_K, b_m = np.zeros((2, 0)), np.array([1.0, 0.0]), 1, 1
-    # in-step search: sub-steps per oscillator, grouped by their number
+    # in-step search: sub-steps per oscillator (at most one critical point on each), grouped
+    # by their number
     m_all = np.maximum(1, np.ceil(np.maximum(w, rho_b) * dt / MAX_PHASE - 1e-12)).astype(int)
     groups = np.unique(m_all)
     grp = np.searchsorted(groups, m_all).astype(np.int64)
     G_K = np.array(
         [taylor_degree(max(rho_b, w[m_all == m].max()) * dt / m) for m in groups], dtype=np.int64
+    )
+    K_osc = np.array(
+        [taylor_degree(max(rho_b, wo) * dt / m) for wo, m in zip(w, m_all, strict=True)],
+        dtype=np.int64,
     )
     kr = int(G_K.max()) + 1
     G_phi = np.zeros((groups.size, n, n))
@@ -192,6 +241,13 @@ def _exact(a, dt, T, Z, building, floor):
     S_pq = np.zeros((nosc, 2))
     S_qq = np.zeros((nosc, 2))
     for g, m in enumerate(groups):
+        idx = m_all == m
+        if m == 1:  # the record step itself
+            S_Pqq[idx], S_Pqx[idx], S_pq[idx], S_qq[idx] = Pqq[idx], Pqx[idx], pq[idx], qq[idx]
+        else:
+            S_Pqq[idx], S_Pqx[idx], S_pq[idx], S_qq[idx] = _oscillator_blocks(
+                A, b, Ca, da, w[idx], xi[idx], dt / m
+            )
         if on_floor:
             st = ExactStepper.build(A, b, dt, substeps=int(m))
             R, beta = st.taylor_rows(Ca[None, :], np.array([da]), order=int(G_K[g]))
@@ -199,24 +255,19 @@ def _exact(a, dt, T, Z, building, floor):
             G_p[g], G_q[g] = st.input_weights()
             G_R[g, : R.shape[1]] = R[0]
             G_beta[g, : R.shape[1]] = beta[0]
-        idx = m_all == m
-        S_Pqq[idx], S_Pqx[idx], S_pq[idx], S_qq[idx] = _oscillator_blocks(
-            A, b, Ca, da, w[idx], xi[idx], dt / m
-        )
-    out = np.zeros((nosc, 3))
     Ih = _impulse_integrals(w, xi, dt) if on_floor else np.zeros((3, nosc))
+    C, PX = _blocks(w, xi, dt, Pqq, Pqx, pq, qq, one_crit, Ih)
+    out = np.zeros((nosc, 3))
     spectrum_kernel(
         phi,
         p,
         q,
         a,
         dt,
+        C,
+        PX,
         w,
         xi,
-        P,
-        X,
-        PX,
-        one_crit,
         b_phi,
         b_p,
         b_q,
@@ -227,6 +278,7 @@ def _exact(a, dt, T, Z, building, floor):
         grp,
         groups.astype(np.int64),
         G_K,
+        K_osc,
         G_phi,
         G_p,
         G_q,
@@ -236,7 +288,7 @@ def _exact(a, dt, T, Z, building, floor):
         S_Pqx,
         S_pq,
         S_qq,
-        Ih,
+        search_all,
         out,
     )
     sd = np.zeros((Z.size, T.size))

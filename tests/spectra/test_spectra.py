@@ -122,6 +122,42 @@ def test_floor_spectrum_of_stiff_building_matches_reference(coarse_record):
     assert approx.psa[0, 1] < sp.psa[0, 1] * 0.98
 
 
+@pytest.mark.parametrize("where", ["ground", "stiff floor", "isolated roof"])
+def test_skip_rules_change_nothing_across_blocks(where, elcentro, coarse_record):
+    """The kernel skips the in-step search wherever a rigorous bound says no peak can grow: the
+    spectra equal those of searching every step of every oscillator. 40 periods × 2 damping
+    ratios span three blocks of oscillators and sub-stepped short periods; oscillators in later
+    blocks agree with the independent reference."""
+    acc, dt = coarse_record if where == "stiff floor" else elcentro
+    acc = acc[100:700]
+    kw = {}
+    if where == "stiff floor":
+        kw = dict(building=ShearBuilding.from_period(1, 0.1, 0.02), floor=1)
+    elif where == "isolated roof":
+        kw = dict(
+            building=IsolatedBuilding(ShearBuilding.from_period(2, 0.3, 0.05), 1.0, 2.5, 0.1),
+            floor=2,
+        )
+    T = np.geomspace(0.02, 4.0, 40)
+    Z = np.array([0.02, 0.1])
+    from floorslide.spectra.core import _exact
+
+    got = _exact(acc, dt, T, Z, kw.get("building"), kw.get("floor"))
+    full = _exact(acc, dt, T, Z, kw.get("building"), kw.get("floor"), search_all=True)
+    for a, b in zip(got, full, strict=True):
+        np.testing.assert_allclose(a, b, rtol=1e-13, atol=0)
+    if kw:
+        b = kw["building"]
+        A, B = b.state_matrices()
+        Ca, Da, _ = b.output_matrices([kw["floor"]])
+        args = (A, B[:, 0], Ca[0], float(Da[0, 0]))
+    else:
+        args = (np.zeros((0, 0)), np.zeros(0), np.zeros(0), 1.0)
+    for iz, it in ((0, 0), (1, 5), (1, 33)):  # oscillators 0, 45 and 73: blocks 0, 1 and 2
+        ref = oscillator_reference(*args, acc, dt, T[it], Z[iz])
+        np.testing.assert_allclose([x[iz, it] for x in got], ref, rtol=1e-9)
+
+
 def test_isolated_roof_frs_matches_reference(elcentro):
     acc, dt = elcentro
     acc = acc[:800]
