@@ -87,6 +87,16 @@ def taylor_degree(phase: float, tol: float = TAYLOR_TOL) -> int:
     return K
 
 
+def taylor_degrees(phases: np.ndarray, tol: float = TAYLOR_TOL) -> np.ndarray:
+    """:func:`taylor_degree` of each phase (``0 ≤ phase ≤ 1``, where ``phase^{K+1}/(K+1)!``
+    decreases with ``K``), as ``int64``."""
+    phases = np.asarray(phases, dtype=float)
+    K = np.full(phases.shape, 3, dtype=np.int64)
+    for k in range(3, 60):
+        K += phases ** (k + 1) / math.factorial(k + 1) > tol
+    return K
+
+
 @dataclass(frozen=True, eq=False)
 class ExactStepper:
     """Exact stepping of ``x' = A x + b a(t)`` for a piecewise-linear ``a`` sampled at ``dt``.

@@ -16,13 +16,19 @@ steps), ``sd = sv = 0``.
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
 import scipy.linalg
 
-from floorslide.building.exact import ExactStepper, spectral_radius, taylor_degree
+from floorslide.building.exact import (
+    ExactStepper,
+    spectral_radius,
+    taylor_degree,
+    taylor_degrees,
+)
 from floorslide.building.model import LinearBuilding
 from floorslide.building.motions import check_record, floor_motions, peak_floor_acceleration
 from floorslide.errors import ModelError
@@ -186,20 +192,26 @@ def _blocks(w, xi, dt, Pqq, Pqx, pq, qq, one_crit, Ih):
     return C, PX
 
 
-def _exact(a, dt, T, Z, building, floor, search_all=False):
-    """Exact spectra on the ground or a floor; returns sd, sv, sa of shape (len(Z), len(T))."""
-    on_floor = building is not None and building.dof_of(floor) is not None
+@functools.lru_cache(maxsize=16)
+def _kernel_data(dt: float, T_bytes: bytes, Z_bytes: bytes, n: int, system: bytes) -> tuple:
+    """Everything the spectrum kernel needs but the record, for oscillators of periods ``T`` and
+    damping ratios ``Z`` on a floor whose state-space data (``n`` states; ``A``, ``b``, ``Ca``,
+    ``da`` packed in ``system``) is given, or on the ground (``n = 0``). Cached: a study asks for
+    the same periods, damping ratios, dt and building record after record. The arrays returned
+    are shared between calls and must not be written."""
+    T = np.frombuffer(T_bytes)
+    Z = np.frombuffer(Z_bytes)
+    on_floor = n > 0
     if on_floor:
-        A, B = building.state_matrices()
-        b = B[:, 0]
-        Ca, Da, _ = building.output_matrices([floor], "acceleration")
-        Ca, da = Ca[0], float(Da[0, 0])
+        sysv = np.frombuffer(system)
+        A = sysv[: n * n].reshape(n, n)
+        b = sysv[n * n : n * n + n]
+        Ca = sysv[n * n + n : n * n + 2 * n]
+        da = float(sysv[-1])
         rho_b = spectral_radius(A)
     else:
         A, b, Ca, da, rho_b = np.zeros((0, 0)), np.zeros(0), np.zeros(0), 1.0, 0.0
-    n = A.shape[0]
-    pos = T > 0
-    TT, ZZ = np.meshgrid(T[pos], Z)
+    TT, ZZ = np.meshgrid(T, Z)
     w = np.ascontiguousarray(2 * np.pi / TT.ravel())
     xi = np.ascontiguousarray(ZZ.ravel())
     nosc = w.size
@@ -226,10 +238,7 @@ def _exact(a, dt, T, Z, building, floor, search_all=False):
     G_K = np.array(
         [taylor_degree(max(rho_b, w[m_all == m].max()) * dt / m) for m in groups], dtype=np.int64
     )
-    K_osc = np.array(
-        [taylor_degree(max(rho_b, wo) * dt / m) for wo, m in zip(w, m_all, strict=True)],
-        dtype=np.int64,
-    )
+    K_osc = taylor_degrees(np.maximum(rho_b, w) * dt / m_all)
     kr = int(G_K.max()) + 1
     G_phi = np.zeros((groups.size, n, n))
     G_p = np.zeros((groups.size, n))
@@ -257,13 +266,10 @@ def _exact(a, dt, T, Z, building, floor, search_all=False):
             G_beta[g, : R.shape[1]] = beta[0]
     Ih = _impulse_integrals(w, xi, dt) if on_floor else np.zeros((3, nosc))
     C, PX = _blocks(w, xi, dt, Pqq, Pqx, pq, qq, one_crit, Ih)
-    out = np.zeros((nosc, 3))
-    spectrum_kernel(
+    return (
         phi,
         p,
         q,
-        a,
-        dt,
         C,
         PX,
         w,
@@ -288,9 +294,25 @@ def _exact(a, dt, T, Z, building, floor, search_all=False):
         S_Pqx,
         S_pq,
         S_qq,
-        search_all,
-        out,
     )
+
+
+def _exact(a, dt, T, Z, building, floor, search_all=False):
+    """Exact spectra on the ground or a floor; returns sd, sv, sa of shape (len(Z), len(T))."""
+    on_floor = building is not None and building.dof_of(floor) is not None
+    if on_floor:
+        A, B = building.state_matrices()
+        Ca, Da, _ = building.output_matrices([floor], "acceleration")
+        system = (A.shape[0], np.concatenate([A.ravel(), B[:, 0], Ca[0], Da[0]]).tobytes())
+    else:
+        system = (0, b"")
+    pos = T > 0
+    args = _kernel_data(
+        float(dt), np.asarray(T[pos], float).tobytes(), np.asarray(Z, float).tobytes(), *system
+    )
+    nosc = args[5].size
+    out = np.zeros((nosc, 3))
+    spectrum_kernel(args[0], args[1], args[2], a, dt, *args[3:], search_all, out)
     sd = np.zeros((Z.size, T.size))
     sv = np.zeros((Z.size, T.size))
     sa = np.zeros((Z.size, T.size))
