@@ -37,35 +37,36 @@ from floorslide.building._instep import (
 
 @njit(cache=True)
 def _floor_bound(phi_s, p_s, q_s, R, beta, K, x, a, a1, ms, hs, c, xs, xn, f0, f1):
-    """max |a_f| over one record step on the building's own sub-steps (exact extrema), and the
-    largest deviation of a_f from the straight line between its step-end values f0, f1."""
+    """Bounds of the floor acceleration ``a_f`` over one step (the building's own ``ms``
+    sub-steps of ``hs``): its largest deviation from the straight line between its step-end
+    values ``f0, f1``, ``δ ≤ (ms·hs)²/8·max|a_f''|``, and ``max|a_f| ≤ max(|f0|, |f1|) + δ``.
+    On each sub-step ``a_f`` is its Taylor polynomial ``Σ c_j τ^j`` (equal to it to rounding),
+    so ``|a_f''| ≤ Σ j(j−1)|c_j| hs^{j−2}``."""
     n = x.size
     slope = (a1 - a) / (ms * hs)
-    fs = (f1 - f0) / (ms * hs)
     for i in range(n):
         xs[i] = x[i]
-    bound = 0.0
-    dev = 0.0
+    m2 = 0.0
     for r in range(ms):
         aa = a + (a1 - a) * (r / ms)
         ab = a + (a1 - a) * ((r + 1) / ms) if r + 1 < ms else a1
         for j in range(K + 1):
             c[j] = 0.0
         taylor_coefficients(R, beta, xs, aa, slope, c[: R.shape[0]])
-        vmin, _, vmax, _ = extreme_values(c, K, 0.0, hs)
-        bound = max(bound, vmax, -vmin)
-        c[0] -= f0 + fs * (r * hs)
-        c[1] -= fs
-        vmin, _, vmax, _ = extreme_values(c, K, 0.0, hs)
-        dev = max(dev, vmax, -vmin)
-        for i in range(n):
-            s_ = p_s[i] * aa + q_s[i] * ab
-            for j in range(n):
-                s_ += phi_s[i, j] * xs[j]
-            xn[i] = s_
-        for i in range(n):
-            xs[i] = xn[i]
-    return bound, dev
+        s2 = 0.0
+        for j in range(K, 1, -1):
+            s2 = s2 * hs + j * (j - 1) * abs(c[j])
+        m2 = max(m2, s2)
+        if r + 1 < ms:
+            for i in range(n):
+                s_ = p_s[i] * aa + q_s[i] * ab
+                for j in range(n):
+                    s_ += phi_s[i, j] * xs[j]
+                xn[i] = s_
+            for i in range(n):
+                xs[i] = xn[i]
+    dev = (ms * hs) ** 2 / 8.0 * m2
+    return max(abs(f0), abs(f1)) + dev, dev
 
 
 @njit(cache=True, inline="always")
@@ -209,23 +210,37 @@ def _search_step(
             Q[1] = v
             for j in range(K - 1):
                 Q[j + 2] = (-c2 * (j + 1) * Q[j + 1] - w2 * Q[j] - c[j]) / ((j + 1) * (j + 2))
+            # Newton starts where the cubic Hermite interpolant of the ends peaks
             if nd:
-                vmin, _, vmax, _ = extreme_values(Q, K, 0.0, h)
-                out[o, 0] = max(out[o, 0], vmax, -vmin)
+                t = _hermite_max(q, v, qn, vn, h)[1]
+                out[o, 0] = max(out[o, 0], abs(q), abs(qn), _interior_peak(Q, K, h, t))
             if nv:
                 for j in range(K):
                     poly[j] = (j + 1) * Q[j + 1]
                 poly[K] = 0.0
-                vmin, _, vmax, _ = extreme_values(poly, K, 0.0, h)
-                out[o, 1] = max(out[o, 1], vmax, -vmin)
+                t = _hermite_max(v, dd0, vn, dd1, h)[1]
+                out[o, 1] = max(out[o, 1], abs(v), abs(vn), _interior_peak(poly, K, h, t))
             if na:
                 for j in range(K):
                     poly[j] = w2 * Q[j] + c2 * (j + 1) * Q[j + 1]
                 poly[K] = w2 * Q[K]
-                vmin, _, vmax, _ = extreme_values(poly, K, 0.0, h)
-                out[o, 2] = max(out[o, 2], vmax, -vmin)
+                A0 = w2 * q + c2 * v
+                A1 = w2 * qn + c2 * vn
+                t = _hermite_max(A0, Ad0, A1, Ad1, h)[1]
+                out[o, 2] = max(out[o, 2], abs(A0), abs(A1), _interior_peak(poly, K, h, t))
         q = qn
         v = vn
+
+
+@njit(cache=True, inline="always")
+def _sample(acc, k, up):
+    """Sample ``k`` of the record on a grid ``up`` times finer (linear interpolation: the same
+    piecewise-linear function)."""
+    j = k // up
+    r = k - j * up
+    if r == 0:
+        return acc[j]
+    return acc[j] + (acc[j + 1] - acc[j]) * (r / up)
 
 
 @njit(cache=True)
@@ -470,6 +485,7 @@ def spectrum_kernel(
     p,
     q,
     acc,
+    up,
     dt,
     C,
     PX,
@@ -497,6 +513,7 @@ def spectrum_kernel(
     S_qq,
     search_all,
     out,
+    counts,
 ):
     """Peaks of a bank of oscillators on one floor.
 
@@ -508,8 +525,11 @@ def spectrum_kernel(
     ----------
     phi, p, q
         Exact record-step recurrence of the building (empty on the ground).
-    acc, dt
-        Ground acceleration samples and time step.
+    acc, up, dt
+        Ground acceleration samples; the kernel steps through the record on a grid ``up`` times
+        finer (the same piecewise-linear function, values interpolated on the fly), of step
+        ``dt`` (on a floor, ``up`` is the number of the building's own sub-steps per record
+        step, so that the building's spectral radius times ``dt`` is at most 0.5).
     C
         ``(n_blocks, NCOEF·NB)``: per oscillator, in rows of ``NB``, its record-step recurrence
         and the constants of the skip tests (see ``core._blocks``).
@@ -530,11 +550,13 @@ def spectrum_kernel(
         Search every step of every oscillator (tests: the skip rules change nothing).
     out
         ``(n_osc, 3)``: peaks of ``|q|``, ``|q'|`` and ``|ω² q + 2ξω q'|``.
+    counts
+        ``int64[2]``, incremented: oscillator-steps searched, floor sub-step data computed.
     """
     n = phi.shape[0]
     nblk = C.shape[0]
     nosc = w.size
-    npts = acc.size
+    npts = (acc.size - 1) * up + 1  # samples of the record on the fine grid
     x = np.zeros(n)
     xn = np.empty(n)
     xs = np.empty(n)
@@ -568,8 +590,8 @@ def spectrum_kernel(
         for k in range(k0, k1):
             if n == 0:
                 break
-            a = acc[k]
-            a1 = acc[k + 1]
+            a = _sample(acc, k, up)
+            a1 = _sample(acc, k + 1, up)
             for i in range(n):  # building state at the step end
                 XK[k - k0, i] = x[i]
                 s_ = p[i] * a + q[i] * a1
@@ -595,8 +617,8 @@ def spectrum_kernel(
             Sb = S[blk]
             nb = min(NB, nosc - blk * NB)
             for k in range(k0, k1):
-                a = acc[k]
-                a1 = acc[k + 1]
+                a = _sample(acc, k, up)
+                a1 = _sample(acc, k + 1, up)
                 if n > 0:
                     PXb = PX[blk]
                     for o in range(NB):
@@ -632,6 +654,7 @@ def spectrum_kernel(
                     if f == 0:
                         continue
                     og = blk * NB + o
+                    counts[0] += 1
                     if n == 0:
                         pk[0] = Sb[_PD * NB + o]
                         pk[1] = Sb[_PV * NB + o]
@@ -673,6 +696,7 @@ def spectrum_kernel(
                     if n > 0 and not ready[g]:
                         # the floor on this group's sub-steps: states and Taylor coefficients,
                         # shared by the oscillators of the group in this block
+                        counts[1] += 1
                         mg = G_m[g]
                         for i in range(n):
                             xs2[i] = XK[k - k0, i]
