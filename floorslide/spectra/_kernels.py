@@ -1,23 +1,30 @@
 """Compiled kernel of exact response spectra with peaks inside steps.
 
 A bank of linear oscillators (``q'' + 2ξω q' + ω² q = −a_f(t)``) is advanced through the record
-by the exact recurrence of each oscillator coupled to its floor, at the record step (the
-augmented first-order hold of ``building/exact.py``; on the ground this is the recurrence of
-Nigam & Jennings 1969) — one branch-free pass over the oscillators per step that the compiler
-vectorises. A step is searched for peaks inside it only when it could hold a new peak:
+by the exact recurrence of each oscillator coupled to its floor (the augmented first-order hold
+of ``building/exact.py``; on the ground this is the recurrence of Nigam & Jennings 1969). On a
+floor the record is stepped on the building's own sub-steps (``ρ(A)·h ≤ 0.5``; the ground is
+linear inside a record step, so this is the same input).
 
-- a rigorous bound. On a floor, with ``ρ² = q² + (q'/ω)²``, ``dρ/dt ≤ |a_f|/ω`` (damping only
-  removes energy), so inside the step ``ρ ≤ ρ₀ + dt·max|a_f|/ω``; then ``|q| ≤ ρ``,
-  ``|q'| ≤ ωρ`` and ``|ω²q + 2ξωq'| ≤ ω²√(1+4ξ²)·ρ``. On the ground (linear input inside the
-  step) the response is the exact particular solution ``q_p = α + βτ`` plus a damped free
-  vibration ``e`` whose energy amplitude ``E`` only decreases: ``|q| ≤ max|q_p| + E``,
-  ``|q'| ≤ |β| + ωE``, ``|ω²q + 2ξωq'| ≤ max|a_g| + ω²√(1+4ξ²)·E`` — much tighter;
-- and, for oscillators with ``ω·dt ≤ 0.5`` (at most one critical point per step), the derivative
-  of the quantity changing sign between the step ends.
+Every step is one branch-free pass over the oscillators that the compiler vectorises: the
+oscillators' data are held in blocks of ``NB`` as rows of a compile-time stride, and each block
+goes through a chunk of the record while its rows stay in the L1 cache. The pass flags the
+quantities (``|q|``, ``|q'|``, ``|ω²q + 2ξωq'|``) whose peak could grow inside the step, by
+rigorous bounds of the exact response: inside a step it is ``α + βτ`` (the particular solution
+for the straight line through the input's step-end values) plus a damped free vibration
+``e = Re(C e^{λτ})`` (``|e^(k)| ≤ |C|ω^k``) plus, on a floor, the zero-state response to the
+floor's deviation ``δ`` from that line (``|q_δ| ≤ max|δ|·∫|h|``). A quantity is flagged when
 
-A flagged step is then re-stepped on sub-steps short enough (``max(ρ_building, ω)·h ≤ 0.5``)
-for the Taylor polynomial of the exact response to represent it to rounding, and its extrema
-are found there.
+- its bound ``max|particular| + |C|ω^k (+ max|δ|·∫|h^(k)|)`` exceeds its peak so far;
+- on the ground, also its end values plus the linear interpolation error ``h²/8·max|f''|``;
+- for oscillators with ``ω·h ≤ 0.5`` (at most one critical point per step), also the sign of
+  its derivative changes between the step ends.
+
+Only flagged steps are searched, on sub-steps short enough (``max(ρ_building, ω)·h ≤ 0.5``) for
+the Taylor polynomial of the exact response to equal it to rounding: on the ground after a
+second filter (the cubic Hermite interpolant of the ends plus its error bound
+``h⁴/384·max|f⁗|``), by Newton from the Hermite peak. A test checks that searching every step
+gives the same spectra.
 """
 
 from __future__ import annotations

@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from floorslide.spectra.core import _exact, floor_samples
+from floorslide.spectra.core import _exact, _sdof_recurrence, floor_samples
 
 
 def spectra(a, dt, T, Z, building, floor, method, substeps):
@@ -30,7 +30,7 @@ def spectra(a, dt, T, Z, building, floor, method, substeps):
     xi = ZZ.ravel()
     out = np.zeros((w.size, 3))
     if method == "samples":
-        E = _sdof_foh(w, xi, h)
+        E = _sdof_recurrence(w, xi, h)
         _recurrence_peaks(af, *E, w, xi, out)
     elif method == "newmark":
         _newmark_peaks(af, h, w, xi, out)
@@ -44,22 +44,6 @@ def spectra(a, dt, T, Z, building, floor, method, substeps):
     sa[:, pos] = out[:, 2].reshape(Z.size, -1)
     sa[:, ~pos] = np.abs(af).max()
     return sd, sv, sa
-
-
-def _sdof_foh(w, xi, h):
-    import scipy.linalg
-
-    m = w.size
-    aug = np.zeros((m, 4, 4))
-    aug[:, 0, 1] = 1.0
-    aug[:, 1, 0] = -(w**2)
-    aug[:, 1, 1] = -2 * xi * w
-    aug[:, 1, 2] = -1.0
-    aug[:, 2, 3] = 1.0
-    E = scipy.linalg.expm(aug * h)
-    P = np.ascontiguousarray(E[:, :2, :2])
-    g0, g1 = E[:, :2, 2], E[:, :2, 3]
-    return P, np.ascontiguousarray(g0 - g1 / h), np.ascontiguousarray(g1 / h)
 
 
 @njit(cache=True)

@@ -111,10 +111,79 @@ def _damping_list(damping) -> np.ndarray:
     return arr
 
 
+def _sdof_recurrence(w, xi, h):
+    """Exact step of oscillators on the ground, ``q'' + 2ξωq' + ω²q = −a`` with ``a`` linear over
+    a step ``h``: ``[q, q']⁺ = Φ [q, q'] + p a + q a⁺`` (Nigam & Jennings 1969).
+
+    In the scaled state ``y = [ωq, q']`` the system matrix is ``θJ`` with ``θ = ωh`` and
+    ``J = [[0, 1], [−1, −2ξ]]``; the step is ``e^{θJ}`` (closed form) and the input weights are
+    ``h(φ₁ − φ₂)b`` and ``hφ₂b`` with ``φ₁(X) = X⁻¹(e^X − I)``, ``φ₂(X) = X⁻¹(φ₁(X) − I)``:
+    in closed form for ``θ ≥ 0.5`` and by their Taylor series below, where the closed form
+    cancels (series truncated once its terms fall below 1e-20). Returns ``Φ`` ``(m, 2, 2)``,
+    ``p`` and ``q`` ``(m, 2)``; ``h`` may be one value or one per oscillator.
+    """
+    w = np.asarray(w, float)
+    xi = np.asarray(xi, float)
+    h = np.broadcast_to(np.asarray(h, float), w.shape)
+    th = w * h
+    m = w.size
+    J = np.zeros((m, 2, 2))
+    J[:, 0, 1] = 1.0
+    J[:, 1, 0] = -1.0
+    J[:, 1, 1] = -2.0 * xi
+    eye = np.broadcast_to(np.eye(2), (m, 2, 2))
+    sq = np.sqrt(1.0 - xi**2)
+    thd = th * sq
+    E = np.exp(-xi * th)[:, None, None] * (
+        np.cos(thd)[:, None, None] * eye
+        + (np.sin(thd) / sq)[:, None, None] * (J + xi[:, None, None] * eye)
+    )
+    X = th[:, None, None] * J
+    # closed form (J⁻¹ = [[−2ξ, −1], [1, 0]])
+    Jinv = np.zeros((m, 2, 2))
+    Jinv[:, 0, 0] = -2.0 * xi
+    Jinv[:, 0, 1] = -1.0
+    Jinv[:, 1, 0] = 1.0
+    Xinv = Jinv / th[:, None, None]
+    F1 = Xinv @ (E - eye)
+    F2 = Xinv @ (F1 - eye)
+    # Taylor series where θ < 0.5
+    small = th < 0.5
+    if small.any():
+        Xs = X[small]
+        term = np.broadcast_to(np.eye(2), Xs.shape).copy()
+        S1 = np.zeros_like(Xs)
+        S2 = np.zeros_like(Xs)
+        fact = 1.0  # k!
+        for k in range(30):
+            S1 += term / (fact * (k + 1))
+            S2 += term / (fact * (k + 1) * (k + 2))
+            term = term @ Xs
+            fact *= k + 1
+            # ‖X‖ ≤ (1 + 2ξ)θ < 1.5: the terms left shrink faster than geometrically
+            if np.abs(term).max() / fact < 1e-20:
+                break
+        F1[small] = S1
+        F2[small] = S2
+    # back to [q, q']: Φ_ij = E_ij d_j / d_i with d = (ω, 1); b = [0, −1] in both
+    Phi = E.copy()
+    Phi[:, 0, 1] /= w
+    Phi[:, 1, 0] *= w
+    g1 = -h[:, None] * F1[:, :, 1]
+    g2 = -h[:, None] * F2[:, :, 1]
+    g1[:, 0] /= w
+    g2[:, 0] /= w
+    return np.ascontiguousarray(Phi), np.ascontiguousarray(g1 - g2), np.ascontiguousarray(g2)
+
+
 def _oscillator_blocks(A, b, Ca, da, w, xi, h):
     """Exact sub-step recurrence of oscillators coupled to a floor, from one batched expm of the
-    augmented first-order-hold matrices (Van Loan 1978)."""
+    augmented first-order-hold matrices (Van Loan 1978); on the ground, in closed form
+    (:func:`_sdof_recurrence`)."""
     n = A.shape[0]
+    if n == 0:
+        Pqq, pq, qq = _sdof_recurrence(w, xi, h)
+        return Pqq, np.zeros((w.size, 2, 0)), pq, qq
     m = w.size
     N = n + 2
     aug = np.zeros((m, N + 2, N + 2))

@@ -92,6 +92,41 @@ def oscillator_reference(A, b, Ca, da, acc, dt, T, xi):
     return linear_peaks(Aug, baug, C, acc, dt)
 
 
+def test_closed_form_step_against_high_precision_and_expm():
+    """The ground oscillator's exact step (closed form, Taylor series below ωh = 0.5) against a
+    40-digit matrix exponential of the augmented first-order hold, and against SciPy's expm over
+    ωh from 1e-5 to 40 (expm itself loses up to ~4e-12 at large ωh)."""
+    import mpmath as mp
+    import scipy.linalg
+
+    from floorslide.spectra.core import _sdof_recurrence
+
+    def augmented(w, xi):
+        return [[0, 1, 0, 0], [-(w**2), -2 * xi * w, -1, 0], [0, 0, 0, 1], [0, 0, 0, 0]]
+
+    def split(E, h):
+        E = np.asarray(E, dtype=float)
+        return E[:2, :2], E[:2, 2] - E[:2, 3] / h, E[:2, 3] / h
+
+    mp.mp.dps = 40
+    for xi, th in [(0.0, 31.8), (0.05, 3.0), (0.05, 0.51), (0.02, 0.49), (0.05, 1e-4), (0.3, 7.0)]:
+        h = 0.01
+        w = th / h
+        E = mp.expm(mp.matrix(augmented(mp.mpf(w), mp.mpf(xi))) * mp.mpf(h))
+        ref = split(E.tolist(), h)
+        got = _sdof_recurrence(np.array([w]), np.array([xi]), h)
+        for g, r in zip(got, ref, strict=True):
+            np.testing.assert_allclose(g[0], r, rtol=0, atol=5e-14 * np.abs(r).max())
+    th = np.geomspace(1e-5, 40, 300)
+    for xi in (0.0, 0.05, 0.5, 0.99):
+        w = th / 0.01
+        got = _sdof_recurrence(w, np.full(w.size, xi), 0.01)
+        E = scipy.linalg.expm(np.array([augmented(wi, xi) for wi in w]) * 0.01)
+        for i, ref in enumerate(split(e, 0.01) for e in E):
+            for g, r in zip(got, ref, strict=True):
+                np.testing.assert_allclose(g[i], r, rtol=0, atol=1e-11 * np.abs(r).max())
+
+
 def test_ground_spectrum_matches_reference(elcentro):
     acc, dt = elcentro
     acc = acc[:1200]
