@@ -256,10 +256,17 @@ class ResultFile:
                 self.scene_name = str(f.attrs.get("scene_name", ""))
                 plan = f["plan"][()]
                 self.plan = json.loads(plan.decode() if isinstance(plan, bytes) else plan)
-                self._done = [k for k, g in f["tasks"].items() if g.attrs.get("done") == 1]
+                self._done = []
+                tasks = f["tasks"]
+                for k in tasks:
+                    g = tasks.get(k)  # None when a kill left the link but not the group
+                    if not isinstance(g, h5py.Group):
+                        raise ValueError(f"task {k} is damaged")
+                    if g.attrs.get("done") == 1:
+                        self._done.append(k)
         except ResultFileError:
             raise
-        except (OSError, KeyError, ValueError) as exc:
+        except (OSError, KeyError, ValueError, RuntimeError) as exc:
             hint = (
                 " (rebuild it with floorslide run --resume)"
                 if journal_dir(self.path).exists()

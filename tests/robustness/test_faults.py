@@ -10,6 +10,7 @@ import sys
 import threading
 import time
 
+import h5py
 import numpy as np
 import pytest
 
@@ -82,6 +83,25 @@ def test_corrupt_result_file_is_detected_then_rebuilt_from_the_journal(
     assert journal_dir(out).exists()
     summary = execute(the_plan, str(out), workers=1, progress=False, resume=True)
     assert summary.resumed == 6
+    assert_same(results(out), reference)
+
+
+def test_damaged_task_entry_is_detected_then_rebuilt_from_the_journal(
+    the_plan, reference, tmp_path, monkeypatch
+):
+    """A SIGKILL can leave a task's link in the file without its group (found by the
+    kill-and-resume test): the file is not trusted and --resume rebuilds it from the journal."""
+    out = tmp_path / "d.h5"
+    fail_after(monkeypatch, 5)
+    with pytest.raises(OutputError):
+        execute(the_plan, str(out), workers=1, progress=False)
+    monkeypatch.undo()
+    with h5py.File(out, "a") as f:
+        f["tasks"]["cut-short"] = h5py.SoftLink("/tasks/never-written")
+    with pytest.raises(ResultFileError, match=r"task cut-short is damaged.*--resume"):
+        ResultFile(out)
+    summary = execute(the_plan, str(out), workers=1, progress=False, resume=True)
+    assert summary.resumed == 5
     assert_same(results(out), reference)
 
 
