@@ -52,6 +52,27 @@ def poly_der2(c, deg, x):
     return r
 
 
+@njit(cache=True, inline="always")
+def substep_inputs(a, a1, r, m):
+    """Ground values at the ends of sub-step ``r`` of ``m`` equal sub-steps of a record step from
+    ``a`` to ``a1`` (the record is linear there; the last end is ``a1`` itself)."""
+    aa = a + (a1 - a) * (r / m)
+    ab = a + (a1 - a) * ((r + 1) / m) if r + 1 < m else a1
+    return aa, ab
+
+
+@njit(cache=True, inline="always")
+def foh_step(phi, p, q, x, aa, ab, out):
+    """``out = Φx + p·aa + q·ab``: the exact first-order-hold step of a linear system's state over
+    a (sub-)step whose input goes linearly from ``aa`` to ``ab`` (``out`` must not be ``x``)."""
+    n = x.size
+    for i in range(n):
+        s = p[i] * aa + q[i] * ab
+        for j in range(n):
+            s += phi[i, j] * x[j]
+        out[i] = s
+
+
 @njit(cache=True)
 def critical_point(c, deg, lo, hi):
     """The root of ``p'`` in ``[lo, hi]`` given that ``p'`` changes sign there (safeguarded

@@ -8,7 +8,12 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from floorslide.building._instep import extreme_values, taylor_coefficients
+from floorslide.building._instep import (
+    extreme_values,
+    foh_step,
+    substep_inputs,
+    taylor_coefficients,
+)
 
 
 @njit(cache=True)
@@ -32,13 +37,8 @@ def foh_outputs(phi, p, q, C, D, acc, substeps, x0, out):
             break
         a1 = acc[k + 1]
         for r in range(substeps):
-            aa = a + (a1 - a) * (r / substeps)
-            ab = a + (a1 - a) * ((r + 1) / substeps) if r + 1 < substeps else a1
-            for i in range(n):
-                s = p[i] * aa + q[i] * ab
-                for j in range(n):
-                    s += phi[i, j] * x[j]
-                y[i] = s
+            aa, ab = substep_inputs(a, a1, r, substeps)
+            foh_step(phi, p, q, x, aa, ab, y)
             for i in range(n):
                 x[i] = y[i]
     return x
@@ -84,16 +84,11 @@ def foh_peaks(phi, p, q, R, beta, acc, substeps, h, x0, peak, t_peak):
         a1 = acc[k + 1]
         slope = (a1 - a) / (substeps * h)
         for r in range(substeps):
-            aa = a + (a1 - a) * (r / substeps)
-            ab = a + (a1 - a) * ((r + 1) / substeps) if r + 1 < substeps else a1
+            aa, ab = substep_inputs(a, a1, r, substeps)
             t0 = (k * substeps + r) * h
             for i in range(n):
                 x_prev[i] = x[i]
-            for i in range(n):
-                s = p[i] * aa + q[i] * ab
-                for j in range(n):
-                    s += phi[i, j] * x_prev[j]
-                y[i] = s
+            foh_step(phi, p, q, x_prev, aa, ab, y)
             for i in range(n):
                 x[i] = y[i]
             for i in range(m):

@@ -16,7 +16,14 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from floorslide.building._instep import extreme_values, first_rise, poly_val, taylor_coefficients
+from floorslide.building._instep import (
+    extreme_values,
+    first_rise,
+    foh_step,
+    poly_val,
+    substep_inputs,
+    taylor_coefficients,
+)
 
 STICK = 0
 FLIGHT = 2
@@ -290,16 +297,11 @@ def slide_kernel(
             va = 0.0
             vslope = 0.0
         for r in range(substeps):
-            aa = a + (a1 - a) * (r / substeps)
-            ab = a + (a1 - a) * ((r + 1) / substeps) if r + 1 < substeps else a1
+            aa, ab = substep_inputs(a, a1, r, substeps)
             t0 = (k * substeps + r) * h
             for i in range(n):
                 x_prev[i] = x[i]
-            for i in range(n):
-                s = p[i] * aa + q[i] * ab
-                for j in range(n):
-                    s += phi[i, j] * x_prev[j]
-                y[i] = s
+            foh_step(phi, p, q, x_prev, aa, ab, y)
             for i in range(n):
                 x[i] = y[i]
             # shared floor quantities of this sub-step

@@ -21,7 +21,14 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from floorslide.building._instep import extreme_values, first_rise, poly_val, taylor_coefficients
+from floorslide.building._instep import (
+    extreme_values,
+    first_rise,
+    foh_step,
+    poly_val,
+    substep_inputs,
+    taylor_coefficients,
+)
 
 
 @njit(cache=True)
@@ -105,15 +112,10 @@ def oscillator_kernel(
         a1 = acc[k + 1]
         slope = (a1 - a) / (substeps * h)
         for sub in range(substeps):
-            aa = a + (a1 - a) * (sub / substeps)
-            ab = a + (a1 - a) * ((sub + 1) / substeps) if sub + 1 < substeps else a1
+            aa, ab = substep_inputs(a, a1, sub, substeps)
             for i in range(n):
                 x_prev[i] = x[i]
-            for i in range(n):
-                s_ = p[i] * aa + q[i] * ab
-                for j in range(n):
-                    s_ += phi[i, j] * x_prev[j]
-                xn[i] = s_
+            foh_step(phi, p, q, x_prev, aa, ab, xn)
             for i in range(n):
                 x[i] = xn[i]
             for j in range(K + 1):

@@ -36,8 +36,10 @@ from numba import njit
 
 from floorslide.building._instep import (
     extreme_values,
+    foh_step,
     poly_der,
     poly_val,
+    substep_inputs,
     taylor_coefficients,
 )
 
@@ -55,8 +57,7 @@ def _floor_bound(phi_s, p_s, q_s, R, beta, K, x, a, a1, ms, hs, c, xs, xn, f0, f
         xs[i] = x[i]
     m2 = 0.0
     for r in range(ms):
-        aa = a + (a1 - a) * (r / ms)
-        ab = a + (a1 - a) * ((r + 1) / ms) if r + 1 < ms else a1
+        aa, ab = substep_inputs(a, a1, r, ms)
         for j in range(K + 1):
             c[j] = 0.0
         taylor_coefficients(R, beta, xs, aa, slope, c[: R.shape[0]])
@@ -65,11 +66,7 @@ def _floor_bound(phi_s, p_s, q_s, R, beta, K, x, a, a1, ms, hs, c, xs, xn, f0, f
             s2 = s2 * hs + j * (j - 1) * abs(c[j])
         m2 = max(m2, s2)
         if r + 1 < ms:
-            for i in range(n):
-                s_ = p_s[i] * aa + q_s[i] * ab
-                for j in range(n):
-                    s_ += phi_s[i, j] * xs[j]
-                xn[i] = s_
+            foh_step(phi_s, p_s, q_s, xs, aa, ab, xn)
             for i in range(n):
                 xs[i] = xn[i]
     dev = (ms * hs) ** 2 / 8.0 * m2
@@ -191,8 +188,7 @@ def _search_step(
     q = q0
     v = v0
     for r in range(m):
-        aa = a + (a1 - a) * (r / m)
-        ab = a + (a1 - a) * ((r + 1) / m) if r + 1 < m else a1
+        aa, ab = substep_inputs(a, a1, r, m)
         for j in range(K + 1):
             c[j] = CG[r, j]
         f0 = c[0]
@@ -274,8 +270,7 @@ def _ground_search(
     q = q0
     v = v0
     for r in range(m):
-        aa = a + (a1 - a) * (r / m)
-        ab = a + (a1 - a) * ((r + 1) / m) if r + 1 < m else a1
+        aa, ab = substep_inputs(a, a1, r, m)
         qn = s00 * q + s01 * v + sp0 * aa + sq0 * ab
         vn = s10 * q + s11 * v + sp1 * aa + sq1 * ab
         dd0 = -(aa + c2 * v + w2 * q)  # q'' at both ends
@@ -599,12 +594,9 @@ def spectrum_kernel(
                 break
             a = _sample(acc, k, up)
             a1 = _sample(acc, k + 1, up)
-            for i in range(n):  # building state at the step end
+            for i in range(n):
                 XK[k - k0, i] = x[i]
-                s_ = p[i] * a + q[i] * a1
-                for j in range(n):
-                    s_ += phi[i, j] * x[j]
-                xe[i] = s_
+            foh_step(phi, p, q, x, a, a1, xe)  # building state at the step end
             f1 = b_beta[0] * a1  # floor acceleration at the step end
             for j in range(n):
                 f1 += b_R[0, j] * xe[j]
@@ -708,18 +700,13 @@ def spectrum_kernel(
                         for i in range(n):
                             xs2[i] = XK[k - k0, i]
                         for r in range(mg):
-                            aa = a + (a1 - a) * (r / mg)
-                            ab = a + (a1 - a) * ((r + 1) / mg) if r + 1 < mg else a1
+                            aa, ab = substep_inputs(a, a1, r, mg)
                             for i in range(n):
                                 XG[g, r, i] = xs2[i]
                             for j in range(CG.shape[2]):
                                 CG[g, r, j] = 0.0
                             taylor_coefficients(G_R[g], G_beta[g], xs2, aa, slope, CG[g, r])
-                            for i in range(n):
-                                s_ = G_p[g, i] * aa + G_q[g, i] * ab
-                                for j in range(n):
-                                    s_ += G_phi[g, i, j] * xs2[j]
-                                xn[i] = s_
+                            foh_step(G_phi[g], G_p[g], G_q[g], xs2, aa, ab, xn)
                             for i in range(n):
                                 xs2[i] = xn[i]
                         ready[g] = True
