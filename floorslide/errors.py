@@ -6,6 +6,16 @@ fault; the command line turns it into one line and an exit code (DESIGN §3, §9
 
 from __future__ import annotations
 
+import re
+
+_CONTROL = re.compile(r"[\x00-\x1f\x7f]")
+
+
+def one_line(text: str) -> str:
+    """``text`` with its control characters (newlines, tabs, ...) shown as escapes, so that an
+    error naming a user's string stays on one line."""
+    return _CONTROL.sub(lambda m: m.group().encode("unicode_escape").decode(), text)
+
 
 class FloorslideError(Exception):
     """Base class of the errors floorslide reports to its users.
@@ -21,9 +31,9 @@ class FloorslideError(Exception):
     exit_code = 1
 
     def __init__(self, message: str, where: str | None = None):
-        self.message = message
-        self.where = where
-        super().__init__(f"{where}: {message}" if where else message)
+        self.message = one_line(message)
+        self.where = one_line(where) if where else where
+        super().__init__(f"{self.where}: {self.message}" if where else self.message)
 
 
 class RecordError(FloorslideError):
@@ -42,7 +52,8 @@ class SceneError(FloorslideError):
     exit_code = 2
 
     def __init__(self, problems: list[str] | str, where: str | None = None):
-        self.problems = [problems] if isinstance(problems, str) else list(problems)
+        problems = [problems] if isinstance(problems, str) else problems
+        self.problems = [one_line(p) for p in problems]
         super().__init__("; ".join(self.problems), where)
 
 

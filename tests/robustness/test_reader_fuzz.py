@@ -44,6 +44,20 @@ def check(path, original):
     return "same"
 
 
+def test_cosmos_cut_inside_the_last_value_of_a_block(tmp_path):
+    """Found by the fuzzer: a COSMOS file cut inside the last acceleration value
+    ("-5.843930e-02" -> "-5.84393") read as a record with a different last sample. A block must
+    end with its 'End-of-data' line."""
+    raw = FILES["cosmos"].read_bytes()
+    end = raw.index(b"End-of-data for Chan  1 acceleration")
+    last = raw.rindex(b"\n", 0, end - 1) + 1  # the line of the last acceleration value
+    path = tmp_path / "cut.V2"
+    for cut in (last + 10, end - 1, end):
+        path.write_bytes(raw[:cut])
+        with pytest.raises(RecordError, match="truncated"):
+            read_record(path)
+
+
 @pytest.mark.parametrize("kind", sorted(FILES))
 @SETTINGS
 @given(frac=st.floats(min_value=0.0, max_value=1.0))

@@ -172,3 +172,19 @@ def test_not_toml_and_missing_sections():
         parse_scene("[scene]\nname='x'\n", "a.toml")
     assert any(p.startswith("records: missing") for p in err.value.problems)
     assert any(p.startswith("buildings: missing") for p in err.value.problems)
+
+
+def test_user_strings_with_newlines_stay_on_one_line():
+    """A catalog path or a key holding a newline (found by the scene fuzzer) is named with the
+    newline escaped: the error stays one line."""
+    text = GOOD.replace(f'catalog = "{CATALOG}"', 'catalog = "a/\\n"').replace(
+        'name = "small"', 'name = "small"\n"odd\\tkey" = 1'
+    )
+    with pytest.raises(SceneError) as err:
+        parse_scene(text, ROOT / "x\ny.toml")
+    assert "\n" not in str(err.value) and "\t" not in str(err.value)
+    problems = err.value.problems
+    cat = "records[0].catalog: no such catalog file ("
+    assert any(p.startswith(cat) and p.endswith("a/\\n)") for p in problems)
+    assert any(p.startswith("scene.odd\\tkey: unknown key") for p in problems)
+    assert all("\n" not in p for p in problems)

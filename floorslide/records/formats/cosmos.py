@@ -249,7 +249,14 @@ class _Reader:
                     "header and data disagree"
                 )
         check_finite(values, self.where)
-        if self.pos < len(self.lines) and _END.match(self.lines[self.pos]):
+        if self.pos >= len(self.lines):
+            # a file always ends with the block's 'End-of-data' line: without it, a cut inside
+            # the last value would read as a different number
+            raise self.fail(
+                f"truncated: the file ends without the 'End-of-data' line after the "
+                f"{match.group(2).lower()} values of line {start}"
+            )
+        if _END.match(self.lines[self.pos]):
             self.pos += 1
         return match, header, values
 
