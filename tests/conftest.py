@@ -1,11 +1,22 @@
-"""Shared fixtures: real bundled records (data/ only, never ../shared)."""
+"""Shared fixtures: real bundled records (data/ only, never ../shared).
+
+Property tests and fuzzers (hypothesis) draw the same examples on every run, so that the test
+command gives the same verdict on every machine; ``FLOORSLIDE_HYPOTHESIS=explore`` draws new
+random examples each run (how the fuzzers find new bugs).
+"""
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import settings
+
+settings.register_profile("deterministic", derandomize=True, database=None)
+settings.register_profile("explore")
+settings.load_profile(os.environ.get("FLOORSLIDE_HYPOTHESIS", "deterministic"))
 
 ROOT = Path(__file__).resolve().parents[1]
 SLAMMER = ROOT / "data" / "records" / "slammer"
