@@ -59,7 +59,9 @@ def test_exact_agrees_with_fine_step_reference(acc, mu, on_floor):
     acc = np.concatenate([[0.0], acc[:40]])
     kw = dict(building=ShearBuilding.from_period(1, 0.15, 0.05), floor=1) if on_floor else {}
     exact = slide(acc, 0.01, mu, **kw)
-    ref = slide(acc, 0.01, mu, method="solve_ivp", rtol=1e-12, max_step=0.01 / 16, **kw)
+    # solve_ivp locates events only between its own steps: at max_step = dt/16 it missed a
+    # slip shorter than that (seed 1048577, mu = 0.243: 1e-3 off; at dt/64 it agrees to 1e-15)
+    ref = slide(acc, 0.01, mu, method="solve_ivp", rtol=1e-12, max_step=0.01 / 64, **kw)
     scale = max(exact.peak_slide[0], 1e-6)
     assert abs(exact.peak_slide[0] - ref.peak_slide[0]) <= 1e-7 * scale
     assert abs(exact.residual_slide[0] - ref.residual_slide[0]) <= 1e-7 * scale
@@ -69,11 +71,13 @@ def test_exact_agrees_with_fine_step_reference(acc, mu, on_floor):
 @given(acc=records, mu=st.floats(min_value=0.05, max_value=0.4))
 def test_energy_balance(acc, mu):
     """In the floor's frame: ½v(T)² + mu·g·(sliding path) + ∫ a_f v dt = 0 (kinetic energy,
-    friction work, work of the inertial force). The exact histories are sampled 128 times per
+    friction work, work of the inertial force). The exact histories are sampled 2048 times per
     step (the same piecewise-linear record, so the same exact solution); ∫ a v by Simpson's rule
     is exact for the cubic a·v between events, and the path is exact but for fine steps holding a
     reversal: the check's own error is ~1e-8 of the friction work at 2048 points per step
-    (1e-6 at 128: it converges, the solver balances energy)."""
+    (1e-6 at 128: it converges, the solver balances energy). In a fine step holding an event
+    (start, stop, reversal) the path and Simpson's rule err by at most ``6·a_max²·h²``
+    (``|v| ≤ a_max·h`` there), which bounds the check when the slide is tiny."""
     dt, m = 0.01, 2048
     acc = np.concatenate([[0.0], acc[:30], [0.0]])
     fine = np.interp(np.arange((acc.size - 1) * m + 1) / m, np.arange(acc.size), acc)
@@ -86,4 +90,6 @@ def test_energy_balance(acc, mu):
     friction = mu * G * path
     kinetic = 0.5 * v[-1] ** 2
     scale = max(friction, abs(work), 1e-12)
-    assert abs(kinetic + friction + work) <= 1e-7 * scale
+    events = np.count_nonzero(((v[:-1] > 0) != (v[1:] > 0)) | ((v[:-1] < 0) != (v[1:] < 0)))
+    a_max = np.abs(fine).max() + mu * G
+    assert abs(kinetic + friction + work) <= 1e-7 * scale + 6 * events * (a_max * h) ** 2

@@ -44,6 +44,20 @@ def check(path, original):
     return "same"
 
 
+@pytest.mark.parametrize("kind", ["at2", "at2_old"])
+def test_at2_cut_inside_the_last_value(kind, tmp_path):
+    """Found by the fuzzer: an AT2 file cut inside its last value ('-.5959150E-04' ->
+    '-.5959150', '-.5959150E-0', '-.59') kept NPTS values and read as a different record."""
+    raw = FILES[kind].read_bytes().rstrip()
+    path = tmp_path / FILES[kind].name
+    for drop in (1, 4, 7):
+        path.write_bytes(raw[:-drop])
+        with pytest.raises(RecordError, match="ends inside its last value"):
+            read_record(path)
+    path.write_bytes(raw)  # complete, without a final line break: the same record
+    assert np.array_equal(read_record(path)[0].data, ORIGINAL[kind])
+
+
 def test_cosmos_cut_inside_the_last_value_of_a_block(tmp_path):
     """Found by the fuzzer: a COSMOS file cut inside the last acceleration value
     ("-5.843930e-02" -> "-5.84393") read as a record with a different last sample. A block must

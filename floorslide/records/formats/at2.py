@@ -60,6 +60,8 @@ _HAS_NPTS = re.compile(r"\bNPTS\b", re.IGNORECASE)
 _HAS_DT = re.compile(r"\bDT\b", re.IGNORECASE)
 _UNITS = re.compile(r"\bUNITS\s+OF\s+([A-Za-z0-9/*^']+)", re.IGNORECASE)
 _DATE = re.compile(r"\b\d{1,4}[/-]\d{1,2}[/-]\d{1,4}\b")
+# the shape of a value in the fixed Fortran format of the data: digits after the point, exponent
+_SHAPE = re.compile(r"^[+-]?\d*\.?(\d*)(?:[EeDd]([+-]?)(\d+))?$")
 _HEADER_LINES = 8  # the NPTS/DT line is looked for among the first lines only
 _COMMENT = ("#", "%", "!")
 
@@ -191,7 +193,8 @@ def _read_at2(filename: str | os.PathLike, headonly: bool = False, **kwargs: obj
         For every malformed file (see the module docstring).
     """
     where = str(filename)
-    lines = read_text(filename).splitlines()
+    text = read_text(filename)
+    lines = text.splitlines()
     index = _find_npts_line(lines)
     if index is None:
         raise RecordError(
@@ -232,5 +235,34 @@ def _read_at2(filename: str | os.PathLike, headonly: bool = False, **kwargs: obj
             where=where,
         )
     check_finite(data, where, lambda i: locate_token(body, first_line, i))
+    _check_not_cut(body, text, first_line, where)
     stats.npts = data.size
     return Stream([Trace(data=data, header=stats)])
+
+
+def _check_not_cut(body: list[str], text: str, first_line: int, where: str) -> None:
+    """A file cut inside its last value reads as a different number with the right count
+    ('-.5959150E-04' cut to '-.5959150'). When the file does not end with a line break, its last
+    value must have the shape of its first (digits after the point, exponent): the data are
+    written in one fixed Fortran format."""
+    if text.endswith(("\n", "\r")):
+        return
+    tokens = [t for line in body for t in line.split()]
+    if len(tokens) < 2:
+        return
+    first, last = _SHAPE.match(tokens[0]), _SHAPE.match(tokens[-1])
+    if (
+        first
+        and last
+        and first.groups() != last.groups()
+        and (
+            len(last.group(1)) < len(first.group(1))
+            or (first.group(3) and not last.group(3))
+            or len(last.group(3) or "") < len(first.group(3) or "")
+        )
+    ):
+        raise RecordError(
+            f"truncated: the file ends inside its last value {tokens[-1]!r} (line "
+            f"{first_line + len(body) - 1}; the values are written like {tokens[0]!r})",
+            where=where,
+        )
