@@ -79,6 +79,14 @@ def spectral_radius(A: np.ndarray) -> float:
     return float(np.max(np.abs(np.linalg.eigvals(A))))
 
 
+def substeps_for(rate, dt: float):
+    """Fewest equal sub-steps of ``dt`` with ``rate·h ≤ MAX_PHASE`` (at most one critical point
+    per sub-step; Taylor polynomials of modest degree equal the response to rounding). ``rate``
+    (a spectral radius or circular frequency, 1/s) may be an array: one count each, ``int64``."""
+    m = np.maximum(1, np.ceil(np.asarray(rate, dtype=float) * dt / MAX_PHASE - 1e-12))
+    return int(m) if m.ndim == 0 else m.astype(np.int64)
+
+
 def taylor_degree(phase: float, tol: float = TAYLOR_TOL) -> int:
     """Smallest degree ``K ≥ 3`` with ``phase^{K+1}/(K+1)! ≤ tol``."""
     K = 3
@@ -138,7 +146,7 @@ class ExactStepper:
         b = np.asarray(b, dtype=float).reshape(A.shape[0])
         rho = spectral_radius(A)
         if substeps is None:
-            substeps = max(1, math.ceil(rho * dt / MAX_PHASE - 1e-12))
+            substeps = substeps_for(rho, dt)
         h = dt / substeps
         phi, g0, g1 = foh_matrices(A, b, h)
         return cls(A, b, float(dt), int(substeps), h, phi, g0, g1, taylor_degree(rho * h))

@@ -16,15 +16,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from floorslide.building.exact import ExactStepper, spectral_radius, taylor_degree
+from floorslide.building.exact import ExactStepper, spectral_radius, substeps_for, taylor_degree
 from floorslide.building.model import LinearBuilding
 from floorslide.building.motions import check_record
 from floorslide.constants import G
 from floorslide.contents._oscillator_kernel import oscillator_kernel
 from floorslide.contents.sliding import friction_pairs
 from floorslide.errors import ModelError
-
-MAX_PHASE = 0.5
 
 
 @dataclass(frozen=True)
@@ -147,7 +145,7 @@ def slide_oscillator(
     if on_floor:
         A, B = building.state_matrices()
         rho = max(spectral_radius(A), rho_obj)
-        m = max(1, math.ceil(rho * dt / MAX_PHASE - 1e-12))
+        m = substeps_for(rho, dt)
         st = ExactStepper.build(A, B[:, 0], dt, substeps=m)
         K = taylor_degree(rho * st.h)
         p, q = st.input_weights()
@@ -155,7 +153,7 @@ def slide_oscillator(
         R, beta = st.taylor_rows(Ca, Da[:, 0], order=K)
         phi, R, beta, h = st.phi, R[0], beta[0], st.h
     else:
-        m = max(1, math.ceil(rho_obj * dt / MAX_PHASE - 1e-12))
+        m = substeps_for(rho_obj, dt)
         h = dt / m
         K = taylor_degree(rho_obj * h)
         phi, p, q = np.zeros((0, 0)), np.zeros(0), np.zeros(0)

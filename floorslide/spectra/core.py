@@ -17,7 +17,6 @@ steps), ``sd = sv = 0``.
 from __future__ import annotations
 
 import functools
-import math
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
@@ -25,8 +24,10 @@ import numpy as np
 import scipy.linalg
 
 from floorslide.building.exact import (
+    MAX_PHASE,
     ExactStepper,
     spectral_radius,
+    substeps_for,
     taylor_degree,
     taylor_degrees,
 )
@@ -36,7 +37,6 @@ from floorslide.errors import ModelError
 from floorslide.spectra import _kernels as K
 from floorslide.spectra._kernels import NB, NCOEF, spectrum_kernel
 
-MAX_PHASE = 0.5
 # running totals of the kernel's work (diagnostics for benchmarks): oscillator-steps searched
 # inside, floor sub-step data computed
 SEARCHED = np.zeros(2, dtype=np.int64)
@@ -305,7 +305,7 @@ def _kernel_data(dt: float, T_bytes: bytes, Z_bytes: bytes, n: int, system: byte
         b_R, b_beta, b_K, b_m = np.zeros((2, 0)), np.array([1.0, 0.0]), 1, 1
     # in-step search: sub-steps per oscillator (at most one critical point on each), grouped
     # by their number
-    m_all = np.maximum(1, np.ceil(np.maximum(w, rho_b) * dt / MAX_PHASE - 1e-12)).astype(int)
+    m_all = substeps_for(np.maximum(w, rho_b), dt)
     groups = np.unique(m_all)
     grp = np.searchsorted(groups, m_all).astype(np.int64)
     G_K = np.array(
@@ -379,7 +379,7 @@ def _exact(a, dt, T, Z, building, floor, search_all=False):
         system = (A.shape[0], np.concatenate([A.ravel(), B[:, 0], Ca[0], Da[0]]).tobytes())
         # the floor is stepped on the building's own sub-steps (ρ(A)·h ≤ 0.5), where the skip
         # tests of most oscillators can use the sign of a derivative
-        up = max(1, math.ceil(spectral_radius(A) * dt / MAX_PHASE - 1e-12))
+        up = substeps_for(spectral_radius(A), dt)
     else:
         system = (0, b"")
         up = 1
