@@ -16,7 +16,8 @@ shortest period of the system).
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+
+from floorslide._jit import njit
 
 _MAX_ITER = 200
 

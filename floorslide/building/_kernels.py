@@ -6,8 +6,8 @@ Small dense state vectors, one pass over the samples, O(1) memory besides the ou
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
+from floorslide._jit import njit
 from floorslide.building._instep import (
     extreme_values,
     foh_step,

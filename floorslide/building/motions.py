@@ -12,8 +12,8 @@ from dataclasses import dataclass
 
 import control
 import numpy as np
-from numba import njit
 
+from floorslide._jit import njit
 from floorslide.building._kernels import foh_outputs, foh_peaks
 from floorslide.building.exact import ExactStepper, foh_matrices
 from floorslide.building.model import LinearBuilding

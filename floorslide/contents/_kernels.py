@@ -14,8 +14,8 @@ no normal force, no friction).
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
+from floorslide._jit import njit
 from floorslide.building._instep import (
     extreme_values,
     first_rise,

@@ -19,8 +19,8 @@ reversal) are roots of polynomials; no penalty stiffness anywhere.
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
+from floorslide._jit import njit
 from floorslide.building._instep import (
     extreme_values,
     first_rise,

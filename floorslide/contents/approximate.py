@@ -14,9 +14,9 @@
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 from scipy.integrate import solve_ivp
 
+from floorslide._jit import njit
 from floorslide.building.motions import floor_motions
 from floorslide.constants import G
 from floorslide.errors import ModelError

@@ -59,10 +59,10 @@ import math
 from operator import itemgetter
 
 import numpy as np
-from numba import njit
 from scipy.integrate import BDF, LSODA, Radau
 from scipy.optimize import brentq
 
+from floorslide._jit import njit
 from floorslide.building.model import LinearBuilding
 from floorslide.building.motions import floor_motions
 from floorslide.errors import ModelError

@@ -32,8 +32,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
+from floorslide._jit import njit
 from floorslide.building._instep import (
     extreme_values,
     foh_step,

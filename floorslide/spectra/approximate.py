@@ -11,8 +11,8 @@ On a floor, all but ``reinterpolated`` start from exact samples of the floor mot
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
+from floorslide._jit import njit
 from floorslide.spectra.core import _exact, _sdof_recurrence, floor_samples
 
 
