@@ -292,6 +292,7 @@ class ResultFile:
                     else str(f["scene"][()])
                 )
                 self.scene_name = str(f.attrs.get("scene_name", ""))
+                self.scene_path = _s(f["scene"].attrs.get("path", ""))
                 plan = f["plan"][()]
                 self.plan = json.loads(plan.decode() if isinstance(plan, bytes) else plan)
                 if not isinstance(self.plan, dict):
