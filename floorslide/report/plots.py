@@ -393,11 +393,18 @@ def _rock_strip(ax, rocks: list[tuple[np.ndarray, str, object]]):
     strip.set_yticks([0.5], ["rock"])
     strip.tick_params(labelbottom=False, bottom=False, left=False, labelsize="small")
     strip.set_facecolor("0.94")
+    # several buildings rock at the same mu: dodge them sideways, in the legend's order
+    colors = list(dict.fromkeys(map(str, (c for _, _, c in rocks))))
+    lo, hi = ax.get_xlim()
+    step = 0.012 * (hi - lo)
     for x, stat, color in rocks:
+        k = colors.index(str(color))
+        xs = x + (k - (len(colors) - 1) / 2) * step
         if stat == "median":
-            strip.plot(x, np.full(x.size, 0.62), "x", color=color, ms=7, mew=1.5, ls="none")
+            strip.plot(xs, np.full(x.size, 0.64), "x", color=color, ms=7, mew=1.5, ls="none")
         else:
-            strip.plot(x, np.full(x.size, 0.32), "^", color=color, mfc="none", ms=6, ls="none")
+            strip.plot(xs, np.full(x.size, 0.3), "^", color=color, mfc="none", ms=6, ls="none")
+    ax.set_xlim(lo, hi)
     return strip
 
 
