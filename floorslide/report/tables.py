@@ -205,10 +205,9 @@ def slide_table(study: Study) -> list[dict]:
         )
         stats = {}
         for q in SLIDE_QUANTITIES:
-            source = "residual_slide" if q == "residual_slide" else q
-            values = [o[source] for o in obs]
+            values = np.array([o[q] for o in obs], dtype=float)
             if q == "residual_slide":
-                values = np.abs(values)
+                values = np.abs(values)  # the per-record table keeps the sign
             got = summarize_outcomes(values, rock)
             stats.update({f"{q}_{s}": got[s] for s in STATS})
         row.update(
