@@ -24,6 +24,7 @@ from floorslide.contents import (
 )
 from floorslide.errors import (
     FloorslideError,
+    IncompleteResultError,
     ModelError,
     OutputError,
     RecordError,
@@ -32,7 +33,7 @@ from floorslide.errors import (
     UnitsError,
 )
 from floorslide.records import measures, process, read_catalog, read_record
-from floorslide.report import design_tables, plot_figures
+from floorslide.report import design_tables, plot_figures, record_table
 from floorslide.spectra import Spectrum, broaden, envelope, response_spectrum
 
 try:
@@ -51,6 +52,7 @@ __all__ = [
     "broaden",
     "design_tables",
     "plot_figures",
+    "record_table",
     "envelope",
     "response_mode",
     "response_spectrum",
@@ -59,6 +61,7 @@ __all__ = [
     "peak_floor_acceleration",
     "slide",
     "FloorslideError",
+    "IncompleteResultError",
     "ModelError",
     "OutputError",
     "RecordError",

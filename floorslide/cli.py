@@ -1,8 +1,9 @@
 """The ``floorslide`` command line: parses, calls, prints; no numerics here.
 
-Exit codes (DESIGN §3): 0 success; 2 bad usage or invalid scene; 3 unreadable record(s), the
-others still processed; 1 unexpected error. A user mistake is reported as one line naming the
-file or key at fault, never as a traceback.
+Exit codes (DESIGN §3, §10): 0 success; 2 bad usage, an invalid scene, or a missing, corrupt
+or foreign result file; 3 unreadable record(s), the others still processed; 4 ``table`` or
+``plot`` of an incomplete result file without ``--allow-incomplete``; 1 unexpected error. A user
+mistake is reported as one line naming the file or key at fault, never as a traceback.
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ EXIT_OK = 0
 EXIT_UNEXPECTED = 1
 EXIT_USAGE = 2
 EXIT_RECORD = 3
+EXIT_INCOMPLETE = 4
 
 
 def fail(error: FloorslideError) -> None:
@@ -379,6 +381,12 @@ def run(scene, out, dry_run, resume, workers, scheduler, force):
 REPORT_TABLES = ("slides", "pfa", "frs", "slide_ratios", "pfa_ratios")
 """The design tables, in output order (floorslide.report.tables.TABLE_NAMES)."""
 
+REPORT_EXIT_CODES = (
+    "Exit codes: 0 written; 2 bad usage, or OUT.h5 missing, corrupt or not a floorslide result "
+    "file; 4 OUT.h5 is incomplete (tasks missing: finish it with floorslide run SCENE -o OUT.h5 "
+    "--resume, or pass --allow-incomplete for output labelled INCOMPLETE)."
+)
+
 
 def _compare_option(ctx, param, value: tuple[str, ...]) -> tuple[str, ...]:
     """``--compare A:B``: the syntax here; the building ids once the file is read."""
@@ -404,7 +412,30 @@ def _report_call(ctx, func, *args, **kwargs):
         raise
 
 
-@cli.command()
+def _load_for_report(result: str, allow_incomplete: bool):
+    """The study of OUT.h5; an incomplete one is refused (exit 4) unless allowed, and then
+    announced on stderr."""
+    from floorslide.report.study import load_study
+
+    study = load_study(result)
+    study.require_complete(allow_incomplete)
+    if study.status:
+        click.echo(
+            f"floorslide: warning: {study.source}: {study.status}; output labelled INCOMPLETE",
+            err=True,
+        )
+    return study
+
+
+_ALLOW_INCOMPLETE = click.option(
+    "--allow-incomplete",
+    is_flag=True,
+    help="Report a result file whose run is not finished (tasks missing); every output is "
+    "labelled INCOMPLETE. Without it such a file is refused (exit code 4).",
+)
+
+
+@cli.command(epilog=REPORT_EXIT_CODES)
 @click.argument("result", metavar="OUT.h5")
 @click.option(
     "--format",
@@ -437,33 +468,58 @@ def _report_call(ctx, func, *args, **kwargs):
     help="Only this table (repeatable; default all).",
 )
 @click.option(
+    "--per-record",
+    is_flag=True,
+    help="Instead of the statistics, one row per record × building × floor × content × "
+    "friction value (CSV, or JSON with --json).",
+)
+@_ALLOW_INCOMPLETE
+@click.option(
     "-o",
     "--out",
     metavar="FILE|DIR",
-    help="Write to FILE (md, json) or one NAME.csv per table into DIR (csv) instead of stdout.",
+    help="Write to FILE (md, json, --per-record) or one NAME.csv per table into DIR (csv) "
+    "instead of stdout.",
 )
-def table(result, fmt, as_json, compare, periods, damping, only, out):
+def table(result, fmt, as_json, compare, periods, damping, only, per_record, allow_incomplete, out):
     """Design tables from a result file OUT.h5: per record set, building, floor, content and
     friction coefficient the number of records, mean, median and 84th percentile (empirical,
-    numpy 'linear') of peak slide, |residual| slide and peak object acceleration, and how
-    many records made the object slide or rock; PFA per floor; FRS ordinates; ratios between
-    buildings (--compare A:B).
+    numpy 'linear') of peak slide, |residual| slide and peak object acceleration (for 2-DOF
+    oscillators also spring deformation and top-mass acceleration), and how many records made
+    the object slide or rock; PFA per floor; FRS ordinates (unbroadened and broadened); ratios
+    between buildings (--compare A:B).
+
+    Rocking objects are not simulated as sliders and never count as 0 slide: each is its own
+    outcome, ranked above every slide, and a statistic that falls on rocking records reads
+    'rocks' (Markdown) with its *_outcome column 'rock'. Rows over fewer than 8 records carry
+    few_records (a p84 marked † in Markdown).
 
     Markdown goes to stdout by default. CSV on stdout gives each table after a line
     '# table: NAME'; with -o DIR it writes one NAME.csv per table. NaN (undefined, e.g. 0/0
     ratios) is '—' in Markdown, empty in CSV and null in JSON; x/0 is '∞', 'inf' and null.
     """
-    from pathlib import Path
-
-    from floorslide.errors import FloorslideError
+    from floorslide.report import formats
     from floorslide.report import tables as tb
 
     if as_json:
         if fmt not in ("md", "json"):
             raise click.UsageError(f"--json and --format {fmt} conflict")
         fmt = "json"
+    if per_record and only:
+        raise click.UsageError("--per-record and --table conflict")
     names = tuple(n for n in REPORT_TABLES if n in only) if only else REPORT_TABLES
-    study = tb.load_study(result)
+    study = _load_for_report(result, allow_incomplete)
+    if per_record:
+        from floorslide.report.records import RECORD_COLUMNS, record_rows
+
+        rows = record_rows(study)
+        if fmt == "json":
+            text = formats.format_rows_json(RECORD_COLUMNS, rows, study.source, study.status)
+            text += "\n"
+        else:
+            text = formats.format_rows_csv(RECORD_COLUMNS, rows, study.status)
+        _emit(text, out)
+        return
     dt = _report_call(
         click.get_current_context(),
         tb.design_tables,
@@ -471,27 +527,33 @@ def table(result, fmt, as_json, compare, periods, damping, only, out):
         compare=list(compare) or None,
         periods=_floats(periods, "--periods") if periods is not None else None,
         damping=damping,
+        allow_incomplete=True,
     )
     if fmt == "csv":
         if out:
-            for path in tb.write_csv(dt, out, names):
+            for path in formats.write_csv(dt, out, names):
                 click.echo(str(path))
             return
-        click.echo(tb.format_csv_sections(dt, names), nl=False)
+        click.echo(formats.format_csv_sections(dt, names), nl=False)
         return
-    text = tb.format_json(dt, names) + "\n" if fmt == "json" else tb.format_markdown(dt, names)
+    if fmt == "json":
+        text = formats.format_json(dt, names) + "\n"
+    else:
+        text = formats.format_markdown(dt, names)
+    _emit(text, out)
+
+
+def _emit(text: str, out: str | None) -> None:
+    """`text` to stdout, or to the file `out` (then its path is printed)."""
+    from floorslide.report.formats import write_text
+
     if out:
-        try:
-            Path(out).parent.mkdir(parents=True, exist_ok=True)
-            Path(out).write_text(text, encoding="utf-8")
-        except OSError as exc:
-            raise FloorslideError(f"cannot write: {exc.strerror or exc}", out) from None
-        click.echo(out)
+        click.echo(str(write_text(out, text)))
         return
     click.echo(text, nl=False)
 
 
-@cli.command()
+@cli.command(epilog=REPORT_EXIT_CODES)
 @click.argument("result", metavar="OUT.h5")
 @click.option(
     "-o",
@@ -507,21 +569,23 @@ def table(result, fmt, as_json, compare, periods, damping, only, out):
     help="Peak-slide ratio figures A / B (default as for floorslide table).",
 )
 @click.option("--damping", type=float, metavar="Z", help="FRS damping ratio (one stored).")
+@_ALLOW_INCOMPLETE
 @click.option("--json", "as_json", is_flag=True, help="Print the files written as a JSON list.")
-def plot(result, out, compare, damping, as_json):
+def plot(result, out, compare, damping, allow_incomplete, as_json):
     """Figures (PNG) from a result file OUT.h5, one per kind and record set: floor motions and
-    sliding histories of the stored history record; median floor response spectra per floor;
-    peak slide versus friction per floor (median and 84th percentile per building); median
-    peak-slide ratio A / B versus isolation period, one curve per friction coefficient.
-    Prints the files written.
+    sliding histories of the stored history record; median floor response spectra per floor
+    (unbroadened, and broadened when stored); peak slide versus friction per floor (median and
+    84th percentile per building; a statistic that falls on rocking records is drawn at the
+    top of the panel, never at 0); spring deformation and top-mass acceleration of 2-DOF
+    equipment; median peak-slide ratio A / B versus isolation period, one curve per friction
+    coefficient. Prints the files written.
     """
     import json
     from pathlib import Path
 
-    from floorslide.report import tables as tb
     from floorslide.report.plots import plot_figures
 
-    study = tb.load_study(result)
+    study = _load_for_report(result, allow_incomplete)
     folder = Path(out) if out else Path(result).with_name(f"{Path(result).stem}-figures")
     paths = _report_call(
         click.get_current_context(),
@@ -530,6 +594,7 @@ def plot(result, out, compare, damping, as_json):
         folder,
         compare=list(compare) or None,
         damping=damping,
+        allow_incomplete=True,
     )
     if as_json:
         click.echo(json.dumps([str(p) for p in paths], indent=1))
@@ -539,32 +604,54 @@ def plot(result, out, compare, damping, as_json):
 
 
 def demo_summary(tables) -> str:
-    """The demo's short summary: median peak slide (mm) per building and mu, one table per set
-    and content, and each building's median PFA at the content's floor."""
+    """The demo's short summary: median peak slide (mm) per building and mu over every record
+    of the set, one table per set and content, and each building's median PFA at the content's
+    floor.
+
+    Rocking follows the tables' rule (DESIGN §10): an object that rocks under a record is not
+    simulated as a slider and never counts as 0 slide; it is its own outcome, ranked above
+    every slide. A cell reads ``rocks (k/n)`` when the median falls on rocking records, and a
+    median that does not is followed by ``(k rock)`` when some records rock.
+    """
     from collections import defaultdict
+
+    from floorslide.report.columns import MIN_RECORDS, ROCK
 
     groups: dict = defaultdict(list)
     for row in tables["slides"]:
         groups[(row["record_set"], row["content"], row["floor"])].append(row)
     pfa = {(r["record_set"], r["building"], r["floor"]): r for r in tables["pfa"]}
     out = []
+    if getattr(tables, "status", ""):
+        out += [tables.status, ""]
     for (rset, content, floor), rows in groups.items():
         mus = sorted({r["mu_k"] for r in rows})
         buildings = list(dict.fromkeys(r["building"] for r in rows))
         n = max(r["n_records"] for r in rows)
+        what = "base of the 2-DOF oscillator" if rows[0]["model"] == "oscillator" else "object"
         out.append(
-            f"{rset} ({n} records) — {content!r} on floor {floor}: median peak slide, mm "
-            "('rocks': it rocks under most records)"
+            f"{rset} ({n} records) — {content!r} on floor {floor}: median peak slide of the "
+            f"{what} over all {n} records, mm"
         )
+        out.append(
+            "('rocks (k/n)': the median record rocks — rocking objects are not simulated as "
+            "sliders and never count as 0; '(k rock)': k records rock, ranked above every slide)"
+        )
+        if n < MIN_RECORDS:
+            out.append(f"(caution: {n} < {MIN_RECORDS} records per set)")
         head = "| building | PFA (g) | " + " | ".join(f"mu {m:g}" for m in mus) + " |"
         out += [head, "|" + "---|" * (len(mus) + 2)]
         for b in buildings:
             cells = []
             for m in mus:
                 r = next(x for x in rows if x["building"] == b and x["mu_k"] == m)
-                med = r["peak_slide_median"]
-                rocks = r["n_rocked"] > r["n_records"] / 2
-                cells.append("rocks" if rocks or med != med else f"{1000 * med:.1f}")
+                med, k = r["peak_slide_median"], r["n_rock"]
+                if r["median_outcome"] == ROCK:
+                    cells.append(f"rocks ({k}/{r['n_records']})")
+                elif med != med:
+                    cells.append("—")
+                else:
+                    cells.append(f"{1000 * med:.1f}" + (f" ({k} rock)" if k else ""))
             p = pfa.get((rset, b, floor))
             pg = f"{p['pfa_g_median']:.2f}" if p else "—"
             out.append(f"| {b} | {pg} | " + " | ".join(cells) + " |")

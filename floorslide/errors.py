@@ -70,6 +70,13 @@ class ResultFileError(FloorslideError):
     exit_code = 2
 
 
+class IncompleteResultError(ResultFileError):
+    """A result file whose run is not finished (tasks missing) was given for a report without
+    allowing it (exit code 4; DESIGN §10)."""
+
+    exit_code = 4
+
+
 class OutputError(FloorslideError):
     """Results cannot be written (full disk, unwritable folder); what finished is kept."""
 

@@ -1,28 +1,35 @@
 """Reports: design tables and figures from a result file (DESIGN §3, §5).
 
-``design_tables(path)`` gives the statistics over record sets and the ratios between buildings;
-``plot_figures(path, folder)`` writes the PNG figures. Both read the result file only.
-matplotlib is imported only when ``plot_figures`` is first used.
+``design_tables(path)`` gives the statistics over record sets and the ratios between buildings
+(``.to_pandas()`` as DataFrames); ``record_table(path)`` the per-record values as a DataFrame;
+``plot_figures(path, folder)`` writes the PNG figures. All read the result file only, and
+refuse an incomplete one unless ``allow_incomplete=True`` (then they label it INCOMPLETE).
+matplotlib is imported only when ``plot_figures`` is first used, pandas when a DataFrame is.
 """
 
-from floorslide.report.tables import (
+from floorslide.report.columns import (
     COLUMNS,
+    MIN_RECORDS,
     TABLE_NAMES,
     Column,
     Comparison,
     DesignTables,
-    Study,
-    design_tables,
+)
+from floorslide.report.formats import (
     format_csv,
     format_json,
     format_markdown,
-    load_study,
     to_json,
     write_csv,
 )
+from floorslide.report.records import RECORD_COLUMNS, record_table
+from floorslide.report.study import Study, load_study
+from floorslide.report.tables import design_tables
 
 __all__ = [
     "COLUMNS",
+    "MIN_RECORDS",
+    "RECORD_COLUMNS",
     "TABLE_NAMES",
     "Column",
     "Comparison",
@@ -34,6 +41,7 @@ __all__ = [
     "format_markdown",
     "load_study",
     "plot_figures",
+    "record_table",
     "to_json",
     "write_csv",
 ]

@@ -10,10 +10,20 @@ One figure per kind and record set, with one panel per floor or per content on a
     floor, log period axis;
 ``slide_vs_mu_<set>.png``
     peak slide versus kinetic friction: median (line) and 84th percentile (open triangles) per
-    building, one panel per content and floor;
+    building, one panel per content and floor; where a statistic falls on rocking records
+    (objects that rock are not simulated as sliders) it is drawn as a marker at the top of the
+    panel — never as 0;
+``oscillators_<set>.png``
+    2-DOF (flexible) equipment only: peak spring deformation and the top mass's peak absolute
+    acceleration versus kinetic friction, median and 84th percentile per building;
 ``slide_ratio_<set>_<A>-over-<B>.png``
-    median peak-slide ratio A / B versus the isolation period of A, one curve per friction
+    median peak-slide ratio A / B versus the isolation period of A (or of B when A is
+    fixed-base; building pairs side by side when neither is isolated), one curve per friction
     coefficient, per comparison (as in the design tables).
+
+Every figure states its statistic and number of records; a result file whose run is not
+finished is refused unless ``allow_incomplete``, and then every figure's title starts with
+INCOMPLETE (in red).
 
 Figures are built on :class:`matplotlib.figure.Figure` objects (no pyplot state) and written as
 PNG without a timestamp, so the same result file gives the same files.
@@ -32,15 +42,11 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
 from floorslide.constants import G
-from floorslide.errors import FloorslideError
-from floorslide.report.tables import (
-    DesignTables,
-    Study,
-    design_tables,
-    interpolate_spectrum,
-    load_study,
-    resolve_damping,
-)
+from floorslide.errors import FloorslideError, ModelError
+from floorslide.report.columns import MIN_RECORDS, ROCK, DesignTables
+from floorslide.report.statistics import interpolate_spectrum
+from floorslide.report.study import Study, load_study
+from floorslide.report.tables import design_tables, resolve_damping
 from floorslide.run.results import TaskResult
 from floorslide.run.store import ResultFile
 
@@ -110,6 +116,25 @@ def _floor_label(study: Study, floor: int, buildings: Sequence[str]) -> str:
     return "floor 0 (ground)"
 
 
+def _suptitle(fig: Figure, study: Study, text: str) -> None:
+    """The figure's title, wrapped to the figure's width; INCOMPLETE first (in red) when
+    tasks are missing (DESIGN §10)."""
+    import textwrap
+
+    if study.status:
+        text = f"INCOMPLETE: {study.tasks_done} of {study.tasks_planned} tasks done — {text}"
+    width = max(40, int(fig.get_figwidth() * 10.5))
+    lines = [textwrap.fill(line, width, break_on_hyphens=False) for line in text.split("\n")]
+    fig.suptitle("\n".join(lines), color="red" if study.status else "black")
+
+
+def _few(n: int) -> str:
+    """The caution of a statistic over few records, for titles (``""`` when enough)."""
+    if n >= MIN_RECORDS:
+        return ""
+    return f"; caution: only {n} records (< {MIN_RECORDS}), the p84 is set by the largest"
+
+
 def _save(fig: Figure, path: Path) -> Path:
     fig.savefig(path, dpi=DPI, format="png", metadata={"Software": None})
     return path
@@ -119,12 +144,27 @@ def _save(fig: Figure, path: Path) -> Path:
 # figures
 
 
+_HISTORY_ROWS = {
+    "u": ("slide u (m)", "slide relative to the floor"),
+    "z": ("spring deformation z (m)", "spring deformation (top relative to base)"),
+    "top": ("top acceleration (m/s²)", "top mass absolute acceleration"),
+}
+
+
+def _history_curves(h, key: str, kind: str) -> np.ndarray | None:
+    source = {"u": h.slides, "z": h.deformation, "top": h.top_accel}[kind]
+    return np.atleast_2d(source[key]) if key in source else None
+
+
 def figure_histories(study: Study, record_set: str) -> Figure | None:
     """Floor accelerations and sliding histories of the set's history task(s), or None.
 
     Columns: buildings that stored histories (at most :data:`MAX_COLUMNS`); row 1: the
     absolute acceleration of every output floor (m/s²); next rows: the slide ``u`` (m,
-    relative to the floor) of each content on each floor, one curve per stored friction value.
+    relative to the floor; of the sliding base for an oscillator) of each content on each
+    floor, one curve per stored friction value, and for 2-DOF oscillators also the spring
+    deformation and the top mass's absolute acceleration. A friction value under which the
+    object rocks has no curve (it is not simulated as a slider): its legend entry says so.
     """
     order = list(study.buildings)
     tasks = sorted(
@@ -135,10 +175,12 @@ def figure_histories(study: Study, record_set: str) -> Figure | None:
         return None
     tasks, _ = _pick(tasks, MAX_COLUMNS)
     keys: list[str] = []
+    oscillators: set[str] = set()
     for t in tasks:
         for k in t.histories.slides:
             if k not in keys:
                 keys.append(k)
+        oscillators |= set(getattr(t.histories, "deformation", {}))
 
     def key_order(k: str):
         content, floor = k.rsplit("/floor_", 1)
@@ -147,15 +189,18 @@ def figure_histories(study: Study, record_set: str) -> Figure | None:
 
     keys = sorted(keys, key=key_order)
     keys, cut = _pick(keys, 6)
-    nrows, ncols = 1 + len(keys), len(tasks)
+    rows = [(k, kind) for k in keys for kind in (("u", "z", "top") if k in oscillators else ("u",))]
+    nrows, ncols = 1 + len(rows), len(tasks)
     fig = Figure(figsize=(5.6 * ncols + 1.0, 2.6 * nrows + 1.0), layout="constrained")
     axes = fig.subplots(nrows, ncols, squeeze=False, sharex="col")
     from matplotlib import colormaps
 
     records = sorted({str(t.meta["record"]) for t in tasks})
-    fig.suptitle(
+    _suptitle(
+        fig,
+        study,
         f"Floor motions and sliding — record {', '.join(records)}, set {record_set}"
-        + (" (some panels left out)" if cut else "")
+        + (" (some panels left out)" if cut else ""),
     )
     for j, t in enumerate(tasks):
         h = t.histories
@@ -171,27 +216,39 @@ def figure_histories(study: Study, record_set: str) -> Figure | None:
         ax.grid(alpha=0.3)
         if floors:
             ax.legend(fontsize="small", loc="upper right")
-        for i, k in enumerate(keys, start=1):
+        for i, (k, kind) in enumerate(rows, start=1):
             ax = axes[i][j]
             content, floor = k.rsplit("/floor_", 1)
-            if k not in h.slides:
+            curves = _history_curves(h, k, kind)
+            if curves is None:
                 ax.text(0.5, 0.5, "not on this building", ha="center", transform=ax.transAxes)
                 ax.set_axis_off()
                 continue
-            u = np.atleast_2d(h.slides[k])
-            mus = np.atleast_1d(h.mu_k.get(k, np.full(u.shape[0], np.nan)))
-            for m in range(u.shape[0]):
-                color = colormaps["viridis"](0.1 + 0.8 * m / max(u.shape[0] - 1, 1))
-                ax.plot(time[: u.shape[1]], u[m], lw=0.9, color=color, label=f"mu = {mus[m]:g}")
-            ax.set_title(f"{content} on floor {floor}: slide relative to the floor")
-            ax.set_ylabel("slide u (m)")
+            mus = np.atleast_1d(h.mu_k.get(k, np.full(curves.shape[0], np.nan)))
+            for m in range(curves.shape[0]):
+                color = colormaps["viridis"](0.1 + 0.8 * m / max(curves.shape[0] - 1, 1))
+                label = f"mu = {mus[m]:g}"
+                if not np.isfinite(curves[m]).any():
+                    ax.plot([], [], lw=0, marker="x", color=color, label=f"{label}: rocks, not "
+                            "simulated as a slider")  # fmt: skip
+                    continue
+                ax.plot(time[: curves.shape[1]], curves[m], lw=0.9, color=color, label=label)
+            ylabel, what = _HISTORY_ROWS[kind]
+            if kind == "u" and k in oscillators:
+                what = "base slide relative to the floor (2-DOF)"
+            ax.set_title(f"{content} on floor {floor}: {what}")
+            ax.set_ylabel(ylabel)
             ax.grid(alpha=0.3)
             ax.legend(fontsize="small", loc="upper left")
         axes[-1][j].set_xlabel("time (s)")
     return fig
 
 
-def _median_spectrum(tasks: Sequence[TaskResult], floor: int, damping: float):
+def _median_spectrum(
+    tasks: Sequence[TaskResult], floor: int, damping: float, broadened: bool = False
+):
+    """Median PSA of `floor` over the tasks (unbroadened, or `broadened`): grid, median,
+    number of records; ``(None, None, 0)`` when none is stored."""
     grid, stack = None, []
     for t in tasks:
         for s in t.spectra:
@@ -199,9 +256,12 @@ def _median_spectrum(tasks: Sequence[TaskResult], floor: int, damping: float):
                 continue
             zs = np.atleast_1d(np.asarray(s.damping, dtype=float))
             hit = np.nonzero(np.abs(zs - damping) <= 1e-9)[0]
-            if hit.size == 0:
+            values = s.psa_broadened if broadened else s.psa
+            if hit.size == 0 or values is None:
                 continue
-            psa = np.atleast_2d(np.asarray(s.psa, dtype=float))[hit[0]]
+            psa = np.atleast_2d(np.asarray(values, dtype=float))[hit[0]]
+            if not np.isfinite(psa).any():
+                continue  # an older file: the unbroadened spectra were not kept
             periods = np.asarray(s.periods, dtype=float)
             if grid is None:
                 grid = periods
@@ -215,7 +275,8 @@ def _median_spectrum(tasks: Sequence[TaskResult], floor: int, damping: float):
 
 def figure_frs(study: Study, record_set: str, damping: float) -> Figure | None:
     """Median floor response spectra (PSA, g) of the set per building, one panel per floor
-    (log period axis), or None when the set has no spectra."""
+    (log period axis): unbroadened (solid) and, when stored, broadened (dashed); or None when
+    the set has no spectra."""
     tasks = study.set_tasks(record_set)
     by_building: dict[str, list[TaskResult]] = defaultdict(list)
     for t in tasks:
@@ -224,11 +285,21 @@ def figure_frs(study: Study, record_set: str, damping: float) -> Figure | None:
     if not floors:
         return None
     floors, cut = _pick(floors, 9)
+    broadening = max((float(s.broadening) for t in tasks for s in t.spectra), default=0.0)
     colors = building_colors(study)
     fig, axes = _new_figure(len(floors))
-    fig.suptitle(
-        f"Floor response spectra — set {record_set}\nmedian PSA over records, "
-        f"{damping * 100:g} % damping" + (" (some floors left out)" if cut else "")
+    n_records = len({str(t.meta["record"]) for t in tasks})
+    wide = (
+        f"solid: unbroadened, dashed: broadened ±{broadening * 100:g} % in frequency"
+        if broadening
+        else "unbroadened (no peak broadening)"
+    )
+    _suptitle(
+        fig,
+        study,
+        f"Floor response spectra — set {record_set}\nmedian PSA over {n_records} records, "
+        f"{damping * 100:g} % damping; {wide}{_few(n_records)}"
+        + (" (some floors left out)" if cut else ""),
     )
     handles = {}
     for ax, floor in zip(axes, floors, strict=True):
@@ -236,23 +307,31 @@ def figure_frs(study: Study, record_set: str, damping: float) -> Figure | None:
         for bid in study.buildings:
             if bid not in by_building:
                 continue
-            grid, median, n = _median_spectrum(by_building[bid], floor, damping)
-            if grid is None:
-                continue
-            present.append(bid)
-            pos = grid > 0
-            (line,) = ax.plot(grid[pos], median[pos] / G, color=colors[bid], lw=1.4)
-            handles.setdefault(bid, (line, f"{bid} ({n} records)"))
+            for broadened, style in ((False, "-"), (True, "--")):
+                grid, median, n = _median_spectrum(by_building[bid], floor, damping, broadened)
+                if grid is None:
+                    continue
+                if bid not in present:
+                    present.append(bid)
+                pos = grid > 0
+                (line,) = ax.plot(grid[pos], median[pos] / G, style, color=colors[bid], lw=1.4)
+                if not broadened:
+                    handles.setdefault(bid, (line, f"{bid} ({n} records)"))
         ax.set_xscale("log")
         ax.set_xlabel("period T (s)")
         ax.set_ylabel("median PSA (g)")
         ax.set_title(_floor_label(study, floor, present))
         ax.grid(alpha=0.3, which="both")
+    labels = [lab for _, lab in handles.values()]
+    lines = [h for h, _ in handles.values()]
+    if broadening:
+        lines += [Line2D([], [], color="0.3"), Line2D([], [], color="0.3", ls="--")]
+        labels += ["unbroadened", f"broadened ±{broadening * 100:g} %"]
     fig.legend(
-        [h for h, _ in handles.values()],
-        [lab for _, lab in handles.values()],
+        lines,
+        labels,
         loc="outside lower center",
-        ncols=min(4, len(handles)),
+        ncols=min(4, len(lines)),
         title="building",
         fontsize="small",
     )
@@ -271,57 +350,117 @@ def _panel_keys(rows: Sequence[dict], study: Study) -> list[tuple[int, str]]:
     )
 
 
+def _statistic_panel(
+    ax, rows: list[dict], quantity: str, color, scale: float = 1.0
+) -> list[tuple[np.ndarray, str, object]]:
+    """Median (line, dots) and 84th percentile (open triangles) of `quantity` versus mu_k on
+    `ax`, leaving out statistics that fall on rocking records (never drawn at 0). Returns
+    those as ``(mu_k values, "median" | "p84", color)`` for :func:`_rock_strip`."""
+    series: dict[float | None, list[dict]] = defaultdict(list)
+    mu_k = [r["mu_k"] for r in rows]
+    split = len(set(mu_k)) < len(mu_k)
+    for r in rows:
+        series[r["mu_s"] if split else None].append(r)
+    rocks = []
+    for _, srows in series.items():
+        srows = sorted(srows, key=lambda r: r["mu_k"])
+        x = np.array([r["mu_k"] for r in srows])
+        for stat, style in (("median", "-o"), ("p84", "^")):
+            y = np.array([r[f"{quantity}_{stat}"] for r in srows], dtype=float) * scale
+            rock = np.array([r[f"{stat}_outcome"] == ROCK for r in srows])
+            y = np.where(rock, np.nan, y)
+            kw = dict(color=color, ms=4 if stat == "median" else 6)
+            if stat == "p84":
+                kw["mfc"] = "none"
+            else:
+                kw["lw"] = 1.3
+            ax.plot(x, y, style, **kw)
+            if rock.any():
+                rocks.append((x[rock], stat, color))
+    return rocks
+
+
+ROCK_STRIP = 0.14
+"""Height of the 'rock' strip above a panel, as a fraction of the panel's height."""
+
+
+def _rock_strip(ax, rocks: list[tuple[np.ndarray, str, object]]):
+    """A strip above the panel, sharing its mu axis, for the statistics that are 'rock'
+    (``x`` the median, open triangle the p84): an outcome of its own, apart from the slide
+    axis — never a value on it."""
+    strip = ax.inset_axes((0.0, 1.02, 1.0, ROCK_STRIP), sharex=ax)
+    strip.set_ylim(0, 1)
+    strip.set_yticks([0.5], ["rock"])
+    strip.tick_params(labelbottom=False, bottom=False, left=False, labelsize="small")
+    strip.set_facecolor("0.94")
+    # several buildings rock at the same mu: dodge them sideways, in the legend's order
+    colors = list(dict.fromkeys(map(str, (c for _, _, c in rocks))))
+    lo, hi = ax.get_xlim()
+    step = 0.012 * (hi - lo)
+    for x, stat, color in rocks:
+        k = colors.index(str(color))
+        xs = x + (k - (len(colors) - 1) / 2) * step
+        if stat == "median":
+            strip.plot(xs, np.full(x.size, 0.64), "x", color=color, ms=7, mew=1.5, ls="none")
+        else:
+            strip.plot(xs, np.full(x.size, 0.3), "^", color=color, mfc="none", ms=6, ls="none")
+    ax.set_xlim(lo, hi)
+    return strip
+
+
+def _rock_legend() -> tuple[Line2D, str]:
+    return (
+        Line2D([], [], color="0.3", marker="x", ls="none", ms=8),
+        "in the 'rock' strip above a panel: the median (x) or p84 (△) falls on records\n"
+        "where the object rocks (not simulated as a slider) — ranked above every slide, never 0",
+    )
+
+
+def _records_of(rows: Sequence[dict]) -> int:
+    return max((int(r["n_records"]) for r in rows), default=0)
+
+
 def figure_slide_vs_mu(study: Study, tables: DesignTables, record_set: str) -> Figure | None:
-    """Peak slide versus mu_k per building (median line, 84th percentile open triangles,
-    ``x`` where every record rocks), one panel per content and floor, or None."""
+    """Peak slide versus mu_k per building (median line, 84th percentile open triangles;
+    statistics that fall on rocking records drawn at the top of the panel, never at 0), one
+    panel per content and floor, or None."""
     rows = [r for r in tables["slides"] if r["record_set"] == record_set]
     if not rows:
         return None
     panels, cut = _pick(_panel_keys(rows, study))
     colors = building_colors(study)
     fig, axes = _new_figure(len(panels))
-    fig.suptitle(
+    n = _records_of(rows)
+    _suptitle(
+        fig,
+        study,
         f"Peak slide versus friction — set {record_set}\nmedian (line) and 84th percentile "
-        "(open triangles) over records" + (" (some panels left out)" if cut else "")
+        f"(open triangles) over {n} records{_few(n)}" + (" (some panels left out)" if cut else ""),
     )
     used: list[str] = []
     any_rock = False
     for ax, (floor, content) in zip(axes, panels, strict=True):
+        rocks = []
         for bid in study.buildings:
-            sel = sorted(
-                (
-                    r
-                    for r in rows
-                    if r["building"] == bid and r["floor"] == floor and r["content"] == content
-                ),
-                key=lambda r: (r["mu_s"], r["mu_k"]),
-            )
+            sel = [
+                r
+                for r in rows
+                if r["building"] == bid and r["floor"] == floor and r["content"] == content
+            ]
             if not sel:
                 continue
             if bid not in used:
                 used.append(bid)
-            series: dict[float | None, list[dict]] = defaultdict(list)
-            mu_k = [r["mu_k"] for r in sel]
-            split = len(set(mu_k)) < len(mu_k)
-            for r in sel:
-                series[r["mu_s"] if split else None].append(r)
-            for _, srows in series.items():
-                srows = sorted(srows, key=lambda r: r["mu_k"])
-                x = np.array([r["mu_k"] for r in srows])
-                med = np.array([r["peak_slide_median"] for r in srows])
-                p84 = np.array([r["peak_slide_p84"] for r in srows])
-                ax.plot(x, med, "-o", color=colors[bid], ms=4, lw=1.3)
-                ax.plot(x, p84, "^", color=colors[bid], mfc="none", ms=6)
-                rocks = np.array([r["n_rocked"] > 0 for r in srows])
-                if rocks.any():
-                    any_rock = True
-                    at = np.where(np.isfinite(med), med, 0.0)[rocks]
-                    ax.plot(x[rocks], at, "x", color=colors[bid], ms=9, mew=1.5)
+            rocks += _statistic_panel(ax, sel, "peak_slide", colors[bid])
         ax.set_yscale("symlog", linthresh=SLIDE_LINTHRESH)
         ax.set_ylim(bottom=0)
         ax.set_xlabel("kinetic friction coefficient mu_k (–)")
         ax.set_ylabel("peak slide (m; linear below 1 mm)")
-        ax.set_title(f"{content} on floor {floor}")
+        if rocks:
+            any_rock = True
+            _rock_strip(ax, rocks).set_title(f"{content} on floor {floor}")
+        else:
+            ax.set_title(f"{content} on floor {floor}")
         ax.grid(alpha=0.3, which="both")
     handles = [Line2D([], [], color=colors[b], marker="o", ms=4) for b in used]
     labels = list(used)
@@ -331,13 +470,82 @@ def figure_slide_vs_mu(study: Study, tables: DesignTables, record_set: str) -> F
     ]
     labels += ["median (line)", "84th percentile"]
     if any_rock:
-        handles.append(Line2D([], [], color="0.3", marker="x", ls="none", ms=8))
-        labels.append("rocks under some records (left out) or all (drawn at 0)")
+        h, lab = _rock_legend()
+        handles.append(h)
+        labels.append(lab)
     fig.legend(
         handles,
         labels,
         loc="outside lower center",
-        ncols=min(4, len(handles)),
+        ncols=min(3, len(handles)),
+        title="building",
+        fontsize="small",
+    )
+    return fig
+
+
+def figure_oscillators(study: Study, tables: DesignTables, record_set: str) -> Figure | None:
+    """2-DOF (flexible) equipment: peak spring deformation (mm) and the top mass's peak
+    absolute acceleration (g) versus mu_k per building, median and 84th percentile, two panels
+    per content and floor; None when the set has no oscillator."""
+    rows = [
+        r for r in tables["slides"] if r["record_set"] == record_set and r["model"] == "oscillator"
+    ]
+    if not rows:
+        return None
+    keys, cut = _pick(_panel_keys(rows, study), MAX_PANELS // 2)
+    panels = [(k, q) for k in keys for q in ("peak_deformation", "peak_top_accel_g")]
+    colors = building_colors(study)
+    fig, axes = _new_figure(len(panels))
+    n = _records_of(rows)
+    _suptitle(
+        fig,
+        study,
+        f"Flexible equipment (2-DOF sliding oscillators) — set {record_set}\nmedian (line) and "
+        f"84th percentile (open triangles) over {n} records{_few(n)}"
+        + (" (some panels left out)" if cut else ""),
+    )
+    used: list[str] = []
+    any_rock = False
+    for ax, ((floor, content), quantity) in zip(axes, panels, strict=True):
+        scale = 1000.0 if quantity == "peak_deformation" else 1.0
+        rocks = []
+        for bid in study.buildings:
+            sel = [
+                r
+                for r in rows
+                if r["building"] == bid and r["floor"] == floor and r["content"] == content
+            ]
+            if not sel:
+                continue
+            if bid not in used:
+                used.append(bid)
+            rocks += _statistic_panel(ax, sel, quantity, colors[bid], scale)
+        ax.set_ylim(bottom=0)
+        ax.set_xlabel("kinetic friction coefficient mu_k (–)")
+        if quantity == "peak_deformation":
+            ax.set_ylabel("peak spring deformation (mm)")
+            title = f"{content} on floor {floor}: spring deformation"
+        else:
+            ax.set_ylabel("peak top-mass acceleration (g)")
+            title = f"{content} on floor {floor}: top mass absolute acceleration"
+        if rocks:
+            any_rock = True
+            _rock_strip(ax, rocks).set_title(title)
+        else:
+            ax.set_title(title)
+        ax.grid(alpha=0.3)
+    handles = [Line2D([], [], color=colors[b], marker="o", ms=4) for b in used]
+    labels = list(used)
+    if any_rock:
+        h, lab = _rock_legend()
+        handles.append(h)
+        labels.append(lab)
+    fig.legend(
+        handles,
+        labels,
+        loc="outside lower center",
+        ncols=min(3, len(handles)),
         title="building",
         fontsize="small",
     )
@@ -353,27 +561,60 @@ def _series_name(bid: str) -> str:
     return base + ("@" + ",".join(rest) if rest else "")
 
 
+def _ratio_axis(rows: Sequence[dict], a_name: str, b_name: str):
+    """How the ratio figure places its points: versus the isolation period of A, else of B
+    (A fixed-base over isolated variants), else one position per building pair.
+
+    Returns ``(x_of(row), series_of(row), label, ticks)``; ``ticks`` is None or the pair
+    labels of a categorical axis."""
+    if all(math.isfinite(r["isolation_period_a"]) for r in rows):
+        return (
+            lambda r: r["isolation_period_a"],
+            lambda r: (_series_name(r["building_a"]), r["building_b"]),
+            f"isolation period T_i of {a_name} (s)",
+            None,
+        )
+    if all(math.isfinite(r["isolation_period_b"]) for r in rows):
+        return (
+            lambda r: r["isolation_period_b"],
+            lambda r: (r["building_a"], _series_name(r["building_b"])),
+            f"isolation period T_i of {b_name} (s)",
+            None,
+        )
+    pairs = list(dict.fromkeys((r["building_a"], r["building_b"]) for r in rows))
+    return (
+        lambda r: float(pairs.index((r["building_a"], r["building_b"]))),
+        lambda r: ("", ""),
+        "building pair A / B",
+        [f"{a} / {b}" for a, b in pairs],
+    )
+
+
 def figure_slide_ratio(
     study: Study, tables: DesignTables, record_set: str, comparison: str
 ) -> Figure | None:
-    """Median peak-slide ratio A / B versus the isolation period of A, one curve per mu_k,
-    one panel per content and floor; None if A has no isolation period or no rows."""
+    """Median peak-slide ratio A / B, one curve per mu_k, one panel per content and floor:
+    versus the isolation period of A — or of B when A is fixed-base (``fixed:isolated``) —
+    or per building pair when neither is isolated; None when the comparison has no rows."""
     rows = [
         r
         for r in tables["slide_ratios"]
-        if r["record_set"] == record_set
-        and r["comparison"] == comparison
-        and math.isfinite(r["isolation_period_a"])
+        if r["record_set"] == record_set and r["comparison"] == comparison
     ]
     if not rows:
         return None
     a_name, b_name = comparison.split(":")
+    x_of, series_of, xlabel, ticks = _ratio_axis(rows, a_name, b_name)
     panels, cut = _pick(_panel_keys(rows, study))
     fig, axes = _new_figure(len(panels))
-    fig.suptitle(
+    n = max(max(int(r["n_records_a"]), int(r["n_records_b"])) for r in rows)
+    versus = "per building pair" if ticks else f"versus {xlabel.split(' (')[0]}"
+    _suptitle(
+        fig,
+        study,
         f"Median peak-slide ratio {a_name} / {b_name} — set {record_set}\n"
-        "versus isolation period, one curve per friction coefficient"
-        + (" (some panels left out)" if cut else "")
+        f"{versus}, one curve per friction coefficient, medians over {n} records{_few(n)}"
+        + (" (some panels left out)" if cut else ""),
     )
     from matplotlib import colormaps
 
@@ -381,12 +622,13 @@ def figure_slide_ratio(
     same = all(abs(k - s) <= 1e-12 for k, s in mus)
     cmap = colormaps["plasma"]
     mu_color = {m: cmap(0.05 + 0.8 * i / max(len(mus) - 1, 1)) for i, m in enumerate(mus)}
-    series = sorted({(_series_name(r["building_a"]), r["building_b"]) for r in rows})
+    series = sorted({series_of(r) for r in rows})
     styles = ["-", "--", ":", "-."]
-    gaps = False
+    gaps = rocks = False
     for ax, (floor, content) in zip(axes, panels, strict=True):
         ax.axhline(1.0, color="0.5", lw=0.8, ls="--")
-        for si, (sname, b) in enumerate(series):
+        panel_rocks: list[tuple[np.ndarray, str, object]] = []
+        for si, name in enumerate(series):
             for mu in mus:
                 sel = sorted(
                     (
@@ -395,39 +637,54 @@ def figure_slide_ratio(
                         if r["floor"] == floor
                         and r["content"] == content
                         and (r["mu_k"], r["mu_s"]) == mu
-                        and _series_name(r["building_a"]) == sname
-                        and r["building_b"] == b
+                        and series_of(r) == name
                     ),
-                    key=lambda r: r["isolation_period_a"],
+                    key=x_of,
                 )
                 if not sel:
                     continue
-                x = np.array([r["isolation_period_a"] for r in sel])
-                y = np.array([r["peak_slide_median_ratio"] for r in sel])
-                gaps = gaps or not np.isfinite(y).all()
+                x = np.array([x_of(r) for r in sel])
+                y = np.array([r["peak_slide_median_ratio"] for r in sel], dtype=float)
+                rock = np.array(
+                    [ROCK in (r["median_outcome_a"], r["median_outcome_b"]) for r in sel]
+                )
+                rocks = rocks or bool(rock.any())
+                gaps = gaps or not np.isfinite(y[~rock]).all()
                 y = np.where(np.isfinite(y), y, np.nan)
-                ax.plot(x, y, styles[si % len(styles)], marker="o", ms=4, color=mu_color[mu])
+                style = styles[si % len(styles)] if not ticks else "none"
+                ax.plot(x, y, style, marker="o", ms=4, color=mu_color[mu])
+                if rock.any():
+                    panel_rocks.append((x[rock], "median", mu_color[mu]))
         ax.set_ylim(bottom=0)
-        ax.set_xlabel(f"isolation period T_i of {a_name} (s)")
+        if ticks:
+            ax.set_xticks(range(len(ticks)), ticks, rotation=30, ha="right", fontsize="small")
+            ax.set_xlim(-0.5, len(ticks) - 0.5)
+        ax.set_xlabel(xlabel)
         ax.set_ylabel(f"median peak slide {a_name} / {b_name} (–)")
-        ax.set_title(f"{content} on floor {floor}")
+        title_ax = _rock_strip(ax, panel_rocks) if panel_rocks else ax
+        title_ax.set_title(f"{content} on floor {floor}")
         ax.grid(alpha=0.3)
     handles = [Line2D([], [], color=mu_color[m], marker="o", ms=4) for m in mus]
     labels = [f"mu = {k:g}" if same else f"mu_k = {k:g}, mu_s = {s:g}" for k, s in mus]
     if len(series) > 1:
-        for si, (sname, b) in enumerate(series):
+        for si, (sa, sb) in enumerate(series):
             handles.append(Line2D([], [], color="0.3", ls=styles[si % len(styles)]))
-            labels.append(f"{sname} / {b}")
+            labels.append(f"{sa} / {sb}")
     handles.append(Line2D([], [], color="0.5", ls="--", lw=0.8))
     labels.append("ratio 1")
     if gaps:
         handles.append(Line2D([], [], ls="none"))
-        labels.append("gaps: 0/0 (neither slides) or x/0 (only A slides), see slide_ratios")
+        labels.append("gaps: 0/0 (neither slides) or x/0\n(only A slides), see slide_ratios")
+    if rocks:
+        handles.append(Line2D([], [], color="0.3", marker="x", ls="none", ms=8))
+        labels.append(
+            "x in the 'rock' strip: a median is 'rock'\n(rocking, not simulated): no ratio"
+        )
     fig.legend(
         handles,
         labels,
         loc="outside lower center",
-        ncols=min(4, len(handles)),
+        ncols=min(3, len(handles)),
         title="friction",
         fontsize="small",
     )
@@ -443,6 +700,8 @@ def plot_figures(
     directory: str | Path,
     compare: Sequence[str] | None = None,
     damping: float | None = None,
+    *,
+    allow_incomplete: bool = False,
 ) -> list[Path]:
     """Write the figures of a result file as PNG files into `directory` (created).
 
@@ -458,24 +717,39 @@ def plot_figures(
         superstructure).
     damping
         Damping ratio of the FRS figure (default as for the design tables).
+    allow_incomplete
+        Accept a result file whose run is not finished; every figure's title then starts
+        with INCOMPLETE.
 
     Returns
     -------
     list of Path
         The files written, in order: per record set, histories (if stored), FRS, peak slide
-        versus mu, then one peak-slide ratio figure per comparison.
+        versus mu, oscillators (if any), then one peak-slide ratio figure per comparison.
 
     Raises
     ------
     ResultFileError
         Missing, corrupt or empty result file.
+    IncompleteResultError
+        Tasks are missing and `allow_incomplete` is False.
     ModelError, SceneError
         A bad `compare` or `damping`, or a bad ``[report]`` entry.
     FloorslideError
         The output folder or a file cannot be written.
     """
     study = load_study(result)
-    tables = design_tables(study, compare=compare, damping=damping)
+    study.require_complete(allow_incomplete)
+    tables = design_tables(study, compare=compare, damping=damping, allow_incomplete=True)
+    if compare is not None:
+        drawn = {r["comparison"] for r in tables["slide_ratios"]}
+        for comp in tables.comparisons:
+            if comp.spec not in drawn:
+                raise ModelError(
+                    f"{comp.spec!r} draws nothing: its buildings share no content on a floor "
+                    "(no peak-slide ratio to plot)",
+                    "compare",
+                )
     z = resolve_damping(study, damping)
     directory = Path(directory)
     written: list[Path] = []
@@ -502,6 +776,9 @@ def plot_figures(
             fig = figure_slide_vs_mu(study, tables, rs)
             if fig is not None:
                 written.append(_save(fig, target(f"slide_vs_mu_{s}")))
+            fig = figure_oscillators(study, tables, rs)
+            if fig is not None:
+                written.append(_save(fig, target(f"oscillators_{s}")))
             for comp in tables.comparisons:
                 fig = figure_slide_ratio(study, tables, rs, comp.spec)
                 if fig is not None:

@@ -1,20 +1,23 @@
 """Design tables from a result file: statistics over record sets and ratios between buildings.
 
 Everything here reads the result file only (DESIGN §5) through
-:class:`~floorslide.run.store.ResultFile` and returns plain rows; the command line formats them
-as Markdown, CSV or JSON (DESIGN §3, ``floorslide table``).
+:class:`~floorslide.report.study.Study` and returns plain rows; :mod:`floorslide.report.formats`
+writes them as Markdown, CSV, JSON or pandas DataFrames (DESIGN §3, ``floorslide table``).
 
 Tables (one row per …, statistics over the records of a set; units in :data:`COLUMNS`):
 
 ``slides``
-    record set × building × floor × content × friction pair: number of records, mean, median and
-    84th percentile of the peak slide, of the absolute residual slide and of the peak absolute
-    acceleration of the object (m/s² and g); how many records made the object slide and rock.
+    record set × building × floor × content × friction pair: number of records, how many made
+    the object slide, rock or slide-rock; mean, median and 84th percentile of the peak slide, of
+    the absolute residual slide and of the peak absolute acceleration of the object (m/s² and
+    g; of the sliding base for a 2-DOF oscillator) and, for oscillators, of the peak spring
+    deformation and of the top mass's peak absolute acceleration.
 ``pfa``
     record set × building × floor: peak floor acceleration (true peak, inside steps).
 ``frs``
     record set × building × floor × period: median and 84th percentile of the floor's
-    pseudo-spectral acceleration at the report periods and damping.
+    pseudo-spectral acceleration at the report periods and damping, unbroadened and (when the
+    scene asked for it) broadened.
 ``slide_ratios`` and ``pfa_ratios``
     comparison ``A:B`` × record set × floor (× content × friction pair): the statistic of
     building A divided by that of building B, for every variant of A and of B.
@@ -24,16 +27,24 @@ Conventions
 - **Percentiles** are empirical: ``numpy.percentile(x, 84)`` with NumPy's default ``"linear"``
   method (Hyndman & Fan 1996, definition 7). A lognormal fit is not used because slides are
   often exactly zero (the object does not slide under some records).
-- **Rocking**: an object that would rock (Shenton 1996) is not simulated as a slider; its slide
-  and acceleration are not known (NaN in the file). Statistics are taken over the records whose
-  slide is known (``n_stats`` of ``n_records``: all but mode ``rock``); ``n_rocked`` counts
-  records with mode ``rock`` or ``slide-rock``. With ``n_stats = 0`` the statistics are NaN.
+- **Rocking** is an outcome of its own, never a zero slide: an object that would rock (Shenton
+  1996, mode ``rock``) is not simulated as a slider, so its slide is unknown. Every statistic is
+  over all ``n_records`` records, the rocking ones ranked above every slide: a median or p84
+  that falls on them is the outcome ``rock`` (``median_outcome``, ``p84_outcome``; the numbers
+  are NaN), and so is the mean once any record rocks (:data:`~floorslide.report.columns.ROCK`).
+  ``n_rock`` counts them; ``n_slide_rock`` counts mode ``slide-rock`` (simulated as a slider).
+- **Few records**: rows over fewer than :data:`~floorslide.report.columns.MIN_RECORDS` records
+  carry ``few_records = True`` (the p84 is then set by the largest record).
 - **Ratios** are ratios of statistics (median of A / median of B), not statistics of per-record
   ratios. ``0/0`` (neither slides) is NaN; ``x/0`` with ``x > 0`` is ``inf``; a NaN statistic
-  gives a NaN ratio. The numerator and denominator are in the row beside the ratio.
+  (also one that falls on rocking records) gives a NaN ratio. The numerator and denominator
+  are in the row beside the ratio.
 - **FRS ordinates** between stored periods are interpolated linearly in ``ln T``, per record,
   before the statistics; periods outside the stored grid are left out (and said so in the
-  notes).
+  notes). ``psa_*`` columns are the unbroadened spectra; ``psa_broadened_*`` those broadened by
+  the row's ``broadening``.
+- **Incomplete** result files are refused unless ``allow_incomplete``; then every output says
+  INCOMPLETE (``DesignTables.status``).
 
 References
 ----------
@@ -46,26 +57,77 @@ Shenton, H. W. (1996). Criteria for initiation of slide, rock, and slide-rock ri
 
 from __future__ import annotations
 
-import csv
-import io
-import json
 import math
-import re
-import tomllib
 from collections import defaultdict
-from collections.abc import Iterable, Mapping, Sequence
-from dataclasses import dataclass, field
+from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
 
 from floorslide.constants import G
-from floorslide.errors import FloorslideError, ModelError, ResultFileError, SceneError
-from floorslide.run.results import TaskResult
+from floorslide.errors import ModelError, SceneError
+from floorslide.report.columns import (
+    COLUMNS,
+    MIN_RECORDS,
+    PERCENTILE,
+    ROCK,
+    SLIDE_QUANTITIES,
+    STATS,
+    TABLE_NAMES,
+    TITLES,
+    Column,
+    Comparison,
+    DesignTables,
+)
+from floorslide.report.formats import (
+    format_csv,
+    format_csv_sections,
+    format_json,
+    format_markdown,
+    format_markdown_table,
+    to_json,
+    write_csv,
+)
+from floorslide.report.records import record_rows
+from floorslide.report.statistics import (
+    interpolate_spectrum,
+    outcome,
+    placement,
+    ratio,
+    summarize,
+    summarize_outcomes,
+)
+from floorslide.report.study import Building, Study, _float, _natural, _rank, load_study
 from floorslide.run.store import ResultFile
 
-PERCENTILE = 84.0
-"""The upper percentile of the tables (empirical, NumPy ``"linear"`` method)."""
+__all__ = [
+    "COLUMNS",
+    "MIN_RECORDS",
+    "PERCENTILE",
+    "TABLE_NAMES",
+    "TITLES",
+    "Building",
+    "Column",
+    "Comparison",
+    "DesignTables",
+    "Study",
+    "design_tables",
+    "format_csv",
+    "format_csv_sections",
+    "format_json",
+    "format_markdown",
+    "format_markdown_table",
+    "interpolate_spectrum",
+    "load_study",
+    "parse_comparison",
+    "ratio",
+    "resolve_comparisons",
+    "resolve_damping",
+    "resolve_periods",
+    "summarize",
+    "to_json",
+    "write_csv",
+]
 
 STANDARD_PERIODS = (0.1, 0.2, 0.3, 0.5, 1.0, 2.0, 3.0)
 """FRS ordinates (s) reported when the scene's ``[report]`` gives no ``periods``; only those
@@ -74,366 +136,22 @@ inside the stored period grid are kept."""
 DEFAULT_DAMPING = 0.05
 """Damping ratio of the FRS ordinates when ``[report]`` gives none (else the first stored)."""
 
-ROCKING_MODES = ("rock", "slide-rock")
-"""Per-record modes counted as rocking (Shenton 1996)."""
-
-TABLE_NAMES = ("slides", "pfa", "frs", "slide_ratios", "pfa_ratios")
-"""The tables, in output order."""
-
 _TOL = 1e-9
-
-
-# --------------------------------------------------------------------------------------------
-# table structure
-
-
-@dataclass(frozen=True)
-class Column:
-    """A column of a design table: its key, unit (``"1"`` dimensionless, ``""`` for labels)
-    and meaning."""
-
-    name: str
-    units: str
-    description: str
-
-
-def _stat_columns(prefix: str, units: str, what: str) -> list[Column]:
-    return [
-        Column(f"{prefix}_mean", units, f"mean of {what}"),
-        Column(f"{prefix}_median", units, f"median of {what}"),
-        Column(f"{prefix}_p84", units, f"84th percentile of {what}"),
-    ]
-
-
-_BUILDING = [
-    Column("record_set", "", "record set (scaled sets are named set@PGAg)"),
-    Column("building", "", "building variant id"),
-    Column("building_kind", "", "fixed or isolated"),
-    Column("isolation_period", "s", "isolation period T_i (NaN for fixed-base)"),
-]
-
-_FLOOR = Column("floor", "1", "floor (0 = ground, or the base mat of an isolated building)")
-_N_RECORDS = Column("n_records", "1", "records of the set on this building")
-
-COLUMNS: dict[str, tuple[Column, ...]] = {
-    "slides": (
-        *_BUILDING,
-        _FLOOR,
-        Column("content", "", "content (equipment) id"),
-        Column("model", "", "rigid or oscillator"),
-        Column("mu_k", "1", "kinetic friction coefficient"),
-        Column("mu_s", "1", "static friction coefficient"),
-        _N_RECORDS,
-        Column("n_stats", "1", "records in the statistics: all but those with mode rock"),
-        Column("n_slid", "1", "records in which the object slid (peak slide > 0)"),
-        Column("n_rocked", "1", "records in which the object rocks (rock or slide-rock)"),
-        *_stat_columns("peak_slide", "m", "the peak slide max|u|"),
-        *_stat_columns("residual_slide", "m", "the absolute residual slide |u(end)|"),
-        *_stat_columns("peak_abs_accel", "m/s**2", "the peak absolute object acceleration"),
-        *_stat_columns("peak_abs_accel_g", "g", "the peak absolute object acceleration"),
-    ),
-    "pfa": (
-        *_BUILDING,
-        _FLOOR,
-        _N_RECORDS,
-        *_stat_columns("pfa", "m/s**2", "the true peak floor acceleration"),
-        *_stat_columns("pfa_g", "g", "the true peak floor acceleration"),
-        Column("pfa_pga_median", "1", "median over records of PFA / PGA"),
-    ),
-    "frs": (
-        *_BUILDING,
-        _FLOOR,
-        Column("damping", "1", "damping ratio of the spectrum"),
-        Column("period", "s", "oscillator period"),
-        Column("n_records", "1", "records with an ordinate at this period"),
-        Column("psa_median", "m/s**2", "median pseudo-spectral acceleration"),
-        Column("psa_p84", "m/s**2", "84th percentile of the pseudo-spectral acceleration"),
-        Column("psa_g_median", "g", "median pseudo-spectral acceleration"),
-        Column("psa_g_p84", "g", "84th percentile of the pseudo-spectral acceleration"),
-    ),
-    "slide_ratios": (
-        Column("comparison", "", "the comparison A:B as asked"),
-        Column("record_set", "", "record set"),
-        Column("building_a", "", "numerator building variant"),
-        Column("building_b", "", "denominator building variant"),
-        Column("isolation_period_a", "s", "isolation period of A (NaN for fixed-base)"),
-        Column("floor", "1", "floor"),
-        Column("content", "", "content id"),
-        Column("mu_k", "1", "kinetic friction coefficient"),
-        Column("mu_s", "1", "static friction coefficient"),
-        Column("n_stats_a", "1", "records in A's statistics"),
-        Column("n_stats_b", "1", "records in B's statistics"),
-        Column("peak_slide_median_a", "m", "median peak slide on A"),
-        Column("peak_slide_median_b", "m", "median peak slide on B"),
-        Column("peak_slide_median_ratio", "1", "median peak slide A / B"),
-        Column("peak_slide_p84_ratio", "1", "84th-percentile peak slide A / B"),
-        Column("peak_abs_accel_median_ratio", "1", "median peak object acceleration A / B"),
-    ),
-    "pfa_ratios": (
-        Column("comparison", "", "the comparison A:B as asked"),
-        Column("record_set", "", "record set"),
-        Column("building_a", "", "numerator building variant"),
-        Column("building_b", "", "denominator building variant"),
-        Column("isolation_period_a", "s", "isolation period of A (NaN for fixed-base)"),
-        Column("floor", "1", "floor"),
-        Column("pfa_median_a", "m/s**2", "median PFA on A"),
-        Column("pfa_median_b", "m/s**2", "median PFA on B"),
-        Column("pfa_median_ratio", "1", "median PFA A / B"),
-        Column("pfa_p84_ratio", "1", "84th-percentile PFA A / B"),
-    ),
-}
-"""Columns of every table, in order."""
-
-TITLES = {
-    "slides": "Sliding contents: peak slide, |residual| slide, peak object acceleration",
-    "pfa": "Peak floor acceleration (PFA)",
-    "frs": "Floor response spectra: PSA at the report periods",
-    "slide_ratios": "Peak-slide ratios between buildings (A / B)",
-    "pfa_ratios": "PFA ratios between buildings (A / B)",
-}
-
-
-@dataclass(frozen=True)
-class Comparison:
-    """A comparison ``A:B`` and the building variants it matches on each side."""
-
-    spec: str
-    a: tuple[str, ...]
-    b: tuple[str, ...]
-
-    def pairs(self) -> list[tuple[str, str]]:
-        """Every (numerator, denominator) pair of distinct variants."""
-        return [(x, y) for x in self.a for y in self.b if x != y]
-
-
-@dataclass(frozen=True)
-class DesignTables:
-    """The design tables of a result file.
-
-    ``tables`` maps each name of :data:`TABLE_NAMES` to its rows (dicts keyed by the column
-    names of :data:`COLUMNS`, SI values, NaN where a statistic is undefined). Index it like a
-    mapping: ``tables["slides"]``.
-    """
-
-    source: str
-    scene_name: str
-    periods: tuple[float, ...]
-    damping: float | None
-    comparisons: tuple[Comparison, ...]
-    tables: dict[str, list[dict]]
-    notes: tuple[str, ...] = ()
-
-    def __getitem__(self, name: str) -> list[dict]:
-        return self.tables[name]
-
-    def __iter__(self):
-        return iter(self.tables)
-
-    def as_dict(self) -> dict[str, list[dict]]:
-        """``{table name: rows}``."""
-        return {name: list(rows) for name, rows in self.tables.items()}
-
-
-# --------------------------------------------------------------------------------------------
-# the study: a result file read once
-
-
-@dataclass(frozen=True)
-class Building:
-    """A building variant as recorded in the result file's task attributes."""
-
-    id: str
-    base: str
-    kind: str
-    stories: int
-    isolation_period: float
-    isolation_damping: float
-    superstructure: str
-
-
-@dataclass
-class Study:
-    """A result file read once: its tasks, buildings, and the order of sets, buildings and
-    contents (the scene's order, then natural order)."""
-
-    source: str
-    scene_name: str
-    scene: dict
-    report: dict
-    tasks: list[TaskResult]
-    buildings: dict[str, Building]
-    sets: list[str]
-    contents: list[str]
-    notes: list[str] = field(default_factory=list)
-
-    def set_tasks(self, record_set: str) -> list[TaskResult]:
-        """The tasks of one record set."""
-        return [t for t in self.tasks if t.meta["record_set"] == record_set]
-
-
-def _natural(text: str) -> tuple:
-    """Sort key treating runs of digits (with a decimal point) as numbers: T=2.5 < T=10."""
-    parts = re.split(r"(\d+(?:\.\d+)?)", text)
-    return tuple((0, float(p), "") if i % 2 else (1, 0.0, p) for i, p in enumerate(parts))
-
-
-def _rank(order: Sequence[str], name: str) -> int:
-    return order.index(name) if name in order else len(order)
-
-
-def _float(value, default: float = math.nan) -> float:
-    try:
-        return float(value)
-    except (TypeError, ValueError):
-        return default
-
-
-def load_study(result: str | Path | ResultFile | Study) -> Study:
-    """Read a result file once for tables and figures.
-
-    Parameters
-    ----------
-    result
-        Path of a result file (``floorslide run -o``), an open :class:`ResultFile`, or a
-        :class:`Study` (returned as is).
-
-    Returns
-    -------
-    Study
-
-    Raises
-    ------
-    ResultFileError
-        The file is missing, corrupt, not a floorslide result file, or holds no finished task.
-    """
-    if isinstance(result, Study):
-        return result
-    rf = result if isinstance(result, ResultFile) else ResultFile(result)
-    source = str(rf.path)
-    notes: list[str] = []
-    try:
-        scene = tomllib.loads(rf.scene_text)
-    except tomllib.TOMLDecodeError as exc:
-        scene = {}
-        notes.append(f"the stored scene text is not valid TOML ({exc}); report options ignored")
-    report = scene.get("report", {})
-    if not isinstance(report, dict):
-        report = {}
-    tasks = list(rf.tasks())
-    if not tasks:
-        raise ResultFileError(
-            "holds no finished task (run the scene, or continue it with floorslide run --resume)",
-            source,
-        )
-    required = ("record_set", "record", "building")
-    for t in tasks:
-        missing = [k for k in required if k not in t.meta]
-        if missing:
-            raise ResultFileError(
-                f"task {t.task_id} lacks the attributes {', '.join(missing)}", source
-            )
-
-    def scene_ids(key: str, attr: str) -> list[str]:
-        items = scene.get(key, [])
-        out = []
-        for item in items if isinstance(items, list) else []:
-            if isinstance(item, dict) and isinstance(item.get(attr), str):
-                out.append(item[attr])
-        return out
-
-    buildings: dict[str, Building] = {}
-    for t in tasks:
-        m = t.meta
-        bid = str(m["building"])
-        if bid not in buildings:
-            buildings[bid] = Building(
-                id=bid,
-                base=str(m.get("building_base", "") or bid.split("@")[0]),
-                kind=str(m.get("building_kind", "")),
-                stories=int(_float(m.get("stories"), 0)),
-                isolation_period=_float(m.get("isolation_period")),
-                isolation_damping=_float(m.get("isolation_damping")),
-                superstructure=str(m.get("superstructure", "") or ""),
-            )
-    base_order = scene_ids("buildings", "id")
-
-    def building_key(b: Building):
-        nan_first = lambda x: (0, 0.0) if math.isnan(x) else (1, x)  # noqa: E731
-        return (
-            _rank(base_order, b.base),
-            _natural(b.base),
-            nan_first(b.isolation_period),
-            nan_first(b.isolation_damping),
-            _natural(b.id),
-        )
-
-    ordered = dict(sorted(buildings.items(), key=lambda kv: building_key(kv[1])))
-    set_order = scene_ids("records", "set")
-    sets = sorted(
-        {str(t.meta["record_set"]) for t in tasks},
-        key=lambda s: (_rank(set_order, s.split("@")[0]), _natural(s)),
-    )
-    content_order = scene_ids("contents", "id")
-    contents = sorted(
-        {c.content for t in tasks for c in t.contents},
-        key=lambda c: (_rank(content_order, c), _natural(c)),
-    )
-    return Study(source, rf.scene_name, scene, report, tasks, ordered, sets, contents, notes)
 
 
 # --------------------------------------------------------------------------------------------
 # statistics
 
 
-def summarize(values: Iterable[float]) -> tuple[float, float, float]:
-    """Mean, median and 84th percentile of the finite values (NaN, NaN, NaN if none).
-
-    The percentile is ``numpy.percentile(x, 84)`` with the ``"linear"`` method (Hyndman & Fan
-    1996, definition 7).
-    """
-    x = np.asarray(list(values), dtype=float)
-    x = x[np.isfinite(x)]
-    if x.size == 0:
-        return (math.nan, math.nan, math.nan)
-    return (
-        float(np.mean(x)),
-        float(np.median(x)),
-        float(np.percentile(x, PERCENTILE, method="linear")),
-    )
-
-
-def ratio(a: float, b: float) -> float:
-    """``a / b`` with the table's conventions: NaN if either is NaN or both are zero, ``inf``
-    for ``a > 0 = b``."""
-    if not (math.isfinite(a) and math.isfinite(b)):
-        return math.nan
-    if b == 0.0:
-        return math.nan if a == 0.0 else math.copysign(math.inf, a)
-    return a / b
-
-
-def _pair_modes(c) -> list[str]:
-    """Per friction pair: the object's mode under this record."""
-    n = len(c.mu_k)
-    if c.modes is not None and len(c.modes) == n:
-        return [str(m) for m in c.modes]
-    if c.mode in ("rest", "slide", "rock", "slide-rock"):
-        return [c.mode] * n
-    out = []
-    for p in np.asarray(c.peak_slide, dtype=float):
-        out.append("rock" if not np.isfinite(p) else ("slide" if p > 0 else "rest"))
-    return out
+def _stats_cols(prefix: str, values) -> dict:
+    mean, median, p84 = summarize(values)
+    return {f"{prefix}_mean": mean, f"{prefix}_median": median, f"{prefix}_p84": p84}
 
 
 def _by_record(observations: list[tuple]) -> list[tuple]:
     """Observations ``(record, ...)`` in record order, so that sums (the mean) do not depend
     on the order of the tasks in the file."""
     return sorted(observations, key=lambda o: _natural(o[0]))
-
-
-def _stats_cols(prefix: str, values: Iterable[float]) -> dict:
-    mean, median, p84 = summarize(values)
-    return {f"{prefix}_mean": mean, f"{prefix}_median": median, f"{prefix}_p84": p84}
 
 
 def _building_cols(study: Study, record_set: str, bid: str) -> dict:
@@ -449,62 +167,54 @@ def _building_cols(study: Study, record_set: str, bid: str) -> dict:
 def _order_key(study: Study):
     sets = study.sets
     bids = list(study.buildings)
-    contents = study.contents
 
     def key(record_set: str, bid: str) -> tuple:
         return (_rank(sets, record_set), _rank(bids, bid))
 
-    return key, contents
+    return key
 
 
 def slide_table(study: Study) -> list[dict]:
-    """The ``slides`` table (see the module docstring)."""
-    groups: dict[tuple, list[tuple]] = defaultdict(list)
-    models: dict[str, str] = {}
-    for t in study.tasks:
-        rs, bid = str(t.meta["record_set"]), str(t.meta["building"])
-        record = str(t.meta["record"])
-        for c in t.contents:
-            models.setdefault(c.content, c.model)
-            modes = _pair_modes(c)
-            for i in range(len(c.mu_k)):
-                key = (rs, bid, int(c.floor), c.content, float(c.mu_k[i]), float(c.mu_s[i]))
-                groups[key].append(
-                    (
-                        record,
-                        float(c.peak_slide[i]),
-                        float(c.residual_slide[i]),
-                        float(c.peak_abs_accel[i]),
-                        modes[i],
-                    )
-                )
-    bkey, contents = _order_key(study)
+    """The ``slides`` table (see the module docstring).
+
+    Groups the per-record rows (:func:`~floorslide.report.records.record_rows`, already in
+    the table's order) and takes each quantity's statistics over every record of the group,
+    rocking records as their own outcome (:func:`~floorslide.report.statistics.summarize_outcomes`).
+    """
+    groups: dict[tuple, list[dict]] = {}
+    for r in record_rows(study):
+        key = (r["record_set"], r["building"], r["floor"], r["content"], r["mu_k"], r["mu_s"])
+        groups.setdefault(key, []).append(r)
     rows = []
-    for key in sorted(
-        groups, key=lambda k: (*bkey(k[0], k[1]), k[2], _rank(contents, k[3]), k[4], k[5])
-    ):
-        rs, bid, floor, content, mu_k, mu_s = key
-        obs = _by_record(groups[key])
-        peak = np.array([o[1] for o in obs])
-        resid = np.abs(np.array([o[2] for o in obs]))
-        acc = np.array([o[3] for o in obs])
-        finite = np.isfinite(peak)
+    for (rs, bid, floor, content, mu_k, mu_s), obs in groups.items():
+        rock = [o["outcome"] == ROCK for o in obs]
+        n, n_rock = len(obs), int(sum(rock))
+        place = placement(n, n_rock)
         row = _building_cols(study, rs, bid)
         row.update(
             floor=floor,
             content=content,
-            model=models[content],
+            model=obs[0]["model"],
             mu_k=mu_k,
             mu_s=mu_s,
-            n_records=len(obs),
-            n_stats=int(finite.sum()),
-            n_slid=int((peak[finite] > 0).sum()),
-            n_rocked=sum(o[4] in ROCKING_MODES for o in obs),
+            n_records=n,
+            n_slid=sum(o["outcome"] == "slide" for o in obs),
+            n_rock=n_rock,
+            n_slide_rock=sum(o["mode"] == "slide-rock" for o in obs),
+            rock_fraction=n_rock / n,
         )
-        row.update(_stats_cols("peak_slide", peak))
-        row.update(_stats_cols("residual_slide", resid))
-        row.update(_stats_cols("peak_abs_accel", acc))
-        row.update(_stats_cols("peak_abs_accel_g", acc / G))
+        stats = {}
+        for q in SLIDE_QUANTITIES:
+            values = np.array([o[q] for o in obs], dtype=float)
+            if q == "residual_slide":
+                values = np.abs(values)  # the per-record table keeps the sign
+            got = summarize_outcomes(values, rock)
+            stats.update({f"{q}_{s}": got[s] for s in STATS})
+        row.update(
+            {f"{s}_outcome": outcome(place, s, stats[f"peak_slide_{s}"]) for s in STATS},
+            few_records=n < MIN_RECORDS,
+        )
+        row.update(stats)
         rows.append(row)
     return rows
 
@@ -517,7 +227,7 @@ def pfa_table(study: Study) -> list[dict]:
         pga = _float(t.meta.get("pga"))
         for floor, pfa in zip(np.asarray(t.floors).tolist(), np.asarray(t.pfa), strict=True):
             groups[(rs, bid, int(floor))].append((str(t.meta["record"]), float(pfa), pga))
-    bkey, _ = _order_key(study)
+    bkey = _order_key(study)
     rows = []
     for key in sorted(groups, key=lambda k: (*bkey(k[0], k[1]), k[2])):
         rs, bid, floor = key
@@ -526,7 +236,7 @@ def pfa_table(study: Study) -> list[dict]:
         pga = np.array([o[2] for o in obs])
         amp = np.divide(pfa, pga, out=np.full_like(pfa, np.nan), where=pga > 0)
         row = _building_cols(study, rs, bid)
-        row.update(floor=floor, n_records=len(pfa))
+        row.update(floor=floor, n_records=len(pfa), few_records=len(pfa) < MIN_RECORDS)
         row.update(_stats_cols("pfa", pfa))
         row.update(_stats_cols("pfa_g", pfa / G))
         row["pfa_pga_median"] = summarize(amp)[1]
@@ -625,33 +335,22 @@ def resolve_periods(
     return tuple(keep), notes
 
 
-def interpolate_spectrum(grid: np.ndarray, values: np.ndarray, periods: Sequence[float]):
-    """Ordinates at `periods`, interpolated linearly in ``ln T`` between stored periods.
-
-    A period equal to a stored one (to 1e-9 relative) takes its value exactly; periods
-    outside the grid give NaN. A stored period 0 (the peak of the motion) is used only for a
-    requested period 0.
-    """
-    grid = np.asarray(grid, dtype=float)
-    values = np.asarray(values, dtype=float)
-    order = np.argsort(grid)
-    grid, values = grid[order], values[order]
-    pos = grid > 0
-    out = np.full(len(periods), np.nan)
-    for j, p in enumerate(periods):
-        exact = np.nonzero(np.abs(grid - p) <= _TOL * max(p, 1e-300))[0]
-        if exact.size:
-            out[j] = values[exact[0]]
-        elif p > 0 and pos.sum() >= 2 and grid[pos][0] <= p <= grid[pos][-1]:
-            out[j] = np.interp(np.log(p), np.log(grid[pos]), values[pos])
-    return out
+def stored_broadening(study: Study) -> float:
+    """The peak broadening of the stored spectra (0 when none)."""
+    for t in study.tasks:
+        for s in t.spectra:
+            if s.broadening:
+                return float(s.broadening)
+    return 0.0
 
 
 def frs_table(study: Study, periods: Sequence[float], damping: float | None) -> list[dict]:
-    """The ``frs`` table (see the module docstring)."""
+    """The ``frs`` table (see the module docstring): unbroadened and broadened PSA."""
     if damping is None or not periods:
         return []
-    groups: dict[tuple, list[tuple[str, np.ndarray]]] = defaultdict(list)
+    groups: dict[tuple, list[tuple[str, np.ndarray, np.ndarray]]] = defaultdict(list)
+    broadening = stored_broadening(study)
+    nan = np.full(len(periods), np.nan)
     for t in study.tasks:
         rs, bid = str(t.meta["record_set"]), str(t.meta["building"])
         record = str(t.meta["record"])
@@ -661,26 +360,40 @@ def frs_table(study: Study, periods: Sequence[float], damping: float | None) -> 
             if hit.size == 0:
                 continue
             psa = np.atleast_2d(np.asarray(s.psa, dtype=float))[hit[0]]
+            wide = nan
+            if s.psa_broadened is not None:
+                row = np.atleast_2d(np.asarray(s.psa_broadened, dtype=float))[hit[0]]
+                wide = interpolate_spectrum(s.periods, row, periods)
             groups[(rs, bid, int(s.floor))].append(
-                (record, interpolate_spectrum(s.periods, psa, periods))
+                (record, interpolate_spectrum(s.periods, psa, periods), wide)
             )
-    bkey, _ = _order_key(study)
+    bkey = _order_key(study)
     rows = []
     for key in sorted(groups, key=lambda k: (*bkey(k[0], k[1]), k[2])):
         rs, bid, floor = key
-        stack = np.array([o[1] for o in _by_record(groups[key])])
+        obs = _by_record(groups[key])
+        stack = np.array([o[1] for o in obs])
+        wide = np.array([o[2] for o in obs])
         for j, p in enumerate(periods):
             _, median, p84 = summarize(stack[:, j])
+            _, wmedian, wp84 = summarize(wide[:, j])
+            n = int(np.isfinite(stack[:, j]).sum() or np.isfinite(wide[:, j]).sum())
             row = _building_cols(study, rs, bid)
             row.update(
                 floor=floor,
                 damping=damping,
                 period=float(p),
-                n_records=int(np.isfinite(stack[:, j]).sum()),
+                n_records=n,
+                few_records=n < MIN_RECORDS,
                 psa_median=median,
                 psa_p84=p84,
                 psa_g_median=median / G,
                 psa_g_p84=p84 / G,
+                broadening=broadening,
+                psa_broadened_median=wmedian,
+                psa_broadened_p84=wp84,
+                psa_broadened_g_median=wmedian / G,
+                psa_broadened_g_p84=wp84 / G,
             )
             rows.append(row)
     return rows
@@ -785,7 +498,9 @@ def _ratio_rows(
                         "building_a": a,
                         "building_b": b,
                         "isolation_period_a": study.buildings[a].isolation_period,
+                        "isolation_period_b": study.buildings[b].isolation_period,
                         **{k: r[k] for k in keys},
+                        "few_records": bool(r["few_records"] or other["few_records"]),
                     }
                     row.update(make(r, other))
                     out.append(row)
@@ -799,8 +514,14 @@ def slide_ratio_table(
 
     def make(a: dict, b: dict) -> dict:
         return {
-            "n_stats_a": a["n_stats"],
-            "n_stats_b": b["n_stats"],
+            "n_records_a": a["n_records"],
+            "n_records_b": b["n_records"],
+            "n_rock_a": a["n_rock"],
+            "n_rock_b": b["n_rock"],
+            "median_outcome_a": a["median_outcome"],
+            "median_outcome_b": b["median_outcome"],
+            "p84_outcome_a": a["p84_outcome"],
+            "p84_outcome_b": b["p84_outcome"],
             "peak_slide_median_a": a["peak_slide_median"],
             "peak_slide_median_b": b["peak_slide_median"],
             "peak_slide_median_ratio": ratio(a["peak_slide_median"], b["peak_slide_median"]),
@@ -831,11 +552,59 @@ def pfa_ratio_table(study: Study, pfa: list[dict], comparisons: Sequence[Compari
 # the API
 
 
+def table_notes(study: Study, damping: float | None) -> list[str]:
+    """The conventions every output of the tables states (DESIGN §10)."""
+    notes = []
+    if study.status:
+        notes.append(study.status)
+    n_by_set = defaultdict(set)
+    for t in study.tasks:
+        n_by_set[str(t.meta["record_set"])].add(str(t.meta["record"]))
+    sizes = ", ".join(f"{rs}: {len(n_by_set[rs])}" for rs in study.sets)
+    notes += [
+        "units: SI (m, s, m/s**2); columns ending in _g are in g = 9.80665 m/s**2",
+        f"statistics over the records of each set (records per set: {sizes}); "
+        f"p84 = {PERCENTILE:g}th percentile, empirical (numpy.percentile, method 'linear')",
+        "rocking objects (Shenton 1996, mode rock) are not simulated as sliders and never count "
+        "as 0 slide: each is its own outcome, ranked above every slide over all n_records "
+        "records; a median or p84 that falls on rocking records is 'rock' (median_outcome, "
+        "p84_outcome; 'rocks' in Markdown, no number), and so is the mean once any record rocks",
+        f"few_records: fewer than {MIN_RECORDS} records — the p84 then lies between the two "
+        "largest values (set by the largest record); read these statistics with caution (†)",
+        "residual_slide statistics are of |u(end)|; for 2-DOF oscillators peak_abs_accel is "
+        "the sliding base's, peak_deformation the spring's and peak_top_accel the top mass's",
+        "ratios are ratios of statistics (A / B); 0/0 (neither slides) is NaN, x/0 is inf",
+    ]
+    if damping is not None:
+        b = stored_broadening(study)
+        wide = (
+            f"psa_broadened_* broadened by ±{b * 100:g} % in frequency (ASCE 4, US NRC RG 1.122)"
+            if b
+            else "no peak broadening (psa_broadened_* empty)"
+        )
+        notes.append(
+            f"FRS: PSA at {damping:g} damping, interpolated linearly in ln(period) between stored "
+            f"periods; psa_* are the unbroadened spectra, {wide}"
+        )
+        lost = any(
+            s.broadening and np.isnan(np.asarray(s.psa, dtype=float)).all()
+            for t in study.tasks
+            for s in t.spectra
+        )
+        if lost:
+            notes.append(
+                "FRS: this file predates keeping the unbroadened spectra; psa_* are unknown (NaN)"
+            )
+    return notes
+
+
 def design_tables(
     result: str | Path | ResultFile | Study,
     compare: Sequence[str] | None = None,
     periods: Sequence[float] | None = None,
     damping: float | None = None,
+    *,
+    allow_incomplete: bool = False,
 ) -> DesignTables:
     """Design tables of a result file (DESIGN §3, ``floorslide table``).
 
@@ -853,6 +622,9 @@ def design_tables(
     damping
         FRS damping ratio, one of those stored; default ``[report] damping``, else 0.05 if
         stored, else the first stored.
+    allow_incomplete
+        Accept a result file whose run is not finished; the tables then carry its
+        INCOMPLETE label (``status``, notes, every output format).
 
     Returns
     -------
@@ -866,6 +638,8 @@ def design_tables(
     ------
     ResultFileError
         Missing, corrupt or empty result file.
+    IncompleteResultError
+        Tasks are missing and `allow_incomplete` is False.
     ModelError
         A bad `compare`, `periods` or `damping` argument (its ``where`` names the argument).
     SceneError
@@ -874,10 +648,12 @@ def design_tables(
     Notes
     -----
     Percentiles are empirical (``numpy.percentile``, ``"linear"``; Hyndman & Fan 1996,
-    definition 7). Statistics skip records in which the object rocks (not simulated as a
-    slider; Shenton 1996). Ratios are ratios of statistics; ``0/0`` is NaN, ``x/0`` is inf.
+    definition 7). Records in which the object rocks (not simulated as a slider; Shenton 1996)
+    are an outcome of their own, ranked above every slide; a statistic that falls on them is
+    ``rock``, never 0. Ratios are ratios of statistics; ``0/0`` is NaN, ``x/0`` is inf.
     """
     study = load_study(result)
+    study.require_complete(allow_incomplete)
     comparisons = resolve_comparisons(study, compare)
     z = resolve_damping(study, damping)
     chosen, period_notes = resolve_periods(study, periods)
@@ -890,20 +666,7 @@ def design_tables(
         "slide_ratios": slide_ratio_table(study, slides, comparisons),
         "pfa_ratios": pfa_ratio_table(study, pfa, comparisons),
     }
-    notes = [
-        "units: SI (m, s, m/s**2); columns ending in _g are in g = 9.80665 m/s**2",
-        f"statistics over the records of each set; p84 = {PERCENTILE:g}th percentile, "
-        "empirical (numpy.percentile, method 'linear')",
-        "objects that rock (Shenton 1996) are not simulated as sliders: slide and acceleration "
-        "statistics are over the n_stats records whose slide is known (all but mode rock)",
-        "residual_slide statistics are of |u(end)|",
-        "ratios are ratios of statistics (A / B); 0/0 (neither slides) is NaN, x/0 is inf",
-    ]
-    if z is not None:
-        notes.append(
-            f"FRS: PSA at {z:g} damping, interpolated linearly in ln(period) between stored periods"
-        )
-    notes += period_notes + study.notes
+    notes = table_notes(study, z) + period_notes + study.notes
     return DesignTables(
         source=study.source,
         scene_name=study.scene_name,
@@ -912,155 +675,7 @@ def design_tables(
         comparisons=comparisons,
         tables=tables,
         notes=tuple(notes),
+        status=study.status,
+        tasks_done=study.tasks_done,
+        tasks_planned=study.tasks_planned,
     )
-
-
-# --------------------------------------------------------------------------------------------
-# formatting
-
-
-def _md_cell(value, column: Column, row: Mapping) -> str:
-    if isinstance(value, float):
-        if math.isnan(value):
-            rocked = row.get("n_stats") == 0 and row.get("n_rocked", 0) > 0
-            if rocked and column.name.endswith(("_mean", "_median", "_p84")):
-                return "rocks"
-            return "—"
-        if math.isinf(value):
-            return "∞" if value > 0 else "-∞"
-        if column.name in ("mu_k", "mu_s", "period", "damping", "isolation_period"):
-            return f"{value:g}"
-        return f"{value:.4g}"
-    text = str(value)
-    return text.replace("|", "\\|")
-
-
-def _md_heading(column: Column) -> str:
-    if column.units in ("", "1"):
-        return column.name
-    return f"{column.name} ({column.units.replace('**2', '²')})"
-
-
-def format_markdown_table(name: str, rows: Sequence[Mapping]) -> str:
-    """One table as GitHub Markdown; NaN as ``—`` (``rocks`` where every record rocks),
-    ``inf`` as ``∞``."""
-    cols = COLUMNS[name]
-    lines = [
-        "| " + " | ".join(_md_heading(c) for c in cols) + " |",
-        "|" + "|".join("---" for _ in cols) + "|",
-    ]
-    for row in rows:
-        lines.append("| " + " | ".join(_md_cell(row[c.name], c, row) for c in cols) + " |")
-    if not rows:
-        lines.append("| " + " | ".join("" for _ in cols) + " |")
-    return "\n".join(lines)
-
-
-def format_markdown(tables: DesignTables, names: Sequence[str] = TABLE_NAMES) -> str:
-    """The design tables as one Markdown document: a title, the conventions, one section per
-    table."""
-    out = [f"# Design tables: {tables.scene_name or Path(tables.source).name}", ""]
-    out.append(f"From `{tables.source}`.")
-    out.append("")
-    for note in tables.notes:
-        out.append(f"- {note}")
-    if tables.comparisons:
-        comps = "; ".join(
-            f"{c.spec} ({', '.join(c.a)} over {', '.join(c.b)})" for c in tables.comparisons
-        )
-        out.append(f"- comparisons: {comps}")
-    for name in names:
-        out += ["", f"## {TITLES[name]}", ""]
-        rows = tables[name]
-        if not rows:
-            out.append("_No rows._")
-            continue
-        out.append(format_markdown_table(name, rows))
-    return "\n".join(out) + "\n"
-
-
-def _csv_cell(value) -> str:
-    if isinstance(value, float):
-        if math.isnan(value):
-            return ""
-        if math.isinf(value):
-            return "inf" if value > 0 else "-inf"
-        return repr(value)
-    return str(value)
-
-
-def format_csv(name: str, rows: Sequence[Mapping]) -> str:
-    """One table as CSV: a header of column names, full-precision numbers, NaN as an empty
-    cell, ``inf`` as ``inf``."""
-    buf = io.StringIO()
-    writer = csv.writer(buf, lineterminator="\n")
-    cols = COLUMNS[name]
-    writer.writerow([c.name for c in cols])
-    for row in rows:
-        writer.writerow([_csv_cell(row[c.name]) for c in cols])
-    return buf.getvalue()
-
-
-def format_csv_sections(tables: DesignTables, names: Sequence[str] = TABLE_NAMES) -> str:
-    """Several tables as CSV on one stream: each preceded by a line ``# table: NAME`` and
-    followed by a blank line."""
-    parts = [f"# table: {name}\n{format_csv(name, tables[name])}" for name in names]
-    return "\n".join(parts)
-
-
-def write_csv(tables: DesignTables, directory: str | Path, names: Sequence[str] = TABLE_NAMES):
-    """Write one ``NAME.csv`` per table into `directory` (created); returns the paths."""
-    directory = Path(directory)
-    try:
-        directory.mkdir(parents=True, exist_ok=True)
-        paths = []
-        for name in names:
-            path = directory / f"{name}.csv"
-            path.write_text(format_csv(name, tables[name]), encoding="utf-8")
-            paths.append(path)
-    except OSError as exc:
-        raise FloorslideError(
-            f"cannot write the tables: {exc.strerror or exc}", str(directory)
-        ) from None
-    return paths
-
-
-def _json_value(value):
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    if isinstance(value, np.generic):
-        return _json_value(value.item())
-    return value
-
-
-def to_json(tables: DesignTables, names: Sequence[str] = TABLE_NAMES) -> dict:
-    """The tables as a JSON-ready dict: ``source``, ``scene``, ``notes``, ``periods``,
-    ``damping``, ``comparisons``, ``columns`` (name → list of ``{name, units,
-    description}``) and ``tables`` (name → rows); NaN and inf become ``null``."""
-    return {
-        "source": tables.source,
-        "scene": tables.scene_name,
-        "notes": list(tables.notes),
-        "periods": list(tables.periods),
-        "damping": tables.damping,
-        "percentile": PERCENTILE,
-        "comparisons": [
-            {"spec": c.spec, "a": list(c.a), "b": list(c.b)} for c in tables.comparisons
-        ],
-        "columns": {
-            name: [
-                {"name": c.name, "units": c.units, "description": c.description}
-                for c in COLUMNS[name]
-            ]
-            for name in names
-        },
-        "tables": {
-            name: [{k: _json_value(v) for k, v in row.items()} for row in tables[name]]
-            for name in names
-        },
-    }
-
-
-def format_json(tables: DesignTables, names: Sequence[str] = TABLE_NAMES) -> str:
-    """:func:`to_json` as text (strict JSON: no NaN)."""
-    return json.dumps(to_json(tables, names), indent=1, allow_nan=False)

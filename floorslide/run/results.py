@@ -40,7 +40,13 @@ class ContentResult:
 
 @dataclass
 class SpectrumResult:
-    """Floor response spectra of one floor of a task."""
+    """Floor response spectra of one floor of a task.
+
+    ``psa``, ``sa``, ``sv``, ``sd`` are the spectra as computed (unbroadened; NaN when a file
+    written before they were kept holds only broadened ones). With ``broadening > 0`` the
+    ``*_broadened`` arrays are the spectra widened by ``±broadening`` in frequency
+    (:func:`floorslide.spectra.broaden`), else None.
+    """
 
     floor: int
     periods: np.ndarray
@@ -49,17 +55,31 @@ class SpectrumResult:
     sa: np.ndarray
     sv: np.ndarray
     sd: np.ndarray
+    broadening: float = 0.0
+    psa_broadened: np.ndarray | None = None
+    sa_broadened: np.ndarray | None = None
+    sv_broadened: np.ndarray | None = None
+    sd_broadened: np.ndarray | None = None
 
 
 @dataclass
 class Histories:
-    """Histories kept for figures (one record of the study): floor accelerations and slides."""
+    """Histories kept for figures (one record of the study): floor accelerations and slides.
+
+    Keys are ``"content/floor_f"``; each value has one row per stored friction value
+    (``(n_mu, npts)``). ``slides`` is the slide u relative to the floor (of the sliding base
+    for a 2-DOF oscillator), NaN for a friction value under which the object rocks (it is not
+    simulated as a slider); ``deformation`` (spring deformation z, m) and ``top_accel`` (the
+    top mass's absolute acceleration, m/s²) are kept for oscillators only.
+    """
 
     dt: float
     floors: np.ndarray
     floor_acceleration: np.ndarray  # (n_floors, npts), m/s²
-    slides: dict[str, np.ndarray] = field(default_factory=dict)  # "content/floor_f" → (n_mu, npts)
+    slides: dict[str, np.ndarray] = field(default_factory=dict)
     mu_k: dict[str, np.ndarray] = field(default_factory=dict)
+    deformation: dict[str, np.ndarray] = field(default_factory=dict)
+    top_accel: dict[str, np.ndarray] = field(default_factory=dict)
 
 
 @dataclass

@@ -21,9 +21,26 @@ Layout (every dataset carries a ``units`` attribute; ``1`` means dimensionless):
                              objects are not simulated: their slide values are NaN); attrs
                              model, mode (the common mode or "mixed"), skipped (reasons and
                              counts, or ""), vertical
-      spectra/floor_<f>/     periods (s), damping (1), psa, sa (m/s**2), sv (m/s), sd (m)
+      spectra/floor_<f>/     periods (s), damping (1), psa, sa (m/s**2), sv (m/s), sd (m): the
+                             spectra as computed, unbroadened (rows: damping, columns:
+                             periods); attr broadening (the scene's ±fraction, 0 for none).
+                             Every spectrum dataset has an attr broadening: 0 here.
+        broadened/           only when broadening > 0: psa, sa, sv, sd widened by ±broadening
+                             in frequency (floorslide.spectra.broaden; ASCE 4, US NRC RG
+                             1.122); attr broadening on the group and on every dataset
       histories/             (one record of the study, every building, for figures) attr dt; floors,
-                             floor_acceleration (m/s**2); slides/<content>/floor_<f>/u (m), mu_k
+                             floor_acceleration (m/s**2); slides/<content>/floor_<f>/ (attr
+                             model): u (m; the sliding base's for an oscillator), mu_k (1)
+                             [+ z (m, spring deformation), top_accel (m/s**2) for oscillators];
+                             rows of friction values under which the object rocks are NaN
+
+Reading stays backward compatible: a file written before the unbroadened spectra were kept
+has no ``broadening`` attr on ``spectra/floor_<f>``; if its scene asked for broadening, its
+``psa`` … are the broadened spectra and are read as such (the unbroadened ones are NaN, lost).
+Histories without ``z``/``top_accel`` read as rigid-block histories.
+
+The plan (``/plan``, attr-free JSON) holds ``tasks``, the number of tasks of the run: a file
+with fewer tasks done is incomplete (:attr:`ResultFile.complete`).
 
 A task is written, the file closed (flushed), then marked done. Beside the file, the journal
 ``<file>.journal/`` keeps every finished task as its own small file written atomically first,
@@ -38,6 +55,7 @@ import json
 import os
 import pickle
 import time
+import tomllib
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -68,6 +86,8 @@ UNITS = {
     "sd": "m",
     "floor_acceleration": "m/s**2",
     "u": "m",
+    "z": "m",
+    "top_accel": "m/s**2",
 }
 CONTENT_FIELDS = (
     "mu_k",
@@ -79,11 +99,13 @@ CONTENT_FIELDS = (
     "slip_phases",
 )
 SPECTRUM_FIELDS = ("periods", "damping", "psa", "sa", "sv", "sd")
+ORDINATE_FIELDS = ("psa", "sa", "sv", "sd")
 
 
-def _put(group: h5py.Group, name: str, data) -> None:
+def _put(group: h5py.Group, name: str, data) -> h5py.Dataset:
     ds = group.create_dataset(name, data=np.asarray(data))
     ds.attrs["units"] = UNITS.get(name, "1")
+    return ds
 
 
 def journal_dir(path: Path) -> Path:
@@ -211,8 +233,17 @@ class ResultWriter:
             sg = g.create_group("spectra")
             for s in result.spectra:
                 h = sg.create_group(f"floor_{s.floor}")
+                h.attrs["broadening"] = float(s.broadening)
                 for name in SPECTRUM_FIELDS:
-                    _put(h, name, getattr(s, name))
+                    ds = _put(h, name, getattr(s, name))
+                    if name in ORDINATE_FIELDS:
+                        ds.attrs["broadening"] = 0.0
+                if s.broadening:
+                    b = h.create_group("broadened")
+                    b.attrs["broadening"] = float(s.broadening)
+                    for name in ORDINATE_FIELDS:
+                        ds = _put(b, name, getattr(s, f"{name}_broadened"))
+                        ds.attrs["broadening"] = float(s.broadening)
             if result.histories is not None:
                 hi = result.histories
                 hg = g.create_group("histories")
@@ -223,6 +254,13 @@ class ResultWriter:
                     sgr = hg.require_group(f"slides/{key}")
                     _put(sgr, "u", u)
                     _put(sgr, "mu_k", hi.mu_k[key])
+                    # getattr: a journal entry pickled before these fields existed
+                    deformation = getattr(hi, "deformation", {})
+                    oscillator = key in deformation
+                    sgr.attrs["model"] = "oscillator" if oscillator else "rigid"
+                    if oscillator:
+                        _put(sgr, "z", deformation[key])
+                        _put(sgr, "top_accel", hi.top_accel[key])
             f.flush()
         with h5py.File(self.path, "a") as f:
             f["tasks"][result.task_id].attrs["done"] = 1
@@ -254,8 +292,11 @@ class ResultFile:
                     else str(f["scene"][()])
                 )
                 self.scene_name = str(f.attrs.get("scene_name", ""))
+                self.scene_path = _s(f["scene"].attrs.get("path", ""))
                 plan = f["plan"][()]
                 self.plan = json.loads(plan.decode() if isinstance(plan, bytes) else plan)
+                if not isinstance(self.plan, dict):
+                    raise ValueError("the stored plan is not a JSON object")
                 self._done = []
                 tasks = f["tasks"]
                 for k in tasks:
@@ -280,12 +321,34 @@ class ResultFile:
         """Ids of the tasks marked done."""
         return list(self._done)
 
+    @property
+    def planned_tasks(self) -> int | None:
+        """The number of tasks of the run, from the stored plan (None if it does not say)."""
+        n = self.plan.get("tasks")
+        return n if isinstance(n, int) and not isinstance(n, bool) and n >= 0 else None
+
+    @property
+    def complete(self) -> bool:
+        """Whether every planned task is done (True when the plan does not say how many)."""
+        n = self.planned_tasks
+        return n is None or len(self._done) >= n
+
+    def _legacy_broadening(self) -> float:
+        """The scene's ``[spectra] broadening``, for files that did not label their spectra."""
+        try:
+            scene = tomllib.loads(self.scene_text)
+            value = scene.get("spectra", {}).get("broadening", 0.0)
+            return float(value) if isinstance(value, int | float) else 0.0
+        except (tomllib.TOMLDecodeError, AttributeError):
+            return 0.0
+
     def tasks(self) -> Iterator[TaskResult]:
         """Every finished task, in file order."""
+        legacy = self._legacy_broadening()
         try:
             with h5py.File(self.path, "r") as f:
                 for tid in self._done:
-                    yield _read_task(f["tasks"][tid], tid)
+                    yield _read_task(f["tasks"][tid], tid, legacy)
         except (OSError, KeyError, ValueError) as exc:
             raise ResultFileError(f"corrupt result file: {exc}", str(self.path)) from None
 
@@ -294,7 +357,22 @@ def _s(value) -> str:
     return value.decode() if isinstance(value, bytes) else str(value)
 
 
-def _read_task(g: h5py.Group, tid: str) -> TaskResult:
+def _read_spectrum(k: str, h: h5py.Group, legacy_broadening: float) -> SpectrumResult:
+    floor = int(k.split("_")[1])
+    fields = {n: h[n][()] for n in SPECTRUM_FIELDS}
+    if "broadening" not in h.attrs and legacy_broadening > 0:
+        # written before the unbroadened spectra were kept: what is stored is broadened
+        wide = {f"{n}_broadened": fields[n] for n in ORDINATE_FIELDS}
+        lost = {n: np.full_like(fields[n], np.nan, dtype=float) for n in ORDINATE_FIELDS}
+        return SpectrumResult(floor, **{**fields, **lost}, broadening=legacy_broadening, **wide)
+    out = SpectrumResult(floor, **fields, broadening=float(h.attrs.get("broadening", 0.0)))
+    if "broadened" in h:
+        for n in ORDINATE_FIELDS:
+            setattr(out, f"{n}_broadened", h["broadened"][n][()])
+    return out
+
+
+def _read_task(g: h5py.Group, tid: str, legacy_broadening: float = 0.0) -> TaskResult:
     meta = {k: (v.item() if hasattr(v, "item") else v) for k, v in g.attrs.items()}
     meta = {k: _s(v) if isinstance(v, bytes | str) else v for k, v in meta.items()}
     contents = []
@@ -314,21 +392,27 @@ def _read_task(g: h5py.Group, tid: str) -> TaskResult:
                     modes=np.array([_s(m) for m in h["modes"][()]]) if "modes" in h else None,
                 )
             )
-    spectra = [
-        SpectrumResult(floor=int(k.split("_")[1]), **{n: h[n][()] for n in SPECTRUM_FIELDS})
-        for k, h in g["spectra"].items()
-    ]
+    spectra = [_read_spectrum(k, h, legacy_broadening) for k, h in g["spectra"].items()]
     hist = None
     if "histories" in g:
         hg = g["histories"]
-        slides, mus = {}, {}
+        slides, mus, deform, top = {}, {}, {}, {}
         if "slides" in hg:
             for cname, cg in hg["slides"].items():
                 for fname, h in cg.items():
-                    slides[f"{cname}/{fname}"] = h["u"][()]
-                    mus[f"{cname}/{fname}"] = h["mu_k"][()]
+                    key = f"{cname}/{fname}"
+                    slides[key] = h["u"][()]
+                    mus[key] = h["mu_k"][()]
+                    if "z" in h:
+                        deform[key], top[key] = h["z"][()], h["top_accel"][()]
         hist = Histories(
-            float(hg.attrs["dt"]), hg["floors"][()], hg["floor_acceleration"][()], slides, mus
+            float(hg.attrs["dt"]),
+            hg["floors"][()],
+            hg["floor_acceleration"][()],
+            slides,
+            mus,
+            deform,
+            top,
         )
     return TaskResult(
         task_id=tid,

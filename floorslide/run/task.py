@@ -57,7 +57,7 @@ def run_task(task: Task, force: bool = False) -> TaskResult:
     )
     pfa_of = dict(zip(task.floors, pfa, strict=True))
     result = TaskResult(task.task_id, _meta(task), floors, np.asarray(pfa, dtype=float))
-    hist_slides, hist_mu = {}, {}
+    hist_slides, hist_mu, hist_deform, hist_top = {}, {}, {}, {}
     for content, floor in task.contents:
         mu = np.asarray(content.mu, dtype=float)
         mu_s = np.asarray(content.mu_s if content.mu_s else content.mu, dtype=float)
@@ -122,30 +122,50 @@ def run_task(task: Task, force: bool = False) -> TaskResult:
                 modes=np.array(modes),
             )
         )
-        if task.histories and content.model == "rigid":
+        if task.histories:
             pick = np.unique(np.linspace(0, n - 1, min(HISTORY_MU, n)).round().astype(int))
-            r = slide(
-                acc,
-                dt,
-                mu[pick],
-                mu_s[pick],
-                histories=True,
-                direction=content.direction,
-                vertical=rec.vertical if content.vertical else None,
-                **on,
-            )
             key = f"{content.id}/floor_{floor}"
+            if content.model == "oscillator":
+                r = slide_oscillator(
+                    acc,
+                    dt,
+                    mu[pick],
+                    content.frequency,
+                    content.damping,
+                    content.mass_ratio,
+                    mu_s=mu_s[pick],
+                    histories=True,
+                    **on,
+                )
+                hist_deform[key], hist_top[key] = r.z, r.top_accel
+            else:
+                r = slide(
+                    acc,
+                    dt,
+                    mu[pick],
+                    mu_s[pick],
+                    histories=True,
+                    direction=content.direction,
+                    vertical=rec.vertical if content.vertical else None,
+                    **on,
+                )
             hist_slides[key], hist_mu[key] = r.u, mu[pick]
+            # an object that rocks is not a slider: no slide history is drawn for it
+            for arr in (hist_slides.get(key), hist_deform.get(key), hist_top.get(key)):
+                if arr is not None:
+                    arr[rock[pick]] = np.nan
     sc = task.spectra
     for floor in task.spectra_floors:
         sp = response_spectrum(
             acc, dt, np.asarray(sc.periods), list(sc.damping), building=model, floor=floor
         )
+        out = SpectrumResult(floor, sp.periods, sp.damping, sp.psa, sp.sa, sp.sv, sp.sd)
         if sc.broadening:
-            sp = broaden(sp, sc.broadening)
-        result.spectra.append(
-            SpectrumResult(floor, sp.periods, sp.damping, sp.psa, sp.sa, sp.sv, sp.sd)
-        )
+            wide = broaden(sp, sc.broadening)
+            out.broadening = float(sc.broadening)
+            out.psa_broadened, out.sa_broadened = wide.psa, wide.sa
+            out.sv_broadened, out.sd_broadened = wide.sv, wide.sd
+        result.spectra.append(out)
     if task.histories:
         fl = np.array(task.floors, dtype=np.int64)
         motions = (
@@ -153,6 +173,6 @@ def run_task(task: Task, force: bool = False) -> TaskResult:
             if fl.size
             else np.zeros((0, acc.size))
         )
-        result.histories = Histories(dt, fl, motions, hist_slides, hist_mu)
+        result.histories = Histories(dt, fl, motions, hist_slides, hist_mu, hist_deform, hist_top)
     result.seconds = time.perf_counter() - t0
     return result

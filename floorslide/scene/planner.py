@@ -25,7 +25,14 @@ import numpy as np
 from floorslide.constants import G
 from floorslide.contents.rocking import response_mode
 from floorslide.errors import FloorslideError, RecordError
-from floorslide.scene.schema import BuildingSpec, ContentSpec, RecordSetSpec, Scene, SpectraSpec
+from floorslide.scene.schema import (
+    BuildingSpec,
+    ContentSpec,
+    RecordSetSpec,
+    Scene,
+    SpectraSpec,
+    record_id_of,
+)
 
 
 @dataclass(frozen=True)
@@ -152,7 +159,7 @@ def _load_set(rs: RecordSetSpec, processing: dict, failures: list[str]) -> list[
     if rs.catalog:
         try:
             for entry in load_catalog(rs.catalog, where=rs.where or None):
-                sources.append((entry.path.stem, str(entry.path.resolve()), entry.read))
+                sources.append((record_id_of(entry.path), str(entry.path.resolve()), entry.read))
         except RecordError as exc:
             failures.append(str(exc))
             return []
@@ -161,7 +168,7 @@ def _load_set(rs: RecordSetSpec, processing: dict, failures: list[str]) -> list[
         def reader(f=f):
             return read_record(f, format=rs.format, units=rs.units, dt=rs.dt)
 
-        sources.append((f.rsplit("/", 1)[-1].rsplit(".", 1)[0], f, reader))
+        sources.append((record_id_of(f), f, reader))
     out = []
     for record_id, label, reader in sources:
         try:

@@ -49,7 +49,7 @@ PROCESSING_KEYS = {
     "scale_pga",
     "scale",
 }
-FIXED_KEYS = {"id", "kind", "stories", "period", "damping", "mass", "profile"}
+FIXED_KEYS = {"id", "kind", "stories", "period", "damping", "mass", "stiffness", "profile"}
 ISOLATED_KEYS = {"id", "kind", "superstructure", "base_mass_ratio", "period", "damping"}
 CONTENT_KEYS = {
     "id",
@@ -91,7 +91,12 @@ class RecordSetSpec:
 
 @dataclass(frozen=True)
 class BuildingSpec:
-    """One building of the study (one value of every swept parameter)."""
+    """One building of the study (one value of every swept parameter).
+
+    A fixed-base building (or the superstructure of an isolated one) is either scaled to its
+    fundamental period (``masses`` or ``mass`` and ``profile``) or given storey by storey
+    (``masses`` and ``stiffnesses``; ``period`` is then its computed fundamental period).
+    """
 
     id: str
     base: str
@@ -105,22 +110,26 @@ class BuildingSpec:
     super_period: float = math.nan
     super_damping: float = math.nan
     base_mass_ratio: float = math.nan
+    masses: tuple[float, ...] = ()
+    stiffnesses: tuple[float, ...] = ()
+
+    def _shear_building(self, period: float, damping: float):
+        from floorslide.building.model import ShearBuilding
+
+        masses = self.masses or (self.mass,) * self.stories
+        if self.stiffnesses:
+            return ShearBuilding(masses, self.stiffnesses, damping)
+        return ShearBuilding.from_period(
+            self.stories, period, damping, mass=masses, profile=self.profile
+        )
 
     def build(self):
         """The building model."""
-        from floorslide.building.model import IsolatedBuilding, ShearBuilding
+        from floorslide.building.model import IsolatedBuilding
 
         if self.kind == "fixed":
-            return ShearBuilding.from_period(
-                self.stories, self.period, self.damping, mass=self.mass, profile=self.profile
-            )
-        sup = ShearBuilding.from_period(
-            self.stories,
-            self.super_period,
-            self.super_damping,
-            mass=self.mass,
-            profile=self.profile,
-        )
+            return self._shear_building(self.period, self.damping)
+        sup = self._shear_building(self.super_period, self.super_damping)
         return IsolatedBuilding(sup, self.base_mass_ratio, self.period, self.damping)
 
 
@@ -279,13 +288,15 @@ def parse_scene(text: str, path: str | Path = "scene.toml") -> Scene:
             ck.keys(doc["scene"], {"name"}, "scene")
             if "name" in doc["scene"]:
                 name = ck.string(doc["scene"]["name"], "scene.name") or name
-    records = _records(doc.get("records"), ck, base)
+    records, record_ids = _records(doc.get("records"), ck, base)
     processing = _processing(doc.get("processing", {}), ck)
-    buildings = _buildings(doc.get("buildings"), ck)
+    buildings, building_ids = _buildings(doc.get("buildings"), ck)
     stories = {b.stories for b in buildings}
     contents = _contents(doc.get("contents", []), ck, stories)
     spectra = _spectra(doc.get("spectra"), ck, stories)
-    report = _report(doc.get("report", {}), ck, {b.base for b in buildings})
+    report = _report(
+        doc.get("report", {}), ck, building_ids, buildings, record_ids, spectra=spectra
+    )
     if not contents and spectra is None:
         ck.add("contents", "the scene asks for nothing: give [[contents]] or [spectra]")
     if ck.problems:
@@ -293,14 +304,40 @@ def parse_scene(text: str, path: str | Path = "scene.toml") -> Scene:
     return Scene(name, str(path), text, records, processing, buildings, contents, spectra, report)
 
 
-def _records(value, ck: _Checker, base: Path) -> tuple[RecordSetSpec, ...]:
+def record_id_of(path: str | Path) -> str:
+    """The record id of a record file: its name without the last extension (as the planner
+    names records, and ``[report] history_record`` refers to them)."""
+    return Path(path).stem
+
+
+def _catalog_ids(catalog: str, where: dict, w: str, ck: _Checker) -> list[str] | None:
+    """Record ids of the catalog rows `where` selects (a problem if it names an unknown column
+    or selects no row); None when the catalog cannot be read here (the planner reports it)."""
+    from floorslide.errors import RecordError
+    from floorslide.records.catalog import load_catalog
+
+    try:
+        entries = load_catalog(catalog, where=where or None)
+    except RecordError as exc:
+        if exc.message.startswith("where: "):
+            ck.add(f"{w}.where", exc.message.removeprefix("where: "))
+        return None
+    if not entries:
+        ck.add(f"{w}.where" if where else f"{w}.catalog", f"selects no row of {catalog}")
+    return [record_id_of(e.path) for e in entries]
+
+
+def _records(value, ck: _Checker, base: Path) -> tuple[tuple[RecordSetSpec, ...], list[str] | None]:
+    """The record sets, and the ids of their records (None when some set's records are not
+    known before reading, so that a name cannot be checked)."""
     if value is None:
         ck.add("records", "missing: give at least one [[records]] set")
-        return ()
+        return (), None
     if not isinstance(value, list) or not value:
         ck.add("records", "must be a list of tables ([[records]])")
-        return ()
+        return (), None
     out, names = [], set()
+    ids: list[str] | None = []
     for i, r in enumerate(value):
         w = f"records[{i}]"
         if not isinstance(r, dict):
@@ -341,6 +378,11 @@ def _records(value, ck: _Checker, base: Path) -> tuple[RecordSetSpec, ...]:
         if not isinstance(where, dict):
             ck.add(f"{w}.where", "must be a table of column = value")
             where = {}
+        if catalog:
+            got = _catalog_ids(catalog, where, w, ck) if Path(catalog).is_file() else None
+            ids = None if got is None or ids is None else ids + got
+        elif ids is not None:
+            ids += [record_id_of(f) for f in files]
         scale = (
             ck.numbers(r["scale_pga"], f"{w}.scale_pga", lo=0, lo_open=True)
             if "scale_pga" in r
@@ -370,7 +412,7 @@ def _records(value, ck: _Checker, base: Path) -> tuple[RecordSetSpec, ...]:
                 **opts,
             )
         )
-    return tuple(out)
+    return tuple(out), ids
 
 
 def _processing(value, ck: _Checker) -> dict:
@@ -402,16 +444,98 @@ def _processing(value, ck: _Checker) -> dict:
     return {k: v for k, v in value.items() if k in PROCESSING_KEYS}
 
 
-def _buildings(value, ck: _Checker) -> tuple[BuildingSpec, ...]:
+def _storey_values(value, where: str, ck: _Checker, unit: str) -> tuple[float, ...] | None:
+    """A per-storey quantity: a number > 0 (every storey the same) as a 1-tuple, or a list of
+    numbers > 0 (one per storey, from the first suspended floor up); None when invalid."""
+    if isinstance(value, list):
+        if not value:
+            ck.add(where, f"must list one value per storey ({unit}), got an empty list")
+            return None
+        if len(value) > MAX_STORIES:
+            ck.add(where, f"at most {MAX_STORIES} storeys, got {len(value)}")
+            return None
+        got = [ck.number(v, f"{where}[{j}]", lo=0, lo_open=True) for j, v in enumerate(value)]
+        return None if None in got else tuple(got)
+    got = ck.number(value, where, lo=0, lo_open=True)
+    return None if got is None else (got,)
+
+
+def _fixed_model(b: dict, w: str, ck: _Checker):
+    """Storeys, per-storey masses and stiffnesses, periods and profile of a fixed building.
+
+    Returns ``(stories, masses, stiffnesses, periods, profile)`` or None when invalid (the
+    problems are reported). ``stiffnesses`` is ``()`` when the building is scaled to ``period``;
+    else ``periods`` holds its computed fundamental period.
+    """
+    ok = True
+    stories = None
+    if "stories" in b:
+        stories = ck.number(b["stories"], f"{w}.stories", lo=1, hi=MAX_STORIES, integer=True)
+        ok = stories is not None
+    mass = _storey_values(b.get("mass", 1.0), f"{w}.mass", ck, "kg")
+    stiff = _storey_values(b["stiffness"], f"{w}.stiffness", ck, "N/m") if "stiffness" in b else ()
+    ok = ok and mass is not None and stiff is not None
+    lists = {key: len(b[key]) for key in ("mass", "stiffness") if isinstance(b.get(key), list)}
+    if len(set(lists.values())) > 1:
+        ck.add(
+            f"{w}.stiffness",
+            f"one value per storey: {lists['stiffness']} stiffnesses for {lists['mass']} masses",
+        )
+        ok = False
+    elif lists:
+        n = next(iter(lists.values()))
+        if stories is not None and stories != n:
+            key = next(iter(lists))
+            ck.add(f"{w}.{key}", f"{n} values (one per storey) for stories = {stories}")
+            ok = False
+        stories = n
+    if stories is None:
+        stories = 1
+    periods: tuple[float, ...] = ()
+    if "period" in b and "stiffness" in b:
+        ck.add(
+            f"{w}.stiffness",
+            "give period (stiffnesses scaled to it) or stiffness (storey by storey), not both",
+        )
+        ok = False
+    elif "period" in b:
+        periods = ck.numbers(b["period"], f"{w}.period", lo=0, lo_open=True)
+        ok = ok and bool(periods)
+    elif "stiffness" not in b:
+        ck.add(f"{w}.period", "missing: the fundamental period, s (or storey stiffnesses)")
+        ok = False
+    profile = b.get("profile", "uniform")
+    if profile not in ("uniform", "shear"):
+        ck.add(f"{w}.profile", f"must be 'uniform' or 'shear', got {profile!r}")
+        ok = False
+    elif "profile" in b and "stiffness" in b:
+        ck.add(f"{w}.profile", "only applies with period (storey stiffnesses are given)")
+        ok = False
+    if not ok:
+        return None
+    masses = tuple(np.broadcast_to(mass, (stories,)).tolist())
+    stiffnesses = tuple(np.broadcast_to(stiff, (stories,)).tolist()) if stiff else ()
+    if stiffnesses:
+        from floorslide.building.model import ShearBuilding
+
+        periods = (float(ShearBuilding(masses, stiffnesses, 0.0).periods[0]),)
+    return stories, masses, stiffnesses, periods, str(profile)
+
+
+def _buildings(value, ck: _Checker) -> tuple[tuple[BuildingSpec, ...], set[str]]:
+    """The building variants, and the id of every building declared — also of one with an
+    invalid value, so that later names (superstructure, report.compare) are not reported again
+    as unknown."""
     if value is None:
         ck.add("buildings", "missing: give at least one [[buildings]]")
-        return ()
+        return (), set()
     if not isinstance(value, list) or not value:
         ck.add("buildings", "must be a list of tables ([[buildings]])")
-        return ()
+        return (), set()
     fixed: dict[str, list[BuildingSpec]] = {}
     out: list[BuildingSpec] = []
     ids: set[str] = set()
+    declared_fixed: set[str] = set()
     isolated = []
     for i, b in enumerate(value):
         w = f"buildings[{i}]"
@@ -423,7 +547,8 @@ def _buildings(value, ck: _Checker) -> tuple[BuildingSpec, ...]:
             ck.add(f"{w}.id", "missing: name the building")
         elif bid in ids:
             ck.add(f"{w}.id", f"duplicate building id {bid!r}")
-        ids.add(bid)
+        if bid:
+            ids.add(bid)
         kind = b.get("kind")
         if kind not in ("fixed", "isolated"):
             ck.add(f"{w}.kind", f"must be 'fixed' or 'isolated', got {kind!r}")
@@ -432,20 +557,14 @@ def _buildings(value, ck: _Checker) -> tuple[BuildingSpec, ...]:
             ck.keys(b, ISOLATED_KEYS, w)
             isolated.append((i, b, bid))
             continue
+        if bid:
+            declared_fixed.add(bid)
         ck.keys(b, FIXED_KEYS, w)
-        stories = ck.number(b.get("stories", 1), f"{w}.stories", lo=1, hi=MAX_STORIES, integer=True)
-        periods = (
-            ck.numbers(b["period"], f"{w}.period", lo=0, lo_open=True) if "period" in b else ()
-        )
-        if "period" not in b:
-            ck.add(f"{w}.period", "missing: the fundamental period, s")
+        model = _fixed_model(b, w, ck)
         damps = ck.numbers(b.get("damping", 0.05), f"{w}.damping", lo=0, hi=1, hi_open=True)
-        mass = ck.number(b.get("mass", 1.0), f"{w}.mass", lo=0, lo_open=True)
-        profile = b.get("profile", "uniform")
-        if profile not in ("uniform", "shear"):
-            ck.add(f"{w}.profile", f"must be 'uniform' or 'shear', got {profile!r}")
-        if stories is None or mass is None or not bid:
+        if model is None or not damps or not bid:
             continue
+        stories, masses, stiffnesses, periods, profile = model
         variants = []
         for T, z in itertools.product(periods, damps):
             vid = bid
@@ -456,22 +575,25 @@ def _buildings(value, ck: _Checker) -> tuple[BuildingSpec, ...]:
                 tags.append(f"xi={_fmt(z)}")
             if tags:
                 vid += "@" + ",".join(tags)
-            variants.append(BuildingSpec(vid, bid, "fixed", stories, T, z, mass, str(profile)))
+            variants.append(
+                BuildingSpec(
+                    vid,
+                    bid,
+                    "fixed",
+                    stories,
+                    T,
+                    z,
+                    masses[0],
+                    profile,
+                    masses=masses,
+                    stiffnesses=stiffnesses,
+                )
+            )
         fixed[bid] = variants
         out += variants
     for i, b, bid in isolated:
         w = f"buildings[{i}]"
         sup = b.get("superstructure")
-        if not isinstance(sup, str) or sup not in fixed:
-            ck.add(f"{w}.superstructure", f"must be the id of a fixed building, got {sup!r}")
-            continue
-        if len(fixed[sup]) != 1:
-            ck.add(
-                f"{w}.superstructure",
-                f"{sup!r} is swept; isolate a building with one period and damping",
-            )
-            continue
-        s = fixed[sup][0]
         ratios = ck.numbers(
             b.get("base_mass_ratio", 1.0), f"{w}.base_mass_ratio", lo=0, lo_open=True
         )
@@ -481,6 +603,18 @@ def _buildings(value, ck: _Checker) -> tuple[BuildingSpec, ...]:
         if "period" not in b:
             ck.add(f"{w}.period", "missing: the isolation period, s")
         damps = ck.numbers(b.get("damping", 0.1), f"{w}.damping", lo=0, hi=1, hi_open=True)
+        if not isinstance(sup, str) or sup not in declared_fixed:
+            ck.add(f"{w}.superstructure", f"must be the id of a fixed building, got {sup!r}")
+            continue
+        if sup not in fixed:
+            continue  # the superstructure is invalid: its problems are reported there
+        if len(fixed[sup]) != 1:
+            ck.add(
+                f"{w}.superstructure",
+                f"{sup!r} is swept; isolate a building with one period and damping",
+            )
+            continue
+        s = fixed[sup][0]
         if not bid:
             continue
         for R, T, z in itertools.product(ratios, periods, damps):
@@ -506,9 +640,11 @@ def _buildings(value, ck: _Checker) -> tuple[BuildingSpec, ...]:
                     s.period,
                     s.damping,
                     R,
+                    masses=s.masses,
+                    stiffnesses=s.stiffnesses,
                 )
             )
-    return tuple(out)
+    return tuple(out), ids
 
 
 def _floor_spec(value, where, ck: _Checker, stories: set[int]):
@@ -640,7 +776,17 @@ def _spectra(value, ck: _Checker, stories: set[int]) -> SpectraSpec | None:
     return SpectraSpec(floors, damping, grid, broadening or 0.0)
 
 
-def _report(value, ck: _Checker, building_ids: set[str]) -> dict:
+def _report(
+    value,
+    ck: _Checker,
+    building_ids: set[str],
+    buildings: tuple[BuildingSpec, ...],
+    record_ids: list[str] | None,
+    spectra: SpectraSpec | None = None,
+) -> dict:
+    """``[report]``: every name it holds is checked against the scene — buildings of
+    ``compare`` (a base id or a variant id), ``history_record`` (a record of the sets, when
+    they are known before reading), ``damping`` (one of the spectra's)."""
     if not isinstance(value, dict):
         ck.add("report", "must be a table")
         return {}
@@ -648,16 +794,39 @@ def _report(value, ck: _Checker, building_ids: set[str]) -> dict:
     if "periods" in value:
         ck.numbers(value["periods"], "report.periods", lo=0)
     if "damping" in value:
-        ck.number(value["damping"], "report.damping", lo=0, hi=1, hi_open=True)
+        z = ck.number(value["damping"], "report.damping", lo=0, hi=1, hi_open=True)
+        if z is not None and spectra is not None and spectra.damping:
+            if not any(abs(z - d) <= 1e-9 for d in spectra.damping):
+                listing = ", ".join(f"{d:g}" for d in spectra.damping)
+                ck.add("report.damping", f"{z:g} is not among spectra.damping ({listing})")
     comps = value.get("compare", [])
     if not isinstance(comps, list):
         comps = [comps]
+    valid_bases = {b.base for b in buildings}
+    variants = {b.id for b in buildings}
     for j, comp in enumerate(comps):
         parts = comp.split(":") if isinstance(comp, str) else []
-        if len(parts) != 2 or not all(parts):
+        if len(parts) != 2 or not all(p.strip() for p in parts):
             ck.add(f"report.compare[{j}]", f"must be 'A:B' (two building ids), got {comp!r}")
             continue
-        for p in parts:
-            if p.split("@")[0] not in building_ids:
-                ck.add(f"report.compare[{j}]", f"unknown building {p!r}")
+        for p in (x.strip() for x in parts):
+            base_id = p.split("@")[0]
+            if base_id not in building_ids:
+                known = ", ".join(sorted(building_ids)) or "none"
+                ck.add(f"report.compare[{j}]", f"unknown building {p!r} (buildings: {known})")
+            elif "@" in p and base_id in valid_bases and p not in variants:
+                known = ", ".join(sorted(v for v in variants if v.split("@")[0] == base_id))
+                ck.add(f"report.compare[{j}]", f"no building variant {p!r} (variants: {known})")
+    if "history_record" in value:
+        name = ck.string(value["history_record"], "report.history_record")
+        if name is not None and record_ids is not None and name not in record_ids:
+            import difflib
+
+            close = difflib.get_close_matches(name, record_ids, n=1)
+            hint = f"; did you mean {close[0]!r}?" if close else ""
+            shown = ", ".join(record_ids[:5]) + (" …" if len(record_ids) > 5 else "")
+            ck.add(
+                "report.history_record",
+                f"no record {name!r} in the record sets ({len(record_ids)} records: {shown}){hint}",
+            )
     return dict(value)

@@ -121,8 +121,62 @@ def _values(rs: str, bid: str, k: int, pga: float):
     return peak, resid, acc, modes, pfa, psa
 
 
-def write_study(path: Path, report: str | None = REPORT, order_seed: int = 0) -> Synthetic:
-    """Write the synthetic study to `path`, tasks in a shuffled order (seeded)."""
+RACK_MU = np.array([0.1, 0.3])
+RACK_SCENE = """
+[[contents]]
+id = "rack"
+floors = [1]
+model = "oscillator"
+frequency = 8.0
+mass_ratio = 0.5
+mu = [0.1, 0.3]
+"""
+
+
+def _rack(rs: str, bid: str, k: int, pfa1: float) -> ContentResult:
+    """A made-up 2-DOF oscillator result: base slide, spring deformation, top acceleration;
+    it rocks on the fixed building under pulse-like record 3 at mu = 0.3 (to test NaNs)."""
+    peak = np.array([0.05, 0.01]) * (1 + 0.5 * k) * (1.0 if bid == "fixed" else 0.4)
+    deform = np.array([0.004, 0.006]) * (1 + 0.2 * k) + 0.001 * (rs == "pulse-like")
+    top = pfa1 * np.array([1.8, 2.1]) * (1 + 0.1 * k)
+    base = np.minimum(pfa1, (RACK_MU + 0.05) * G)
+    modes = np.array(["slide", "slide"], dtype=object)
+    if bid == "fixed" and rs == "pulse-like" and k == 2:
+        peak[1] = deform[1] = top[1] = base[1] = np.nan
+        modes[1] = "rock"
+    return ContentResult(
+        content="rack",
+        floor=1,
+        model="oscillator",
+        mode="slide" if len(set(modes)) == 1 else "mixed",
+        skipped="",
+        mu_k=RACK_MU.copy(),
+        mu_s=RACK_MU.copy(),
+        peak_slide=peak,
+        residual_slide=-0.5 * peak,
+        peak_abs_accel=base,
+        slide_fraction=np.where(np.isfinite(peak), 0.3, np.nan),
+        slip_phases=np.where(np.isfinite(peak), 6, -1),
+        peak_deformation=deform,
+        peak_top_accel=top,
+        modes=modes.astype(str),
+    )
+
+
+def write_study(
+    path: Path,
+    report: str | None = REPORT,
+    order_seed: int = 0,
+    *,
+    flexible: bool = False,
+    broadening: float = 0.0,
+    done: int | None = None,
+) -> Synthetic:
+    """Write the synthetic study to `path`, tasks in a shuffled order (seeded).
+
+    `flexible` adds a 2-DOF oscillator content ``rack``; `broadening` stores broadened spectra
+    (``1.25 × PSA``, made up) beside the unbroadened ones; `done` writes only that many tasks
+    while the stored plan still counts them all (an interrupted run)."""
     syn = Synthetic(path)
     results = []
     for rs, records in SETS.items():
@@ -166,6 +220,16 @@ def write_study(path: Path, report: str | None = REPORT, order_seed: int = 0) ->
                     SpectrumResult(f, PERIODS, DAMPING, psa[:, i], psa[:, i], psa[:, i], psa[:, i])
                     for i, f in enumerate((0, 1))
                 ]
+                if broadening:
+                    for sp in spectra:
+                        sp.broadening = broadening
+                        wide = 1.25 * sp.psa
+                        sp.psa_broadened = sp.sa_broadened = wide
+                        sp.sv_broadened = sp.sd_broadened = wide
+                contents = [content]
+                if flexible:
+                    contents.append(_rack(rs, bid, k, pfa[1]))
+                    syn.truth[(rs, bid, rec)]["rack"] = contents[-1]
                 hist = None
                 if rs == "broad-band" and rec == "bb1" and bid == "fixed":
                     t = np.arange(NPTS) * DT
@@ -179,16 +243,27 @@ def write_study(path: Path, report: str | None = REPORT, order_seed: int = 0) ->
                         {"cabinet/floor_1": u},
                         {"cabinet/floor_1": MU.copy()},
                     )
+                    if flexible:
+                        key = "rack/floor_1"
+                        hist.slides[key] = 0.5 * u[:2]
+                        hist.mu_k[key] = RACK_MU.copy()
+                        hist.deformation[key] = 0.01 * np.vstack([np.sin(9 * t)] * 2)
+                        hist.top_accel[key] = 3.0 * np.vstack([np.cos(9 * t)] * 2)
                 results.append(
-                    TaskResult("", meta, np.array([0, 1]), pfa, [content], spectra, hist, 0.01)
+                    TaskResult("", meta, np.array([0, 1]), pfa, contents, spectra, hist, 0.01)
                 )
     order = np.random.default_rng(order_seed).permutation(len(results))
-    scene = SCENE_HEAD + (report or "")
+    scene = SCENE_HEAD + (RACK_SCENE if flexible else "") + (report or "")
+    if broadening:
+        scene = scene.replace("periods = { min", f"broadening = {broadening}\nperiods = {{ min")
     writer = ResultWriter(path, scene, "synthetic.toml", "synthetic study", {"tasks": len(results)})
+    if done is not None:
+        order = order[:done]
     for j, i in enumerate(order):
         results[i].task_id = f"t{j:05d}"
         writer.write(results[i])
-    writer.finish()
+    if done is None:
+        writer.finish()
     return syn
 
 
@@ -202,3 +277,15 @@ def study(tmp_path_factory) -> Synthetic:
 def plain_study(tmp_path_factory) -> Synthetic:
     """The same study, its scene without a [report] table."""
     return write_study(tmp_path_factory.mktemp("plain") / "plain.h5", report=None)
+
+
+@pytest.fixture(scope="session")
+def rich_study(tmp_path_factory) -> Synthetic:
+    """The study with a 2-DOF oscillator content and broadened spectra (issue 12)."""
+    return write_study(tmp_path_factory.mktemp("rich") / "rich.h5", flexible=True, broadening=0.15)
+
+
+@pytest.fixture(scope="session")
+def partial_study(tmp_path_factory) -> Synthetic:
+    """The study interrupted after 14 of its 18 tasks."""
+    return write_study(tmp_path_factory.mktemp("partial") / "partial.h5", done=14)

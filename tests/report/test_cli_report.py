@@ -188,3 +188,119 @@ def test_figures_are_reproducible_bit_for_bit(study, tmp_path):
     assert [p.name for p in first] == [p.name for p in second]
     for p, q in zip(first, second, strict=True):
         assert p.read_bytes() == q.read_bytes()
+
+
+# --- issue 12 --------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("command", ["table", "plot"])
+def test_incomplete_file_exits_4_with_one_line(
+    monkeypatch, capsys, partial_study, tmp_path, command
+):
+    """Item 6: a run interrupted at 14 of 18 tasks is refused (exit 4) with one line saying how
+    many tasks of how many are done and how to proceed; nothing is written."""
+    code, out, err = invoke(monkeypatch, capsys, command, partial_study.path, "-o", tmp_path / "o")
+    assert code == 4 and out == "" and err.count("\n") == 1
+    assert err.startswith(f"floorslide: error: {partial_study.path}: INCOMPLETE: 14 of 18 tasks")
+    assert "--resume" in err and "--allow-incomplete" in err and "Traceback" not in err
+    assert not (tmp_path / "o").exists()
+
+
+def test_table_allow_incomplete_labels_every_format(monkeypatch, capsys, partial_study, tmp_path):
+    path = partial_study.path
+    code, out, err = invoke(monkeypatch, capsys, "table", path, "--allow-incomplete")
+    assert code == 0 and "INCOMPLETE: 14 of 18 tasks done" in err and err.count("\n") == 1
+    assert out.splitlines()[0].endswith("— INCOMPLETE") and "**INCOMPLETE: 14 of 18" in out
+    code, out, _ = invoke(
+        monkeypatch, capsys, "table", path, "--allow-incomplete", "--format", "csv", "-o", tmp_path
+    )
+    assert code == 0
+    for name in TABLE_NAMES:
+        text = (tmp_path / f"{name}.csv").read_text()
+        assert text.startswith("# INCOMPLETE: 14 of 18 tasks done"), name
+    code, out, _ = invoke(monkeypatch, capsys, "table", path, "--allow-incomplete", "--json")
+    data = json.loads(out)
+    assert code == 0 and data["complete"] is False and data["tasks_done"] == 14
+
+
+def test_plot_allow_incomplete_labels_the_figures(monkeypatch, capsys, partial_study, tmp_path):
+    from floorslide.report.plots import figure_slide_vs_mu
+    from floorslide.report.study import load_study
+
+    code, out, err = invoke(
+        monkeypatch, capsys, "plot", partial_study.path, "--allow-incomplete", "-o", tmp_path
+    )
+    assert code == 0 and out.split() and "INCOMPLETE" in err
+    study = load_study(partial_study.path)
+    tables = design_tables(study, allow_incomplete=True)
+    fig = figure_slide_vs_mu(study, tables, "broad-band")
+    title = fig._suptitle
+    assert (
+        title.get_text().startswith("INCOMPLETE: 14 of 18 tasks done")
+        and title.get_color() == "red"
+    )
+
+
+def test_plot_compare_fixed_over_isolated_draws(monkeypatch, capsys, study, tmp_path):
+    """Item 6: --compare fixed:isolated used to write nothing and exit 0; its ratio is drawn
+    versus the isolation period of B."""
+    from floorslide.report.plots import figure_slide_ratio
+    from floorslide.report.study import load_study
+
+    code, out, err = invoke(
+        monkeypatch, capsys, "plot", study.path, "--compare", "fixed:isolated", "-o", tmp_path
+    )
+    assert code == 0, err
+    names = [p.rsplit("/", 1)[1] for p in out.split()]
+    assert "slide_ratio_broad-band_fixed-over-isolated.png" in names
+    assert "slide_ratio_pulse-like_fixed-over-isolated.png" in names
+    s = load_study(study.path)
+    fig = figure_slide_ratio(
+        s, design_tables(s, compare=["fixed:isolated"]), "broad-band", "fixed:isolated"
+    )
+    ax = fig.axes[0]
+    assert ax.get_xlabel() == "isolation period T_i of isolated (s)"
+    xs = sorted({float(x) for line in ax.get_lines() for x in line.get_xdata()})
+    assert {2.0, 2.5} <= set(xs)
+    # two fixed-base buildings: one position per pair
+    fig = figure_slide_ratio(
+        s, design_tables(s, compare=["isolated@T=2:isolated@T=2.5"]), "broad-band",
+        "isolated@T=2:isolated@T=2.5",
+    )  # fmt: skip
+    assert fig is not None
+
+
+def test_plot_compare_that_draws_nothing_is_an_error(monkeypatch, capsys, study, tmp_path):
+    code, out, err = invoke(
+        monkeypatch, capsys, "plot", study.path, "--compare", "fixed:fixed", "-o", tmp_path
+    )
+    assert code == 2 and "--compare" in err and "draws nothing" in err and out == ""
+
+
+def test_help_and_readme_state_the_exit_codes(monkeypatch, capsys):
+    """Item 6: a missing or foreign result file is bad usage (2) in code, --help and README;
+    an incomplete one is 4."""
+    from tests.conftest import ROOT
+
+    for command in ("table", "plot"):
+        code, out, _ = invoke(monkeypatch, capsys, command, "--help")
+        flat = " ".join(out.split())
+        assert code == 0 and "--allow-incomplete" in flat
+        assert "2 bad usage, or OUT.h5 missing, corrupt or not a floorslide result file" in flat
+        assert "4 OUT.h5 is incomplete" in flat
+    readme = " ".join((ROOT / "README.md").read_text().split())
+    assert "(exit code 1); a malformed" not in readme
+    assert "or one without a finished task, is one line naming the file (exit code 2)" in readme
+    assert "exit code 4" in readme
+
+
+def test_demo_summary_never_shows_rocking_as_zero(study):
+    """Item 4: the demo summary follows the tables' rule."""
+    from floorslide.cli import demo_summary
+
+    text = demo_summary(design_tables(study.path))
+    fixed = [ln for ln in text.splitlines() if ln.startswith("| fixed |")]
+    assert fixed[0].split(" | ")[2] == "rocks (3/3)"  # pulse-like, mu 0.05: every record rocks
+    bb = fixed[1].split(" | ")
+    assert bb[3].endswith("(1 rock)")  # broad-band, mu 0.1: one of three rocks
+    assert "never count as 0" in text and "caution: 3 < 8 records" in text

@@ -37,6 +37,21 @@ def _stats(x):
     return (np.mean(x), np.median(x), np.percentile(x, 84))
 
 
+def _ranked(values, rock, q):
+    """Hyndman & Fan definition 7 written out, rocking records sorted above every value:
+    (value, lands on a rocking record)."""
+    known = sorted(v for v, r in zip(values, rock, strict=True) if not r)
+    n = len(values)
+    h = (n - 1) * q / 100
+    j = math.floor(h)
+    g = h - j
+    if j >= len(known) or (g > 0 and j + 1 >= len(known)):
+        return math.nan, True
+    if g == 0:
+        return known[j], False
+    return known[j] + g * (known[j + 1] - known[j]), False
+
+
 def _close(a, b):
     if isinstance(b, float) and math.isnan(b):
         return isinstance(a, float) and math.isnan(a)
@@ -60,28 +75,73 @@ def test_slide_statistics_match_numpy(study, tables):
         resid = [abs(t["resid"][i]) for t in truth]
         acc = [t["acc"][i] for t in truth]
         modes = [t["modes"][i] for t in truth]
+        rock = [m == "rock" for m in modes]
         assert row["n_records"] == 3
-        assert row["n_stats"] == int(np.isfinite(peak).sum())
+        assert row["n_rock"] == sum(rock) and row["rock_fraction"] == sum(rock) / 3
         assert row["n_slid"] == sum(p > 0 for p in peak if np.isfinite(p))
-        assert row["n_rocked"] == sum(m == "rock" for m in modes)
+        assert row["few_records"] is True  # 3 < 8 records
         for prefix, values in (
             ("peak_slide", peak),
             ("residual_slide", resid),
             ("peak_abs_accel", acc),
             ("peak_abs_accel_g", np.array(acc) / G),
         ):
-            for name, expected in zip(("mean", "median", "p84"), _stats(values), strict=True):
-                assert _close(row[f"{prefix}_{name}"], float(expected)), (prefix, name, row)
+            if not any(rock):
+                expected = dict(zip(("mean", "median", "p84"), _stats(values), strict=True))
+            else:
+                expected = {"mean": math.nan}
+                for stat, q in (("median", 50), ("p84", 84)):
+                    expected[stat] = _ranked(values, rock, q)[0]
+            for name, value in expected.items():
+                assert _close(row[f"{prefix}_{name}"], float(value)), (prefix, name, row)
+            for name in ("deformation", "top_accel", "top_accel_g"):
+                assert math.isnan(row[f"peak_{name}_median"])  # rigid blocks: not applicable
 
 
-def test_rocking_is_counted_and_left_out(tables):
+def test_rocking_is_its_own_outcome_never_zero(study, tables):
+    """Issue 12 item 4: a rocking object is counted as an outcome ranked above every slide,
+    not left out (which took the median over the weakest records)."""
     rows = {(r["record_set"], r["building"], r["mu_k"]): r for r in tables["slides"]}
-    some = rows[("broad-band", "fixed", 0.1)]
-    assert (some["n_records"], some["n_stats"], some["n_rocked"]) == (3, 2, 1)
-    assert math.isfinite(some["peak_slide_median"])
+    some = rows[("broad-band", "fixed", 0.1)]  # bb3 rocks, bb1 and bb2 slide
+    assert (some["n_records"], some["n_rock"], some["n_slid"]) == (3, 1, 2)
+    outcomes = tuple(some[f"{s}_outcome"] for s in ("mean", "median", "p84"))
+    assert outcomes == ("rock", "slide", "rock")
+    assert math.isnan(some["peak_slide_mean"]) and math.isnan(some["peak_slide_p84"])
+    slid = [study.truth[("broad-band", "fixed", r)]["peak"][1] for r in ("bb1", "bb2")]
+    # the middle of the three outcomes [bb1, bb2, rock] is the larger slide — not the median
+    # of the two records left after dropping the rocking one
+    assert some["peak_slide_median"] == max(slid) != np.median(slid)
     every = rows[("pulse-like", "fixed", 0.05)]
-    assert (every["n_stats"], every["n_rocked"], every["n_slid"]) == (0, 3, 0)
+    assert (every["n_rock"], every["n_slid"], every["rock_fraction"]) == (3, 0, 1.0)
+    assert {every[f"{s}_outcome"] for s in ("mean", "median", "p84")} == {"rock"}
     assert math.isnan(every["peak_slide_median"]) and math.isnan(every["peak_abs_accel_p84"])
+    text = format_markdown(tables)
+    line = next(ln for ln in text.splitlines() if ln.startswith("| pulse-like | fixed |"))
+    assert line.count("rocks") == 12  # mean, median, p84 of the 4 rigid-block quantities
+
+
+def test_rock_ranking_edge_cases():
+    from floorslide.report.statistics import placement, summarize_outcomes
+
+    # 14 of 18 records rock: the median and p84 are "rock", not the median of the 4 others
+    values = [0.0, 0.0, 0.0, 0.01] + [math.nan] * 14
+    rock = [False] * 4 + [True] * 14
+    got = summarize_outcomes(values, rock)
+    assert all(math.isnan(v) for v in got.values())
+    assert placement(18, 14).median and placement(18, 14).p84
+    # 2 of 18 rock: the median is over all 18 (the 9th/10th of the sorted outcomes)
+    known = np.linspace(0.0, 0.16, 16)
+    got = summarize_outcomes([*known, math.nan, math.nan], [False] * 16 + [True] * 2)
+    padded = np.concatenate([known, [1e9, 1e9]])
+    assert got["median"] == np.percentile(padded, 50)
+    assert math.isnan(got["mean"]) and math.isnan(got["p84"]) is False
+    assert got["p84"] == np.percentile(padded, 84)  # 0.84·17 = 14.28: both neighbours known
+    assert placement(18, 3).p84  # 0.84·17 = 14.28 → 15th and 16th; the 16th rocks
+    # no rocking: exactly numpy
+    x = [0.3, 0.0, 0.1, 0.7, 0.2]
+    assert tuple(summarize_outcomes(x, [False] * 5).values()) == tuple(
+        float(v) for v in (np.mean(x), np.median(x), np.percentile(x, 84))
+    )
 
 
 def test_percentile_is_numpy_linear():
@@ -165,13 +225,18 @@ def test_slide_ratios_and_zero_denominators(tables):
         assert r["isolation_period_a"] == BUILDINGS[r["building_a"]]["isolation_period"]
         assert _close(r["peak_slide_median_a"], a["peak_slide_median"])
         assert _close(r["peak_slide_median_b"], b["peak_slide_median"])
-        if b["peak_slide_median"] > 0 and a["n_stats"] and b["n_stats"]:
+        assert (r["n_rock_a"], r["n_rock_b"]) == (a["n_rock"], b["n_rock"])
+        assert r["median_outcome_b"] == b["median_outcome"] and r["few_records"]
+        if b["peak_slide_median"] > 0 and a["median_outcome"] != "rock":
             assert r["peak_slide_median_ratio"] == pytest.approx(
                 a["peak_slide_median"] / b["peak_slide_median"], rel=1e-12
             )
-            assert r["peak_slide_p84_ratio"] == pytest.approx(
-                a["peak_slide_p84"] / b["peak_slide_p84"], rel=1e-12
-            )
+            if b["p84_outcome"] != "rock" and a["p84_outcome"] != "rock":
+                assert r["peak_slide_p84_ratio"] == pytest.approx(
+                    a["peak_slide_p84"] / b["peak_slide_p84"], rel=1e-12
+                )
+            else:
+                assert math.isnan(r["peak_slide_p84_ratio"])
     by = {(r["record_set"], r["building_a"], r["mu_k"]): r for r in rows}
     assert math.isnan(by[("broad-band", "isolated@T=2", 0.2)]["peak_slide_median_ratio"])  # 0/0
     assert by[("pulse-like", "isolated@T=2", 0.2)]["peak_slide_median_ratio"] == math.inf  # x/0
@@ -269,10 +334,13 @@ def test_markdown_structure(tables):
     start = lines.index(sections[0]) + 2
     header = lines[start]
     assert "peak_slide_median (m)" in header and "peak_abs_accel_p84 (m/s²)" in header
-    assert header.count("|") == len(COLUMNS["slides"]) + 1
+    assert "peak_deformation" not in header  # no oscillator in this study
+    shown = len(COLUMNS["slides"]) - 9  # without the 9 oscillator columns
+    assert header.count("|") == shown + 1
     body = [ln for ln in lines[start + 2 : start + 2 + len(tables["slides"])]]
-    assert all(ln.count("|") == len(COLUMNS["slides"]) + 1 for ln in body)
+    assert all(ln.count("|") == shown + 1 for ln in body)
     assert "| rocks |" in text  # every record rocks
+    assert "†" in text  # p84 from 3 < 8 records
     assert "∞" in text and "—" in text  # x/0 and 0/0 ratios
 
 
@@ -305,7 +373,9 @@ def test_json_is_strict_and_complete(tables):
     units = {c["name"]: c["units"] for c in data["columns"]["slides"]}
     assert units["peak_slide_p84"] == "m" and units["peak_abs_accel_g_mean"] == "g"
     first = data["tables"]["slides"][0]
-    assert first["peak_slide_median"] is None and first["n_rocked"] == 3
+    assert first["peak_slide_median"] is None and first["n_rock"] == 3
+    assert first["median_outcome"] == "rock" and data["complete"] is True
+    assert data["status"] == "" and data["tasks_done"] == data["tasks_planned"] == 18
     assert None in {r["peak_slide_median_ratio"] for r in data["tables"]["slide_ratios"]}
 
 
@@ -335,3 +405,150 @@ def test_stored_damping_rows_are_kept_apart(study):
     truth = [study.truth[(row["record_set"], row["building"], r)] for r in SETS[row["record_set"]]]
     assert row["psa_median"] == np.median([c["psa"][0, row["floor"]][3] for c in truth])
     assert DAMPING[0] == row["damping"]
+
+
+# --- issue 12 --------------------------------------------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def rich(rich_study):
+    return design_tables(rich_study.path)
+
+
+def test_oscillator_results_are_tabulated(rich_study, rich):
+    """Item 3: spring deformation and top-mass acceleration of 2-DOF equipment, with units and
+    statistics; peak_abs_accel is the sliding base's."""
+    rows = [r for r in rich["slides"] if r["content"] == "rack"]
+    assert len(rows) == len(SETS) * len(BUILDINGS) * 2
+    for row in rows:
+        i = [0.1, 0.3].index(row["mu_k"])
+        racks = [
+            rich_study.truth[(row["record_set"], row["building"], r)]["rack"]
+            for r in SETS[row["record_set"]]
+        ]
+        deform = [c.peak_deformation[i] for c in racks]
+        top = [c.peak_top_accel[i] for c in racks]
+        base = [c.peak_abs_accel[i] for c in racks]
+        rock = [m == "rock" for m in (c.modes[i] for c in racks)]
+        assert row["model"] == "oscillator" and row["n_rock"] == sum(rock)
+        if not any(rock):
+            assert _close(row["peak_deformation_median"], float(np.median(deform)))
+            assert _close(row["peak_deformation_p84"], float(np.percentile(deform, 84)))
+            assert _close(row["peak_top_accel_mean"], float(np.mean(top)))
+            assert _close(row["peak_top_accel_g_median"], float(np.median(top)) / G)
+            assert _close(row["peak_abs_accel_median"], float(np.median(base)))
+        else:  # pulse-like, fixed, mu 0.3: one of three rocks
+            assert _close(row["peak_deformation_median"], _ranked(deform, rock, 50)[0])
+            assert math.isnan(row["peak_top_accel_p84"]) and row["p84_outcome"] == "rock"
+    units = {c.name: c.units for c in COLUMNS["slides"]}
+    assert units["peak_deformation_p84"] == "m" and units["peak_top_accel_median"] == "m/s**2"
+    assert units["peak_top_accel_g_mean"] == "g"
+    cabinet = next(r for r in rich["slides"] if r["content"] == "cabinet")
+    assert math.isnan(cabinet["peak_deformation_median"])  # rigid: not applicable
+    text = format_markdown(rich)
+    assert "peak_deformation_median (m)" in text and "peak_top_accel_g_p84 (g)" in text
+    data = json.loads(format_json(rich))
+    first = next(r for r in data["tables"]["slides"] if r["content"] == "rack")
+    assert first["peak_deformation_median"] == pytest.approx(
+        next(r for r in rows if r["building"] == first["building"] and r["mu_k"] == 0.1)[
+            "peak_deformation_median"
+        ]
+    )
+
+
+def test_broadened_and_unbroadened_frs(rich_study, rich):
+    """Item 5: both spectra, each labelled; the notes say which is which."""
+    rows = rich["frs"]
+    assert rows and all(r["broadening"] == 0.15 for r in rows)
+    for row in rows[:6]:
+        truth = [
+            rich_study.truth[(row["record_set"], row["building"], r)]
+            for r in SETS[row["record_set"]]
+        ]
+        j = np.searchsorted(PERIODS, row["period"]) - 1
+        logp = np.log(PERIODS)
+        w = (np.log(row["period"]) - logp[j]) / (logp[j + 1] - logp[j])
+        at = np.array(
+            [
+                c["psa"][1, row["floor"]][j] * (1 - w) + c["psa"][1, row["floor"]][j + 1] * w
+                for c in truth
+            ]
+        )
+        assert row["psa_median"] == pytest.approx(np.median(at), rel=1e-12)
+        assert row["psa_broadened_median"] == pytest.approx(1.25 * np.median(at), rel=1e-12)
+        assert row["psa_broadened_g_p84"] == pytest.approx(1.25 * np.percentile(at, 84) / G)
+    assert any("unbroadened" in n and "±15 %" in n for n in rich.notes)
+    text = format_markdown(rich)
+    assert "psa_broadened_median (m/s²)" in text and "| broadening |" in text
+
+
+def test_no_broadening_is_said(tables):
+    assert all(r["broadening"] == 0.0 for r in tables["frs"])
+    assert all(math.isnan(r["psa_broadened_median"]) for r in tables["frs"])
+    assert any("no peak broadening" in n for n in tables.notes)
+    assert "psa_broadened_median" not in format_markdown(tables)  # no such column shown
+
+
+def test_few_records_caution(tables):
+    """Item 6: statistics from fewer than MIN_RECORDS records carry a caution."""
+    from floorslide.report import MIN_RECORDS
+
+    assert MIN_RECORDS == 8
+    for name in ("slides", "pfa", "frs", "slide_ratios", "pfa_ratios"):
+        assert all(r["few_records"] is True for r in tables[name]), name
+    assert any(n.startswith("few_records: fewer than 8 records") for n in tables.notes)
+    slides = list(csv.DictReader(io.StringIO(format_csv("slides", tables["slides"]))))
+    assert {r["few_records"] for r in slides} == {"True"}
+
+
+def test_placement_threshold_matches_the_documented_reason():
+    """MIN_RECORDS = 8: the first n for which p84 does not interpolate into the largest value."""
+    from floorslide.report import MIN_RECORDS
+
+    for n in range(2, 20):
+        h = 0.84 * (n - 1)
+        uses_largest = math.ceil(h) >= n - 1
+        assert uses_largest == (n < MIN_RECORDS), n
+
+
+def test_incomplete_file_is_refused_then_labelled(partial_study):
+    """Item 6: 14 of 18 tasks done — refused by default, labelled INCOMPLETE in every format
+    when allowed."""
+    from floorslide.errors import IncompleteResultError
+
+    with pytest.raises(IncompleteResultError, match="INCOMPLETE: 14 of 18 tasks done") as info:
+        design_tables(partial_study.path)
+    assert info.value.exit_code == 4 and "--resume" in str(info.value)
+    t = design_tables(partial_study.path, allow_incomplete=True)
+    assert not t.complete and t.status.startswith("INCOMPLETE: 14 of 18 tasks done")
+    md = format_markdown(t)
+    assert md.splitlines()[0].endswith("— INCOMPLETE") and "**INCOMPLETE: 14 of 18" in md
+    assert md.count("(INCOMPLETE)") == len(TABLE_NAMES)
+    for name in TABLE_NAMES:
+        text = format_csv(name, t[name], t.status)
+        assert text.startswith("# INCOMPLETE: 14 of 18 tasks done")
+    sections = format_csv_sections(t)
+    assert sections.count("# INCOMPLETE: 14 of 18") == len(TABLE_NAMES)
+    data = json.loads(format_json(t))
+    assert data["complete"] is False and data["status"].startswith("INCOMPLETE")
+    assert (data["tasks_done"], data["tasks_planned"]) == (14, 18)
+    frames = t.to_pandas()
+    assert frames["slides"].attrs["status"].startswith("INCOMPLETE")
+
+
+def test_tables_as_dataframes(tables):
+    """Item 10: DataFrames with the tables' columns, values and units."""
+    import pandas as pd
+
+    frames = tables.to_pandas()
+    assert list(frames) == list(TABLE_NAMES)
+    for name in TABLE_NAMES:
+        df = frames[name]
+        assert isinstance(df, pd.DataFrame) and len(df) == len(tables[name])
+        assert list(df.columns) == [c.name for c in COLUMNS[name]]
+        assert df.attrs["units"] == {c.name: c.units for c in COLUMNS[name]}
+    df = tables.to_pandas("slides")
+    assert df["peak_slide_median"].iloc[1] == tables["slides"][1]["peak_slide_median"]
+    assert df["n_rock"].dtype.kind == "i" and df.attrs["status"] == ""
+    with pytest.raises(KeyError, match="no table 'nope'"):
+        tables.to_pandas("nope")

@@ -32,6 +32,11 @@ def test_demo(tmp_path):
     rf = ResultFile(tmp_path / "d" / "results.h5")
     assert len(rf.done_tasks()) == 36 * 7
     assert "pulse-like (18 records)" in out.stdout and "| isolated@T=2.5 |" in out.stdout
+    # issue 12 item 4: 9 of 18 records rock under the cabinet at mu = 0.4 on isolated@T=2
+    # (pulse-like); the median falls on them and reads "rocks", not the 0.0 of the 9 others
+    row = next(ln for ln in out.stdout.splitlines()[::-1] if ln.startswith("| isolated@T=2 |"))
+    assert row.split(" | ")[7] == "rocks (9/18)", row
+    assert "never count as 0" in out.stdout
     tables = sorted(p.name for p in (tmp_path / "d" / "tables").iterdir())
     assert "tables.md" in tables and "slides.csv" in tables
     figures = list((tmp_path / "d" / "figures").glob("*.png"))

@@ -188,3 +188,158 @@ def test_user_strings_with_newlines_stay_on_one_line():
     assert any(p.startswith(cat) and p.endswith("a/\\n)") for p in problems)
     assert any(p.startswith("scene.odd\\tkey: unknown key") for p in problems)
     assert all("\n" not in p for p in problems)
+
+
+# --- issue 12, item 8: storey-by-storey buildings, no follow-on errors ----------------------
+
+STOREYS = f"""
+[[records]]
+set = "bb"
+catalog = "{CATALOG}"
+where = {{ station_id = "ELC-180" }}
+
+[[buildings]]
+id = "given"
+kind = "fixed"
+mass = [2.0e5, 1.5e5, 1.0e5]
+stiffness = [3.0e8, 2.5e8, 2.0e8]
+damping = 0.03
+
+[[buildings]]
+id = "scaled"
+kind = "fixed"
+mass = [2.0e5, 1.5e5, 1.0e5]
+period = [0.3, 0.5]
+profile = "shear"
+
+[[buildings]]
+id = "iso"
+kind = "isolated"
+superstructure = "given"
+period = 2.5
+
+[[contents]]
+id = "cabinet"
+mu = 0.2
+"""
+
+
+def test_storey_masses_and_stiffnesses_are_accepted():
+    from floorslide.building.model import ShearBuilding
+
+    sc = parse_scene(STOREYS, ROOT / "x.toml")
+    given, scaled3, scaled5, iso = sc.buildings
+    direct = ShearBuilding([2.0e5, 1.5e5, 1.0e5], [3.0e8, 2.5e8, 2.0e8], 0.03)
+    model = given.build()
+    assert given.stories == 3 and given.period == pytest.approx(direct.periods[0], rel=1e-12)
+    assert (model.stiffness_matrix == direct.stiffness_matrix).all()
+    assert (model.mass == direct.mass).all()
+    assert [scaled3.id, scaled5.id] == ["scaled@T=0.3", "scaled@T=0.5"]
+    m = scaled5.build()
+    assert m.periods[0] == pytest.approx(0.5, rel=1e-12) and list(m.mass) == [2e5, 1.5e5, 1e5]
+    isolated = iso.build()
+    assert isolated.superstructure.stiffness_matrix.tolist() == direct.stiffness_matrix.tolist()
+    assert iso.stories == 3 and iso.super_period == given.period
+
+
+@pytest.mark.parametrize(
+    "body, problem",
+    [
+        ("mass = [1.0, 1.0]\nstiffness = [5.0, 5.0]\nperiod = 0.3", "buildings[0].stiffness: give"),
+        ("mass = [1.0, 1.0, 1.0]\nstories = 2\nperiod = 0.3", "buildings[0].mass: 3 values"),
+        ("mass = [1.0, 1.0, 1.0]\nstiffness = [5.0, 5.0]", "buildings[0].stiffness: one value"),
+        ("mass = [1.0, 1.0]\nstiffness = [5.0, -1]", "buildings[0].stiffness[1]: must be > 0"),
+        ("mass = []\nperiod = 0.3", "buildings[0].mass: must list one value per storey"),
+        ("stiffness = [5.0, 5.0]\nprofile = 'shear'", "buildings[0].profile: only applies"),
+        ("mass = [1.0, 2.0]", "buildings[0].period: missing"),
+    ],
+)
+def test_storey_lists_bad_values(body, problem):
+    text = STOREYS.replace(
+        "mass = [2.0e5, 1.5e5, 1.0e5]\nstiffness = [3.0e8, 2.5e8, 2.0e8]\n", body + "\n", 1
+    )
+    with pytest.raises(SceneError) as err:
+        parse_scene(text, ROOT / "x.toml")
+    assert [p for p in err.value.problems if p.startswith(problem)], err.value.problems
+    assert len(err.value.problems) == 1, err.value.problems
+
+
+def test_one_bad_value_reports_only_itself():
+    """An invalid value of a building is reported once: its id still names it for the
+    isolated building on it and for [report] compare (no follow-on errors)."""
+    text = GOOD.replace("period = 0.3\n", "period = 0.3\ndamping = 15\n", 1) + (
+        '\n[report]\ncompare = ["iso:fb1", "iso@T=2,xi=0.05:fixed@T=0.2"]\n'
+    )
+    with pytest.raises(SceneError) as err:
+        parse_scene(text, ROOT / "x.toml")
+    assert err.value.problems == ["buildings[1].damping: must be ≥ 0 and < 1, got 15"]
+    text = GOOD.replace("stories = 2\nperiod = [0.2, 0.3]", "stories = 2\nperiod = [0.2, -1]")
+    with pytest.raises(SceneError) as err:
+        parse_scene(text, ROOT / "x.toml")
+    assert err.value.problems == ["buildings[0].period[1]: must be > 0, got -1"]
+
+
+# --- issue 12, item 6: every name in the scene is checked when it is validated --------------
+
+
+@pytest.mark.parametrize(
+    "report, problem",
+    [
+        ('history_record = "ImperialValley_1940_ELC-18"', "report.history_record: no record"),
+        ('compare = ["iso@T=9,xi=0.1:fb1"]', "report.compare[0]: no building variant"),
+        ('compare = ["tower:fb1"]', "report.compare[0]: unknown building 'tower'"),
+        ("damping = 0.02", "report.damping: 0.02 is not among spectra.damping (0.05)"),
+    ],
+)
+def test_report_names_are_checked(report, problem):
+    with pytest.raises(SceneError) as err:
+        parse_scene(GOOD + f"\n[report]\n{report}\n", ROOT / "x.toml")
+    assert len(err.value.problems) == 1 and err.value.problems[0].startswith(problem)
+
+
+def test_history_record_typo_suggests_the_record():
+    with pytest.raises(SceneError, match="did you mean 'ImperialValley_1940_ELC-180'"):
+        parse_scene(GOOD + '\n[report]\nhistory_record = "ImperialValley_1940_ELC180"\n', "x")
+    ok = parse_scene(GOOD + '\n[report]\nhistory_record = "ImperialValley_1940_ELC-180"\n', "x")
+    assert ok.report["history_record"] == "ImperialValley_1940_ELC-180"
+
+
+def test_history_record_of_file_sets(tmp_path):
+    (tmp_path / "recs").mkdir()
+    for name in ("a.AT2", "b.AT2"):
+        (tmp_path / "recs" / name).write_text("x")
+    text = (
+        '[[records]]\nset = "s"\nfiles = ["recs/*.AT2"]\n'
+        '[[buildings]]\nid = "f"\nkind = "fixed"\nperiod = 0.2\n'
+        '[[contents]]\nid = "c"\nmu = [0.1]\n[report]\nhistory_record = "{}"\n'
+    )
+    assert parse_scene(text.format("b"), tmp_path / "s.toml").report["history_record"] == "b"
+    with pytest.raises(SceneError, match=r"report.history_record: no record 'c' .*2 records: a, b"):
+        parse_scene(text.format("c"), tmp_path / "s.toml")
+
+
+def test_where_naming_nothing_is_a_scene_error():
+    text = GOOD.replace(
+        'where = { station_id = ["ELC-180", "TAF-021"] }', 'where = { set = "brod-band" }'
+    )
+    with pytest.raises(SceneError) as err:
+        parse_scene(text, ROOT / "x.toml")
+    assert [p.split(":")[0] for p in err.value.problems] == ["records[0].where"]
+    text = GOOD.replace('where = { station_id = ["ELC-180", "TAF-021"] }', 'where = { sett = "x" }')
+    with pytest.raises(SceneError, match=r"records\[0\].where: no column 'sett'"):
+        parse_scene(text, ROOT / "x.toml")
+
+
+def test_dry_run_catches_a_history_record_typo(tmp_path, monkeypatch, capsys):
+    import sys
+
+    from floorslide.cli import main
+
+    path = tmp_path / "s.toml"
+    path.write_text(GOOD + '\n[report]\nhistory_record = "nope"\n')
+    monkeypatch.setattr(sys, "argv", ["floorslide", "run", str(path), "--dry-run"])
+    with pytest.raises(SystemExit) as exit_:
+        main()
+    err = capsys.readouterr().err
+    assert exit_.value.code == 2 and err.count("\n") == 1
+    assert "report.history_record: no record 'nope'" in err

@@ -1,0 +1,297 @@
+"""What the design tables hold: their columns (name, unit, meaning), titles and conventions,
+and the :class:`DesignTables` container that every output format reads.
+
+The conventions every table, figure and report states (DESIGN §10) are constants here, so that
+the notes, the docstrings and the README say the same:
+
+- :data:`PERCENTILE`: the upper statistic, empirical (NumPy ``"linear"``);
+- :data:`MIN_RECORDS`: below this many records a row carries the caution ``few_records``;
+- rocking (:data:`ROCK`): an outcome of its own, never a zero slide.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+PERCENTILE = 84.0
+"""The upper percentile of the tables (empirical, NumPy ``"linear"`` method)."""
+
+MIN_RECORDS = 8
+"""Rows with fewer records carry ``few_records = True`` (a caution, marked † in Markdown and
+stated in figures). With ``n`` records the empirical 84th percentile sits at the position
+``0.84·(n − 1)`` of the sorted values; for ``n ≤ 7`` that lies beyond ``n − 2``, between the two
+largest values, so the "p84" is set by the largest record rather than estimated (and a median of
+fewer than 8 records moves by a whole record's worth when one is added)."""
+
+ROCK = "rock"
+"""The outcome of a record under which the object rocks (Shenton 1996, mode ``rock``): it is
+not simulated as a slider, so its slide is unknown — never zero. In the statistics it is ranked
+above every slide (rocking needs a floor acceleration above ``g·B/H``, more than the object
+rests under); a median or 84th percentile that falls on rocking records is the outcome
+``rock`` (NaN numbers, ``rocks`` in Markdown), and the mean over records of which any rocks is
+``rock`` too."""
+
+OUTCOMES = ("rest", "slide", ROCK)
+"""Outcome of a statistic of the peak slide: ``rest`` (0), ``slide`` (> 0) or ``rock``."""
+
+TABLE_NAMES = ("slides", "pfa", "frs", "slide_ratios", "pfa_ratios")
+"""The tables, in output order."""
+
+
+@dataclass(frozen=True)
+class Column:
+    """A column of a design table: its key, unit (``"1"`` dimensionless, ``""`` for labels)
+    and meaning."""
+
+    name: str
+    units: str
+    description: str
+
+
+STATS = ("mean", "median", "p84")
+"""The statistics of every quantity, in column order."""
+
+
+def _stat_columns(prefix: str, units: str, what: str) -> list[Column]:
+    return [
+        Column(f"{prefix}_mean", units, f"mean of {what} ('rock' if any record rocks)"),
+        Column(f"{prefix}_median", units, f"median of {what} (see median_outcome)"),
+        Column(f"{prefix}_p84", units, f"84th percentile of {what} (see p84_outcome)"),
+    ]
+
+
+_BUILDING = [
+    Column("record_set", "", "record set (scaled sets are named set@PGAg)"),
+    Column("building", "", "building variant id"),
+    Column("building_kind", "", "fixed or isolated"),
+    Column("isolation_period", "s", "isolation period T_i (NaN for fixed-base)"),
+]
+
+_FLOOR = Column("floor", "1", "floor (0 = ground, or the base mat of an isolated building)")
+_N_RECORDS = Column("n_records", "1", "records of the set on this building")
+_FEW = Column(
+    "few_records",
+    "",
+    f"caution: fewer than {MIN_RECORDS} records, the 84th percentile lies between the two "
+    "largest values (set by the largest record)",
+)
+
+SLIDE_QUANTITIES = (
+    "peak_slide",
+    "residual_slide",
+    "peak_abs_accel",
+    "peak_abs_accel_g",
+    "peak_deformation",
+    "peak_top_accel",
+    "peak_top_accel_g",
+)
+"""Quantities of the ``slides`` table with a mean, median and p84 each (the last three are for
+2-DOF oscillators only, NaN for rigid blocks)."""
+
+COLUMNS: dict[str, tuple[Column, ...]] = {
+    "slides": (
+        *_BUILDING,
+        _FLOOR,
+        Column("content", "", "content (equipment) id"),
+        Column("model", "", "rigid or oscillator (2-DOF: a top mass on a spring over a base)"),
+        Column("mu_k", "1", "kinetic friction coefficient"),
+        Column("mu_s", "1", "static friction coefficient"),
+        _N_RECORDS,
+        Column("n_slid", "1", "records in which the object slid (peak slide > 0)"),
+        Column(
+            "n_rock",
+            "1",
+            "records in which the object rocks (mode rock): not simulated as a slider, its own "
+            "outcome in the statistics — never counted as 0 slide",
+        ),
+        Column(
+            "n_slide_rock",
+            "1",
+            "records with mode slide-rock (both start together): simulated as a slider",
+        ),
+        Column("rock_fraction", "1", "n_rock / n_records"),
+        Column("mean_outcome", "", "rest, slide or rock: rock if any record rocks"),
+        Column(
+            "median_outcome",
+            "",
+            "rest, slide or rock: what the median falls on (rock ranked above every slide)",
+        ),
+        Column("p84_outcome", "", "rest, slide or rock: what the 84th percentile falls on"),
+        _FEW,
+        *_stat_columns("peak_slide", "m", "the peak slide max|u|"),
+        *_stat_columns("residual_slide", "m", "the absolute residual slide |u(end)|"),
+        *_stat_columns(
+            "peak_abs_accel",
+            "m/s**2",
+            "the peak absolute acceleration of the object (of the sliding base for an oscillator)",
+        ),
+        *_stat_columns(
+            "peak_abs_accel_g",
+            "g",
+            "the peak absolute acceleration of the object (of the sliding base for an oscillator)",
+        ),
+        *_stat_columns(
+            "peak_deformation", "m", "the peak spring deformation max|z| (oscillators only)"
+        ),
+        *_stat_columns(
+            "peak_top_accel",
+            "m/s**2",
+            "the peak absolute acceleration of the top mass (oscillators only)",
+        ),
+        *_stat_columns(
+            "peak_top_accel_g", "g", "the peak absolute acceleration of the top mass (oscillators)"
+        ),
+    ),
+    "pfa": (
+        *_BUILDING,
+        _FLOOR,
+        _N_RECORDS,
+        _FEW,
+        Column("pfa_mean", "m/s**2", "mean of the true peak floor acceleration"),
+        Column("pfa_median", "m/s**2", "median of the true peak floor acceleration"),
+        Column("pfa_p84", "m/s**2", "84th percentile of the true peak floor acceleration"),
+        Column("pfa_g_mean", "g", "mean of the true peak floor acceleration"),
+        Column("pfa_g_median", "g", "median of the true peak floor acceleration"),
+        Column("pfa_g_p84", "g", "84th percentile of the true peak floor acceleration"),
+        Column("pfa_pga_median", "1", "median over records of PFA / PGA"),
+    ),
+    "frs": (
+        *_BUILDING,
+        _FLOOR,
+        Column("damping", "1", "damping ratio of the spectrum"),
+        Column("period", "s", "oscillator period"),
+        Column("n_records", "1", "records with an ordinate at this period"),
+        _FEW,
+        Column("psa_median", "m/s**2", "median pseudo-spectral acceleration, unbroadened"),
+        Column("psa_p84", "m/s**2", "84th percentile of the PSA, unbroadened"),
+        Column("psa_g_median", "g", "median pseudo-spectral acceleration, unbroadened"),
+        Column("psa_g_p84", "g", "84th percentile of the PSA, unbroadened"),
+        Column(
+            "broadening",
+            "1",
+            "peak broadening ±fraction in frequency of the psa_broadened columns (0: none)",
+        ),
+        Column("psa_broadened_median", "m/s**2", "median PSA, broadened (NaN without)"),
+        Column("psa_broadened_p84", "m/s**2", "84th percentile of the PSA, broadened"),
+        Column("psa_broadened_g_median", "g", "median PSA, broadened (NaN without)"),
+        Column("psa_broadened_g_p84", "g", "84th percentile of the PSA, broadened"),
+    ),
+    "slide_ratios": (
+        Column("comparison", "", "the comparison A:B as asked"),
+        Column("record_set", "", "record set"),
+        Column("building_a", "", "numerator building variant"),
+        Column("building_b", "", "denominator building variant"),
+        Column("isolation_period_a", "s", "isolation period of A (NaN for fixed-base)"),
+        Column("isolation_period_b", "s", "isolation period of B (NaN for fixed-base)"),
+        Column("floor", "1", "floor"),
+        Column("content", "", "content id"),
+        Column("mu_k", "1", "kinetic friction coefficient"),
+        Column("mu_s", "1", "static friction coefficient"),
+        Column("n_records_a", "1", "records on A"),
+        Column("n_records_b", "1", "records on B"),
+        Column("n_rock_a", "1", "records in which the object rocks on A"),
+        Column("n_rock_b", "1", "records in which the object rocks on B"),
+        Column("median_outcome_a", "", "rest, slide or rock: the median on A"),
+        Column("median_outcome_b", "", "rest, slide or rock: the median on B"),
+        Column("p84_outcome_a", "", "rest, slide or rock: the 84th percentile on A"),
+        Column("p84_outcome_b", "", "rest, slide or rock: the 84th percentile on B"),
+        _FEW,
+        Column("peak_slide_median_a", "m", "median peak slide on A"),
+        Column("peak_slide_median_b", "m", "median peak slide on B"),
+        Column("peak_slide_median_ratio", "1", "median peak slide A / B"),
+        Column("peak_slide_p84_ratio", "1", "84th-percentile peak slide A / B"),
+        Column("peak_abs_accel_median_ratio", "1", "median peak object acceleration A / B"),
+    ),
+    "pfa_ratios": (
+        Column("comparison", "", "the comparison A:B as asked"),
+        Column("record_set", "", "record set"),
+        Column("building_a", "", "numerator building variant"),
+        Column("building_b", "", "denominator building variant"),
+        Column("isolation_period_a", "s", "isolation period of A (NaN for fixed-base)"),
+        Column("isolation_period_b", "s", "isolation period of B (NaN for fixed-base)"),
+        Column("floor", "1", "floor"),
+        _FEW,
+        Column("pfa_median_a", "m/s**2", "median PFA on A"),
+        Column("pfa_median_b", "m/s**2", "median PFA on B"),
+        Column("pfa_median_ratio", "1", "median PFA A / B"),
+        Column("pfa_p84_ratio", "1", "84th-percentile PFA A / B"),
+    ),
+}
+"""Columns of every table, in order."""
+
+OSCILLATOR_COLUMNS = frozenset(
+    c.name for c in COLUMNS["slides"] if c.name.startswith(("peak_deformation", "peak_top_accel"))
+)
+"""Columns of the ``slides`` table that only oscillators fill (left out of Markdown when no
+row is an oscillator)."""
+
+TITLES = {
+    "slides": "Sliding contents: peak slide, |residual| slide, peak object acceleration",
+    "pfa": "Peak floor acceleration (PFA)",
+    "frs": "Floor response spectra: PSA at the report periods",
+    "slide_ratios": "Peak-slide ratios between buildings (A / B)",
+    "pfa_ratios": "PFA ratios between buildings (A / B)",
+}
+
+
+@dataclass(frozen=True)
+class Comparison:
+    """A comparison ``A:B`` and the building variants it matches on each side."""
+
+    spec: str
+    a: tuple[str, ...]
+    b: tuple[str, ...]
+
+    def pairs(self) -> list[tuple[str, str]]:
+        """Every (numerator, denominator) pair of distinct variants."""
+        return [(x, y) for x in self.a for y in self.b if x != y]
+
+
+@dataclass(frozen=True)
+class DesignTables:
+    """The design tables of a result file.
+
+    ``tables`` maps each name of :data:`TABLE_NAMES` to its rows (dicts keyed by the column
+    names of :data:`COLUMNS`, SI values, NaN where a statistic is undefined or falls on rocking
+    records — the ``*_outcome`` columns say which). Index it like a mapping:
+    ``tables["slides"]``; :meth:`to_pandas` gives DataFrames.
+
+    ``status`` is ``""`` for a complete result file, else its INCOMPLETE label (every format
+    carries it).
+    """
+
+    source: str
+    scene_name: str
+    periods: tuple[float, ...]
+    damping: float | None
+    comparisons: tuple[Comparison, ...]
+    tables: dict[str, list[dict]]
+    notes: tuple[str, ...] = ()
+    status: str = ""
+    tasks_done: int | None = None
+    tasks_planned: int | None = None
+
+    def __getitem__(self, name: str) -> list[dict]:
+        return self.tables[name]
+
+    def __iter__(self):
+        return iter(self.tables)
+
+    @property
+    def complete(self) -> bool:
+        """False when the result file is incomplete (tasks missing)."""
+        return not self.status
+
+    def as_dict(self) -> dict[str, list[dict]]:
+        """``{table name: rows}``."""
+        return {name: list(rows) for name, rows in self.tables.items()}
+
+    def to_pandas(self, name: str | None = None):
+        """The tables as :class:`pandas.DataFrame` (one, or a dict of all by name).
+
+        Columns in the order of :data:`COLUMNS`; ``df.attrs`` holds ``units`` (column →
+        unit), ``notes``, ``status`` (``""`` or the INCOMPLETE label), ``source``.
+        """
+        from floorslide.report.formats import to_pandas
+
+        return to_pandas(self, name)

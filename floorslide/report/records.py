@@ -1,0 +1,178 @@
+"""The per-record table: one row per record × building × floor × content × friction pair, read
+from a result file — what the ``slides`` design table summarises, record by record.
+
+``record_table(path)`` gives it as a :class:`pandas.DataFrame`; ``floorslide table OUT.h5
+--per-record`` as CSV (or JSON). Columns and units are in :data:`RECORD_COLUMNS`.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+from floorslide.constants import G
+from floorslide.report.columns import ROCK, Column
+from floorslide.report.study import Study, _float, _natural, _rank, load_study
+from floorslide.run.store import ResultFile
+
+RECORD_COLUMNS: tuple[Column, ...] = (
+    Column("record_set", "", "record set (scaled sets are named set@PGAg)"),
+    Column("record", "", "record id (file name without extension)"),
+    Column("record_file", "", "the record's file"),
+    Column("building", "", "building variant id"),
+    Column("building_kind", "", "fixed or isolated"),
+    Column("isolation_period", "s", "isolation period T_i (NaN for fixed-base)"),
+    Column("floor", "1", "floor (0 = ground, or the base mat of an isolated building)"),
+    Column("content", "", "content (equipment) id"),
+    Column("model", "", "rigid or oscillator"),
+    Column("mu_k", "1", "kinetic friction coefficient"),
+    Column("mu_s", "1", "static friction coefficient"),
+    Column("mode", "", "Shenton's mode from the floor's PFA: rest, slide, rock or slide-rock"),
+    Column(
+        "outcome",
+        "",
+        "rest (no slide), slide or rock (not simulated as a slider: its values are NaN)",
+    ),
+    Column("peak_slide", "m", "peak slide max|u| (of the sliding base for an oscillator)"),
+    Column("residual_slide", "m", "residual slide u(end), signed"),
+    Column("peak_abs_accel", "m/s**2", "peak absolute acceleration of the object (base)"),
+    Column("peak_abs_accel_g", "g", "peak absolute acceleration of the object (base)"),
+    Column("slide_fraction", "1", "fraction of the record spent sliding"),
+    Column("slip_phases", "1", "breakaways and reversals (NaN where the object rocks)"),
+    Column("peak_deformation", "m", "peak spring deformation max|z| (oscillators; else NaN)"),
+    Column("peak_top_accel", "m/s**2", "peak absolute acceleration of the top mass (oscillators)"),
+    Column("peak_top_accel_g", "g", "peak absolute acceleration of the top mass (oscillators)"),
+    Column("pfa", "m/s**2", "true peak acceleration of the floor under this record"),
+    Column("pga", "m/s**2", "peak ground acceleration of the record as run (after scaling)"),
+    Column("scale", "1", "factor applied to the record"),
+    Column("skipped", "", 'why the object was not integrated ("" when it was)'),
+)
+"""Columns of the per-record table, in order."""
+
+
+def _outcome(mode: str, peak: float) -> str:
+    if mode == ROCK or not math.isfinite(peak):
+        return ROCK
+    return "slide" if peak > 0 else "rest"
+
+
+def _modes(c) -> list[str]:
+    """Per friction pair: the object's mode under this record (older files: from the values)."""
+    n = len(c.mu_k)
+    if c.modes is not None and len(c.modes) == n:
+        return [str(m) for m in c.modes]
+    if c.mode in ("rest", "slide", "rock", "slide-rock"):
+        return [c.mode] * n
+    return [
+        ROCK if not np.isfinite(p) else ("slide" if p > 0 else "rest")
+        for p in np.asarray(c.peak_slide, dtype=float)
+    ]
+
+
+def record_rows(study: Study) -> list[dict]:
+    """The per-record rows of a study (dicts keyed by :data:`RECORD_COLUMNS`), in the tables'
+    order: record sets, buildings and contents as in the scene, floors up, friction ascending,
+    records in natural order."""
+    buildings = list(study.buildings)
+    rows = []
+    for t in study.tasks:
+        m = t.meta
+        bid = str(m["building"])
+        pfa_of = dict(zip(np.asarray(t.floors).tolist(), np.asarray(t.pfa).tolist(), strict=True))
+        for c in t.contents:
+            modes = _modes(c)
+            osc = c.peak_deformation is not None
+            for i in range(len(c.mu_k)):
+                peak = float(c.peak_slide[i])
+                out = _outcome(modes[i], peak)
+                acc = float(c.peak_abs_accel[i])
+                top = float(c.peak_top_accel[i]) if osc else math.nan
+                phases = float(c.slip_phases[i])
+                rows.append(
+                    {
+                        "record_set": str(m["record_set"]),
+                        "record": str(m["record"]),
+                        "record_file": str(m.get("record_file", "")),
+                        "building": bid,
+                        "building_kind": study.buildings[bid].kind,
+                        "isolation_period": study.buildings[bid].isolation_period,
+                        "floor": int(c.floor),
+                        "content": c.content,
+                        "model": c.model,
+                        "mu_k": float(c.mu_k[i]),
+                        "mu_s": float(c.mu_s[i]),
+                        "mode": modes[i],
+                        "outcome": out,
+                        "peak_slide": peak,
+                        "residual_slide": float(c.residual_slide[i]),
+                        "peak_abs_accel": acc,
+                        "peak_abs_accel_g": acc / G,
+                        "slide_fraction": float(c.slide_fraction[i]),
+                        "slip_phases": math.nan if out == ROCK else phases,
+                        "peak_deformation": float(c.peak_deformation[i]) if osc else math.nan,
+                        "peak_top_accel": top,
+                        "peak_top_accel_g": top / G,
+                        "pfa": float(pfa_of.get(int(c.floor), math.nan)),
+                        "pga": _float(m.get("pga")),
+                        "scale": _float(m.get("scale")),
+                        "skipped": c.skipped,
+                    }
+                )
+
+    def key(r: dict) -> tuple:
+        return (
+            _rank(study.sets, r["record_set"]),
+            _rank(buildings, r["building"]),
+            r["floor"],
+            _rank(study.contents, r["content"]),
+            r["mu_k"],
+            r["mu_s"],
+            _natural(r["record"]),
+        )
+
+    return sorted(rows, key=key)
+
+
+def record_table(result: str | Path | ResultFile | Study, *, allow_incomplete: bool = False):
+    """The per-record table of a result file as a :class:`pandas.DataFrame`.
+
+    One row per record × building × floor × content × friction pair, columns as in
+    :data:`RECORD_COLUMNS` (SI values; the object's values are NaN where it rocks, and
+    ``outcome`` says ``rock``). ``df.attrs`` holds ``units`` (column → unit), ``source`` and
+    ``status`` (``""``, or the INCOMPLETE label).
+
+    Parameters
+    ----------
+    result
+        Path of a result file, a :class:`ResultFile` or a
+        :class:`~floorslide.report.study.Study`.
+    allow_incomplete
+        Accept a result file whose run is not finished (the DataFrame's ``status`` says
+        INCOMPLETE).
+
+    Raises
+    ------
+    ResultFileError
+        Missing, corrupt or empty result file.
+    IncompleteResultError
+        The run is not finished and `allow_incomplete` is False.
+
+    Examples
+    --------
+    >>> df = record_table("demo.h5")  # doctest: +SKIP
+    >>> df[df.outcome != "rock"].groupby(["building", "mu_k"]).peak_slide.max()  # doctest: +SKIP
+    """
+    import pandas as pd
+
+    study = load_study(result)
+    study.require_complete(allow_incomplete)
+    rows = record_rows(study)
+    df = pd.DataFrame(rows, columns=[c.name for c in RECORD_COLUMNS])
+    df.attrs.update(
+        units={c.name: c.units for c in RECORD_COLUMNS},
+        source=study.source,
+        status=study.status,
+    )
+    return df
