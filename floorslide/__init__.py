@@ -24,11 +24,13 @@ from floorslide.contents import (
 )
 from floorslide.errors import (
     FloorslideError,
+    FloorslideWarning,
     ModelError,
     OutputError,
     RecordError,
     ResultFileError,
     SceneError,
+    UnitsConversionWarning,
     UnitsError,
 )
 from floorslide.records import measures, process, read_catalog, read_record
@@ -59,11 +61,13 @@ __all__ = [
     "peak_floor_acceleration",
     "slide",
     "FloorslideError",
+    "FloorslideWarning",
     "ModelError",
     "OutputError",
     "RecordError",
     "ResultFileError",
     "SceneError",
+    "UnitsConversionWarning",
     "UnitsError",
     "measures",
     "process",

@@ -108,7 +108,7 @@ def inspect(
 
     from floorslide.errors import RecordError
     from floorslide.records.discover import discover
-    from floorslide.records.measures import measures
+    from floorslide.records.measures import MEASURE_KEYS, measures
 
     sources, problems = discover(records)
     failed = bool(problems)
@@ -136,7 +136,7 @@ def inspect(
                     "component": record.component,
                     "station": record.station,
                     "event": record.event,
-                    **values,
+                    **{key: values[key] for key in MEASURE_KEYS},
                     "multi": len(stream) > 1,
                 }
                 rows.append(row)
