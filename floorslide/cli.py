@@ -76,12 +76,70 @@ def _print_table(rows: list[dict]) -> None:
         )
 
 
+def _check_format(ctx, param, value: str | None) -> str | None:
+    """``--format``: a format floorslide or ObsPy knows, else a usage error (exit 2)."""
+    if value is None:
+        return None
+    from floorslide.errors import RecordError
+    from floorslide.records.read import resolve_format
+
+    try:
+        resolve_format(value)
+    except RecordError as exc:
+        raise click.BadParameter(exc.message, ctx=ctx, param=param) from None
+    return value
+
+
+def _check_units(ctx, param, value: str | None) -> str | None:
+    """``--units``: an acceleration unit floorslide knows, else a usage error (exit 2)."""
+    if value is None:
+        return None
+    from floorslide.errors import UnitsError
+    from floorslide.units import canonical_units
+
+    try:
+        canonical_units(value)
+    except UnitsError as exc:
+        raise click.BadParameter(exc.message, ctx=ctx, param=param) from None
+    return value
+
+
+def _check_dt(ctx, param, value: float | None) -> float | None:
+    """``--dt``: a finite time step > 0 s, else a usage error (exit 2)."""
+    if value is not None and not (0 < value < float("inf")):
+        raise click.BadParameter(f"the time step must be > 0 s, got {value:g}", ctx, param)
+    return value
+
+
+FORMAT_OPTION = click.option(
+    "--format",
+    "fmt",
+    metavar="F",
+    callback=_check_format,
+    help="Record format: AT2, COSMOSV2, text, or an ObsPy format (MSEED, SAC, KNET ...); "
+    "default: detected.",
+)
+UNITS_OPTION = click.option(
+    "--units",
+    metavar="U",
+    callback=_check_units,
+    help="Units of the file's values: g|gal|m/s**2|mm/s**2 (needed when the file does not say).",
+)
+DT_OPTION = click.option(
+    "--dt",
+    type=float,
+    metavar="SECONDS",
+    callback=_check_dt,
+    help="Time step of single-column text.",
+)
+
+
 @cli.command()
 @click.argument("records", nargs=-1, required=True)
 @click.option("--json", "as_json", is_flag=True, help="Print a JSON list (SI values) on stdout.")
-@click.option("--format", "fmt", metavar="F", help="Record format (default: detected).")
-@click.option("--units", metavar="U", help="Units of the files: g|gal|m/s**2|mm/s**2.")
-@click.option("--dt", type=float, metavar="SECONDS", help="Time step of single-column text.")
+@FORMAT_OPTION
+@UNITS_OPTION
+@DT_OPTION
 @click.option("--component", metavar="C", help="Component to keep from multi-trace files.")
 def inspect(
     records: tuple[str, ...],
@@ -95,12 +153,15 @@ def inspect(
     PGD, Arias intensity, CAV, significant durations D5-75 and D5-95.
 
     RECORD may be a record file (PEER .AT2, COSMOS V2, plain text, MiniSEED, SAC, K-NET and
-    every ObsPy format), a catalog CSV (columns file, dt, units), or a directory, searched
-    recursively for both (files a catalog lists are read once, through it; documentation such
-    as *.md is skipped). --format/--units/--dt/--component apply to record files, not to
-    catalog rows, which carry their own. Measures are exact for the piecewise-linear record;
-    nothing is filtered. An unreadable record is reported on stderr and the others are still
-    shown; the exit code is then 3.
+    every ObsPy format), a catalog CSV (columns file, dt, units; or file_h1, file_h2 ...: each
+    component is shown), or a directory, searched recursively for both (files a catalog lists
+    are read once, through it; documentation such as *.md is skipped). --format/--units/--dt/
+    --component apply to record files, not to catalog rows, which carry their own. Measures
+    are exact for the piecewise-linear record; nothing is filtered.
+
+    Exit codes: 0 every record read; 3 a record could not be read (or a file named is not a
+    record, or nothing was found to read) — reported on stderr in one line each, the others
+    still shown; 2 bad usage (e.g. an unknown --units or --format).
     """
     import json
 
@@ -109,6 +170,7 @@ def inspect(
     from floorslide.errors import RecordError
     from floorslide.records.discover import discover
     from floorslide.records.measures import MEASURE_KEYS, measures
+    from floorslide.records.read import format_name
 
     sources, problems = discover(records)
     failed = bool(problems)
@@ -132,7 +194,7 @@ def inspect(
                 record = trace.stats.record
                 row = {
                     "record": source.label,
-                    "format": record.format,
+                    "format": format_name(record.format),
                     "component": record.component,
                     "station": record.station,
                     "event": record.event,
@@ -188,11 +250,9 @@ def record_options(func):
     """The options every single-record command takes (DESIGN §3)."""
     for option in reversed(
         [
-            click.option("--format", "fmt", metavar="F", help="Record format (default: detected)."),
-            click.option("--units", metavar="U", help="Units of the file: g|gal|m/s**2|mm/s**2."),
-            click.option(
-                "--dt", type=float, metavar="SECONDS", help="Time step of single-column text."
-            ),
+            FORMAT_OPTION,
+            UNITS_OPTION,
+            DT_OPTION,
             click.option("--component", metavar="C", help="Component of a multi-trace file."),
         ]
     ):
