@@ -191,10 +191,17 @@ def unwrap_record(
             )
     units = _stat(stats, "units")
     if units is None or (isinstance(units, str) and not units.strip()):
+        calib = _stat(stats, "calib")
+        counts = (
+            f" (stats.calib = {calib:g}: the data are probably counts)"
+            if isinstance(calib, float | int) and calib != 1
+            else ""
+        )
         raise UnitsError(
             f"the trace given as {name} has no stats.units, so the units of its data are "
-            "unknown (ObsPy's readers do not set them); set tr.stats.units ('g', 'gal', "
-            "'m/s**2', 'mm/s**2') or read the file with floorslide.read_record(path, units=...)",
+            f"unknown{counts}; ObsPy's own readers (MiniSEED, SAC, K-NET ...) do not set them: "
+            "read the file with floorslide.read_record(path, units=...) or set tr.stats.units "
+            "('g', 'gal', 'm/s**2', 'mm/s**2')",
             where,
         )
     try:

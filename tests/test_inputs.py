@@ -151,7 +151,7 @@ def test_trace_without_units_is_refused_with_how_to_give_them():
         with pytest.raises(UnitsError) as exc:
             call()
         text = one_line(exc)
-        assert "stats.units" in text and "read_record" in text
+        assert "stats.units" in text and "read_record" in text and "counts" in text
 
 
 def test_unknown_units_are_refused_naming_them(trace_g):
