@@ -24,12 +24,14 @@ from floorslide.contents import (
 )
 from floorslide.errors import (
     FloorslideError,
+    FloorslideWarning,
     IncompleteResultError,
     ModelError,
     OutputError,
     RecordError,
     ResultFileError,
     SceneError,
+    UnitsConversionWarning,
     UnitsError,
 )
 from floorslide.records import measures, process, read_catalog, read_record
@@ -61,12 +63,14 @@ __all__ = [
     "peak_floor_acceleration",
     "slide",
     "FloorslideError",
+    "FloorslideWarning",
     "IncompleteResultError",
     "ModelError",
     "OutputError",
     "RecordError",
     "ResultFileError",
     "SceneError",
+    "UnitsConversionWarning",
     "UnitsError",
     "measures",
     "process",

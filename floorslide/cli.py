@@ -78,12 +78,70 @@ def _print_table(rows: list[dict]) -> None:
         )
 
 
+def _check_format(ctx, param, value: str | None) -> str | None:
+    """``--format``: a format floorslide or ObsPy knows, else a usage error (exit 2)."""
+    if value is None:
+        return None
+    from floorslide.errors import RecordError
+    from floorslide.records.read import resolve_format
+
+    try:
+        resolve_format(value)
+    except RecordError as exc:
+        raise click.BadParameter(exc.message, ctx=ctx, param=param) from None
+    return value
+
+
+def _check_units(ctx, param, value: str | None) -> str | None:
+    """``--units``: an acceleration unit floorslide knows, else a usage error (exit 2)."""
+    if value is None:
+        return None
+    from floorslide.errors import UnitsError
+    from floorslide.units import canonical_units
+
+    try:
+        canonical_units(value)
+    except UnitsError as exc:
+        raise click.BadParameter(exc.message, ctx=ctx, param=param) from None
+    return value
+
+
+def _check_dt(ctx, param, value: float | None) -> float | None:
+    """``--dt``: a finite time step > 0 s, else a usage error (exit 2)."""
+    if value is not None and not (0 < value < float("inf")):
+        raise click.BadParameter(f"the time step must be > 0 s, got {value:g}", ctx, param)
+    return value
+
+
+FORMAT_OPTION = click.option(
+    "--format",
+    "fmt",
+    metavar="F",
+    callback=_check_format,
+    help="Record format: AT2, COSMOSV2, text, or an ObsPy format (MSEED, SAC, KNET ...); "
+    "default: detected.",
+)
+UNITS_OPTION = click.option(
+    "--units",
+    metavar="U",
+    callback=_check_units,
+    help="Units of the file's values: g|gal|m/s**2|mm/s**2 (needed when the file does not say).",
+)
+DT_OPTION = click.option(
+    "--dt",
+    type=float,
+    metavar="SECONDS",
+    callback=_check_dt,
+    help="Time step of single-column text.",
+)
+
+
 @cli.command()
 @click.argument("records", nargs=-1, required=True)
 @click.option("--json", "as_json", is_flag=True, help="Print a JSON list (SI values) on stdout.")
-@click.option("--format", "fmt", metavar="F", help="Record format (default: detected).")
-@click.option("--units", metavar="U", help="Units of the files: g|gal|m/s**2|mm/s**2.")
-@click.option("--dt", type=float, metavar="SECONDS", help="Time step of single-column text.")
+@FORMAT_OPTION
+@UNITS_OPTION
+@DT_OPTION
 @click.option("--component", metavar="C", help="Component to keep from multi-trace files.")
 def inspect(
     records: tuple[str, ...],
@@ -97,12 +155,15 @@ def inspect(
     PGD, Arias intensity, CAV, significant durations D5-75 and D5-95.
 
     RECORD may be a record file (PEER .AT2, COSMOS V2, plain text, MiniSEED, SAC, K-NET and
-    every ObsPy format), a catalog CSV (columns file, dt, units), or a directory, searched
-    recursively for both (files a catalog lists are read once, through it; documentation such
-    as *.md is skipped). --format/--units/--dt/--component apply to record files, not to
-    catalog rows, which carry their own. Measures are exact for the piecewise-linear record;
-    nothing is filtered. An unreadable record is reported on stderr and the others are still
-    shown; the exit code is then 3.
+    every ObsPy format), a catalog CSV (columns file, dt, units; or file_h1, file_h2 ...: each
+    component is shown), or a directory, searched recursively for both (files a catalog lists
+    are read once, through it; documentation such as *.md is skipped). --format/--units/--dt/
+    --component apply to record files, not to catalog rows, which carry their own. Measures
+    are exact for the piecewise-linear record; nothing is filtered.
+
+    Exit codes: 0 every record read; 3 a record could not be read (or a file named is not a
+    record, or nothing was found to read) — reported on stderr in one line each, the others
+    still shown; 2 bad usage (e.g. an unknown --units or --format).
     """
     import json
 
@@ -110,7 +171,8 @@ def inspect(
 
     from floorslide.errors import RecordError
     from floorslide.records.discover import discover
-    from floorslide.records.measures import measures
+    from floorslide.records.measures import MEASURE_KEYS, measures
+    from floorslide.records.read import format_name
 
     sources, problems = discover(records)
     failed = bool(problems)
@@ -134,11 +196,11 @@ def inspect(
                 record = trace.stats.record
                 row = {
                     "record": source.label,
-                    "format": record.format,
+                    "format": format_name(record.format),
                     "component": record.component,
                     "station": record.station,
                     "event": record.event,
-                    **values,
+                    **{key: values[key] for key in MEASURE_KEYS},
                     "multi": len(stream) > 1,
                 }
                 rows.append(row)
@@ -190,16 +252,74 @@ def record_options(func):
     """The options every single-record command takes (DESIGN §3)."""
     for option in reversed(
         [
-            click.option("--format", "fmt", metavar="F", help="Record format (default: detected)."),
-            click.option("--units", metavar="U", help="Units of the file: g|gal|m/s**2|mm/s**2."),
-            click.option(
-                "--dt", type=float, metavar="SECONDS", help="Time step of single-column text."
-            ),
+            FORMAT_OPTION,
+            UNITS_OPTION,
+            DT_OPTION,
             click.option("--component", metavar="C", help="Component of a multi-trace file."),
         ]
     ):
         func = option(func)
     return func
+
+
+BUILDING_HELP = (
+    "Put the object on a floor of this building, KIND:key=value,... e.g. "
+    "'fixed:period=0.4,stories=3,damping=0.05', "
+    "'isolated:period=2.5,damping=0.1,super_period=0.4,stories=3' or "
+    "'fixed:masses=2e5/2e5/1.5e5,stiffnesses=3e8/3e8/2e8' (keys as in a scene's "
+    "[[buildings]]; lists separated by '/'). Default: the ground."
+)
+
+
+def building_options(func):
+    """``--building SPEC`` and ``--floor N|roof`` of the single-record solver commands."""
+    func = click.option(
+        "--floor",
+        metavar="N|roof",
+        help="Floor of --building: 0 (ground, or the base mat of an isolated building) to N, "
+        "or roof (default).",
+    )(func)
+    return click.option("--building", "building_spec", metavar="SPEC", help=BUILDING_HELP)(func)
+
+
+def _building(spec: str | None, floor: str | None):
+    """The building and floor of ``--building``/``--floor`` (None, 0 for the ground), and the
+    header line that says which; usage errors name the option and the key at fault."""
+    from floorslide.building.spec import describe_building, parse_building
+    from floorslide.errors import ModelError
+
+    if spec is None:
+        if floor is not None:
+            raise click.BadParameter(
+                "needs --building (without it: the ground)", param_hint="--floor"
+            )
+        return None, 0, "on the ground"
+    try:
+        building = parse_building(spec)
+    except ModelError as exc:
+        raise click.BadParameter(str(exc), param_hint="--building") from None
+    top = building.stories
+    if floor is None or floor.strip().lower() == "roof":
+        number = top
+    else:
+        try:
+            number = int(floor)
+        except ValueError:
+            raise click.BadParameter(
+                f"expected a floor number 0..{top} or roof, got {floor!r}", param_hint="--floor"
+            ) from None
+        if not 0 <= number <= top:
+            raise click.BadParameter(
+                f"floor {number} does not exist; floors are 0..{top} (or roof)",
+                param_hint="--floor",
+            )
+    if number == top:
+        name = f"floor {number} (roof)"
+    elif number == 0:
+        name = "floor 0 (base mat)" if building.dof_of(0) is not None else "floor 0 (ground)"
+    else:
+        name = f"floor {number}"
+    return building, number, f"on {name} of: {describe_building(building)}"
 
 
 @cli.command()
@@ -215,37 +335,69 @@ def record_options(func):
     help="One-way sliding (Newmark slope convention) or both ways.",
 )
 @click.option("--json", "as_json", is_flag=True, help="Print a JSON list (SI values) on stdout.")
+@building_options
 @record_options
-def slide(record, mu, mu_s, scale_pga, direction, as_json, fmt, units, dt, component):
-    """Sliding of a rigid block standing on the ground under RECORD, one row per friction
-    coefficient: peak slide, residual slide (m), peak absolute acceleration of the object
-    (m/s²), fraction of time sliding and number of slip phases. Exact for the piecewise-linear
-    record; no filtering unless asked.
+def slide(
+    record,
+    mu,
+    mu_s,
+    scale_pga,
+    direction,
+    as_json,
+    building_spec,
+    floor,
+    fmt,
+    units,
+    dt,
+    component,
+):
+    """Sliding of a rigid block under RECORD — on the ground, or on a floor of a building given
+    with --building (and --floor) — one row per friction coefficient: peak slide, residual
+    slide (m), peak absolute acceleration of the object (m/s²), fraction of time sliding and
+    number of slip phases. Exact for the piecewise-linear record, end to end (ground →
+    building → object); no filtering unless asked. The header says where the object stands
+    and, on a floor, its peak floor acceleration.
     """
     import json
 
+    from floorslide.building.motions import peak_floor_acceleration
     from floorslide.constants import G
     from floorslide.contents.sliding import slide as slide_exact
     from floorslide.records.process import process
 
     mus = _floats(mu, "--mu")
     mus_s = _floats(mu_s, "--mu-s") if mu_s else None
+    building, floor_no, where = _building(building_spec, floor)
     tr = _read_one(record, fmt, units, dt, component)
     if scale_pga is not None:
         if not scale_pga > 0:
             raise click.BadParameter("must be > 0", param_hint="--scale-pga")
         tr = process(tr, scale_pga=scale_pga)
-    res = slide_exact(tr.data, tr.stats.delta, mus, mus_s, direction=direction)
+    res = slide_exact(
+        tr.data,
+        tr.stats.delta,
+        mus,
+        mus_s,
+        direction=direction,
+        building=building,
+        floor=floor_no if building is not None else None,
+    )
     rows = res.to_records()
     if as_json:
         for row in rows:
             row["record"] = record
             row["direction"] = direction
+            row["building"] = building_spec
+            row["floor"] = floor_no
         click.echo(json.dumps(rows, indent=1))
         return
     click.echo(
         f"{record}: dt = {tr.stats.delta:g} s, {tr.stats.npts} samples, direction {direction}"
+        + (f", {where}" if building is None else "")
     )
+    if building is not None:
+        pfa = peak_floor_acceleration(building, tr.data, tr.stats.delta, [floor_no]).peak[0]
+        click.echo(f"{where}; PFA = {pfa:.4g} m/s2 ({pfa / G:.4f} g)")
     click.echo(
         f"{'mu_k':>7} {'mu_s':>7} {'peak slide (m)':>15} {'residual (m)':>13} "
         f"{'peak acc (m/s2)':>16} {'(g)':>7} {'sliding':>8} {'slips':>6}"
@@ -288,11 +440,14 @@ def _periods(text: str | None):
     help="Periods in s (0 = peak ground acceleration); default 0.02:5:100 (log-spaced).",
 )
 @click.option("--json", "as_json", is_flag=True, help="Print JSON (SI values) on stdout.")
+@building_options
 @record_options
-def spectrum(record, damping, periods, as_json, fmt, units, dt, component):
-    """Response spectra of RECORD: pseudo-spectral acceleration PSA, absolute acceleration SA,
-    relative velocity SV, displacement SD (and pseudo-velocity PSV), exact for the
-    piecewise-linear record with peaks inside steps. No filtering is applied.
+def spectrum(record, damping, periods, as_json, building_spec, floor, fmt, units, dt, component):
+    """Response spectra of RECORD — or, with --building (and --floor), floor response spectra
+    of that floor: pseudo-spectral acceleration PSA, absolute acceleration SA, relative
+    velocity SV, displacement SD (and pseudo-velocity PSV), exact for the piecewise-linear
+    record with peaks inside steps, end to end (ground → building → oscillator). No filtering
+    is applied. The header says which motion the spectra are of.
     """
     import json
 
@@ -301,12 +456,26 @@ def spectrum(record, damping, periods, as_json, fmt, units, dt, component):
 
     zetas = _floats(damping, "--damping")
     grid = _periods(periods)
+    building, floor_no, where = _building(building_spec, floor)
     tr = _read_one(record, fmt, units, dt, component)
-    sp = response_spectrum(tr.data, tr.stats.delta, grid, zetas)
+    sp = response_spectrum(
+        tr.data,
+        tr.stats.delta,
+        grid,
+        zetas,
+        building=building,
+        floor=floor_no if building is not None else None,
+    )
     if as_json:
-        click.echo(json.dumps({"record": record, **sp.to_dict()}, indent=1))
+        out = {"record": record, "building": building_spec, "floor": floor_no, **sp.to_dict()}
+        click.echo(json.dumps(out, indent=1))
         return
-    click.echo(f"{record}: dt = {tr.stats.delta:g} s, {tr.stats.npts} samples")
+    click.echo(
+        f"{record}: dt = {tr.stats.delta:g} s, {tr.stats.npts} samples"
+        + (", spectra of the ground motion" if building is None else "")
+    )
+    if building is not None:
+        click.echo(f"floor response spectra {where}")
     for i, z in enumerate(sp.damping):
         click.echo(f"damping {z:g}")
         click.echo(f"{'T (s)':>9} {'PSA (g)':>9} {'SA (g)':>9} {'SV (m/s)':>10} {'SD (m)':>10}")

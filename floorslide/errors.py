@@ -81,3 +81,13 @@ class OutputError(FloorslideError):
     """Results cannot be written (full disk, unwritable folder); what finished is kept."""
 
     exit_code = 1
+
+
+class FloorslideWarning(UserWarning):
+    """Base class of the warnings floorslide gives: something was done to the input that the
+    caller should know of (the same text is kept in the result's ``notes``)."""
+
+
+class UnitsConversionWarning(FloorslideWarning):
+    """A solver was given a record (ObsPy Trace) whose ``stats.units`` is not m/s²; its data
+    were converted to m/s² and the conversion recorded in the result's ``notes``."""

@@ -8,7 +8,10 @@ import sys
 
 import numpy as np
 import pytest
+from click.testing import CliRunner
 
+from floorslide.building import IsolatedBuilding, ShearBuilding, peak_floor_acceleration
+from floorslide.cli import cli
 from floorslide.contents.sliding import slide
 from floorslide.spectra import response_spectrum
 from tests.conftest import SLAMMER, load_slammer
@@ -81,3 +84,105 @@ def test_user_mistakes_give_one_clear_line(args, code, text):
     assert out.returncode == code
     assert "Traceback" not in out.stderr
     assert text in out.stderr
+
+
+# --building / --floor (issue 12 item 8): a one-off floor check without a scene -------------
+
+FIXED = "fixed:period=0.4,stories=3,damping=0.05"
+ISOLATED = "isolated:period=2.5,damping=0.1,super_period=0.4,stories=3"
+STOREYS = "fixed:masses=2e5/2e5/1.5e5,stiffnesses=3e8/3e8/2e8,damping=0.03"
+
+
+def fixed_building():
+    return ShearBuilding.from_period(stories=3, period=0.4, damping=0.05)
+
+
+@pytest.mark.parametrize(
+    ("spec", "floor", "building", "number"),
+    [
+        (FIXED, None, fixed_building, 3),
+        (ISOLATED, "2", lambda: IsolatedBuilding(fixed_building(), 1.0, 2.5, 0.1), 2),
+        (
+            STOREYS,
+            "roof",
+            lambda: ShearBuilding([2e5, 2e5, 1.5e5], [3e8, 3e8, 2e8], 0.03),
+            3,
+        ),
+    ],
+)
+def test_slide_on_a_floor_of_a_building(spec, floor, building, number):
+    args = ["slide", RECORD, "--mu", "0.05,0.2", "--building", spec, "--json"]
+    out = run(*args, *(["--floor", floor] if floor else []))
+    assert out.returncode == 0, out.stderr
+    rows = json.loads(out.stdout)
+    acc, dt = load_slammer("ImperialValley_1940_ELC-180.txt")
+    ref = slide(acc, dt, [0.05, 0.2], building=building(), floor=number)
+    ground = slide(acc, dt, [0.05, 0.2])
+    np.testing.assert_allclose([r["peak_slide"] for r in rows], ref.peak_slide, rtol=1e-12)
+    assert not np.allclose(ref.peak_slide, ground.peak_slide, rtol=0.05)  # the floor matters
+    assert rows[0]["building"] == spec and rows[0]["floor"] == number
+
+
+def test_slide_header_says_which_building_and_floor():
+    out = run("slide", RECORD, "--mu", "0.1", "--building", FIXED)
+    assert out.returncode == 0, out.stderr
+    header = out.stdout.splitlines()[1]
+    assert header.startswith("on floor 3 (roof) of: fixed-base, 3 storeys, T1 = 0.4 s")
+    assert "PFA = " in header
+    ground = run("slide", RECORD, "--mu", "0.1")
+    assert ground.stdout.splitlines()[0].endswith("on the ground")
+
+
+def test_floor_zero_of_a_fixed_building_is_the_ground():
+    base = run("slide", RECORD, "--mu", "0.1", "--json")
+    floor0 = run("slide", RECORD, "--mu", "0.1", "--json", "--building", FIXED, "--floor", "0")
+    assert floor0.returncode == 0, floor0.stderr
+    assert json.loads(floor0.stdout)[0]["peak_slide"] == json.loads(base.stdout)[0]["peak_slide"]
+
+
+def test_floor_response_spectrum_from_the_command_line():
+    out = run(
+        "spectrum", RECORD, "--periods", "0,0.4,1", "--building", ISOLATED, "--floor", "3", "--json"
+    )
+    assert out.returncode == 0, out.stderr
+    data = json.loads(out.stdout)
+    acc, dt = load_slammer("ImperialValley_1940_ELC-180.txt")
+    iso = IsolatedBuilding(fixed_building(), 1.0, 2.5, 0.1)
+    ref = response_spectrum(acc, dt, [0, 0.4, 1], 0.05, building=iso, floor=3)
+    np.testing.assert_allclose(data["psa"], ref.psa, rtol=1e-12)
+    assert data["building"] == ISOLATED and data["floor"] == 3
+    # at T = 0 the floor spectrum is the peak floor acceleration (isolation: well below PGA)
+    pfa = peak_floor_acceleration(iso, acc, dt, [3]).peak[0]
+    assert data["psa"][0][0] == pytest.approx(pfa, rel=1e-12)
+    assert pfa < 0.5 * np.abs(acc).max()
+    text = run("spectrum", RECORD, "--periods", "1", "--building", ISOLATED).stdout
+    assert text.splitlines()[1].startswith("floor response spectra on floor 3 (roof) of: isolated")
+
+
+@pytest.mark.parametrize(
+    ("args", "texts"),
+    [
+        (("--building", "fixed:perod=0.4,stories=3,foo=1"), ("'perod'", "'foo'", "known keys")),
+        (("--building", "fixed:period=abc"), ("period='abc'", "not a number")),
+        (("--building", "fixed:stories=3"), ("period is missing",)),
+        (("--building", "isolated:period=2.5"), ("super_period is missing",)),
+        (("--building", "isolated:period=2.5,super_period=-1"), ("super_period", "> 0")),
+        (("--building", "fixed:period=0.4,damping=1.5"), ("damping", "[0, 1)")),
+        (("--building", "tower:period=1"), ("unknown kind 'tower'",)),
+        (("--building", "fixed:masses=1/1"), ("stiffnesses is missing",)),
+        (("--building", "fixed:period=0.4", "--floor", "2"), ("--floor", "0..1")),
+        (("--building", "fixed:period=0.4", "--floor", "top"), ("--floor", "'top'")),
+        (("--floor", "2"), ("--floor", "needs --building")),
+    ],
+)
+@pytest.mark.parametrize("command", ["slide", "spectrum"])
+def test_building_option_mistakes_are_one_line_usage_errors(command, args, texts):
+    extra = ("--mu", "0.1") if command == "slide" else ()
+    result = CliRunner().invoke(cli, [command, RECORD, *extra, *args])
+    assert result.exit_code == 2, result.output
+    error = [line for line in result.stderr.splitlines() if line.startswith("Error:")]
+    assert len(error) == 1 and "Traceback" not in result.stderr
+    option = "--floor" if "--floor" in texts else "--building"
+    assert option in error[0]
+    for text in texts:
+        assert text in error[0]

@@ -8,6 +8,7 @@ equation of motion is ``M u'' + C u' + K u = -M ι a_g(t)`` with a diagonal mass
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Literal
@@ -55,8 +56,10 @@ class ModalProperties:
     ----------
     periods
         Natural periods, s, longest first.
-    frequencies
-        Natural circular frequencies, rad/s.
+    frequencies_hz
+        Natural frequencies ``f_n = 1/T_n``, Hz (cycles per second), lowest first.
+    circular_frequencies
+        Natural circular frequencies ``ω_n = 2π f_n``, rad/s, lowest first.
     shapes
         Mode shapes as columns, one row per degree of freedom (floor), normalised as requested.
     participation
@@ -67,10 +70,23 @@ class ModalProperties:
     """
 
     periods: np.ndarray
-    frequencies: np.ndarray
+    frequencies_hz: np.ndarray
+    circular_frequencies: np.ndarray
     shapes: np.ndarray
     participation: np.ndarray
     effective_mass: np.ndarray
+
+    @property
+    def frequencies(self) -> np.ndarray:
+        """Deprecated: the circular frequencies in rad/s (not Hz, despite the name); use
+        :attr:`circular_frequencies` (rad/s) or :attr:`frequencies_hz` (Hz)."""
+        warnings.warn(
+            "ModalProperties.frequencies is in rad/s; use circular_frequencies (rad/s) or "
+            "frequencies_hz (Hz)",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        return self.circular_frequencies
 
 
 def _positive(values, name: str) -> np.ndarray:
@@ -245,7 +261,8 @@ class LinearBuilding:
         mn = np.einsum("in,ij,jn->n", phi, M, phi)
         return ModalProperties(
             periods=2 * np.pi / w,
-            frequencies=w,
+            frequencies_hz=w / (2 * np.pi),
+            circular_frequencies=w,
             shapes=phi,
             participation=Ln / mn,
             effective_mass=Ln**2 / mn,

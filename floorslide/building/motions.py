@@ -18,22 +18,11 @@ from floorslide.building._kernels import foh_outputs, foh_peaks
 from floorslide.building.exact import ExactStepper, foh_matrices
 from floorslide.building.model import LinearBuilding
 from floorslide.errors import ModelError
+from floorslide.inputs import RecordLike, as_record, check_record
+
+__all__ = ["Peaks", "check_record", "floor_motions", "peak_floor_acceleration", "stepper"]
 
 METHODS = ("exact", "zoh", "newmark", "forced_response")
-
-
-def check_record(acc, dt, name: str = "acc") -> tuple[np.ndarray, float]:
-    """A ground record as a finite 1-D float64 array and a positive time step."""
-    a = np.ascontiguousarray(acc, dtype=float)
-    if a.ndim != 1 or a.size == 0:
-        raise ModelError(f"{name} must be a non-empty 1-D array of samples", name)
-    # min/max propagate NaN and ±inf without an O(n) temporary
-    if not (np.isfinite(a.min()) and np.isfinite(a.max())):
-        raise ModelError(f"{name} has NaN or infinite samples", name)
-    dt = float(dt)
-    if not np.isfinite(dt) or dt <= 0:
-        raise ModelError(f"dt must be > 0, got {dt}", "dt")
-    return a, dt
 
 
 _STEPPERS: dict = {}
@@ -55,8 +44,8 @@ def stepper(building: LinearBuilding, dt: float, substeps: int | None = None) ->
 
 def floor_motions(
     building: LinearBuilding,
-    ground_acc,
-    dt: float,
+    ground_acc: RecordLike,
+    dt: float | None = None,
     floors: Sequence[int] | int | None = None,
     output: str | Sequence[str] = "acceleration",
     oversample: int = 1,
@@ -70,9 +59,12 @@ def floor_motions(
     building
         A :class:`~floorslide.ShearBuilding` or :class:`~floorslide.IsolatedBuilding`.
     ground_acc
-        Ground acceleration samples, m/s².
+        Ground acceleration samples, m/s²; or an ObsPy Trace or one-trace Stream (units from
+        ``stats.units``, converted to m/s² with a
+        :class:`~floorslide.errors.UnitsConversionWarning` if need be; see
+        :mod:`floorslide.inputs`).
     dt
-        Time step of the record, s.
+        Time step of the record, s (required for samples; from ``stats.delta`` for a Trace).
     floors
         Floors (0..N, any order, repeats allowed); default all.
     output
@@ -90,13 +82,14 @@ def floor_motions(
     Returns
     -------
     ndarray or dict
-        ``(len(floors), npts)`` per output kind (``npts = (n−1)·oversample + 1``).
+        ``(len(floors), npts)`` per output kind (``npts = (n−1)·oversample + 1``). A Trace's
+        unit conversion is announced by the warning only (an array has no ``notes``).
 
     References
     ----------
     Van Loan (1978); Chopra (2012), §5.4 (Newmark's method).
     """
-    a, dt = check_record(ground_acc, dt, "ground_acc")
+    a, dt, _ = as_record(ground_acc, dt, "ground_acc")
     if method not in METHODS:
         raise ModelError(f"unknown method {method!r}; expected one of {', '.join(METHODS)}")
     if int(oversample) != oversample or oversample < 1:
@@ -148,17 +141,21 @@ class Peaks:
         ``max_t |y(t)|`` per floor (m/s² for accelerations).
     time
         Time of each peak, s.
+    notes
+        What was done to the input record (e.g. its conversion from g to m/s²), one line each;
+        empty for samples given in m/s².
     """
 
     floors: tuple[int, ...]
     peak: np.ndarray
     time: np.ndarray
+    notes: tuple[str, ...] = ()
 
 
 def peak_floor_acceleration(
     building: LinearBuilding | None,
-    ground_acc,
-    dt: float,
+    ground_acc: RecordLike,
+    dt: float | None = None,
     floors: Sequence[int] | int | None = None,
     output: str = "acceleration",
 ) -> Peaks:
@@ -166,11 +163,30 @@ def peak_floor_acceleration(
 
     Without a building the ground record itself is the motion, whose peak (piecewise linear)
     is at a sample.
+
+    Parameters
+    ----------
+    building
+        The building, or None for the ground.
+    ground_acc
+        Ground acceleration samples, m/s²; or an ObsPy Trace or one-trace Stream (see
+        :mod:`floorslide.inputs`: units from ``stats.units``, converted and noted).
+    dt
+        Time step, s (required for samples; from ``stats.delta`` for a Trace).
+    floors
+        Floors (0..N); default all.
+    output
+        Output kind, as in :func:`floor_motions` (default absolute acceleration).
+
+    Returns
+    -------
+    Peaks
+        With the unit conversion of a Trace, if any, in ``notes``.
     """
-    a, dt = check_record(ground_acc, dt, "ground_acc")
+    a, dt, notes = as_record(ground_acc, dt, "ground_acc")
     if building is None:
         k = int(np.argmax(np.abs(a)))
-        return Peaks((0,), np.array([abs(a[k])]), np.array([k * dt]))
+        return Peaks((0,), np.array([abs(a[k])]), np.array([k * dt]), notes)
     floors = building.check_floors(floors)
     C, D, _ = building.output_matrices(floors, output)
     st = stepper(building, dt)
@@ -179,7 +195,7 @@ def peak_floor_acceleration(
     peak = np.empty(C.shape[0])
     tpk = np.empty(C.shape[0])
     foh_peaks(st.phi, p, q, R, beta, a, st.substeps, st.h, np.zeros(st.n), peak, tpk)
-    return Peaks(tuple(floors), peak, tpk)
+    return Peaks(tuple(floors), peak, tpk, notes)
 
 
 def _newmark_outputs(building, a, dt, substeps, C, D):

@@ -12,17 +12,17 @@ peak in the 1989 study).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from floorslide.building.exact import ExactStepper, spectral_radius, substeps_for, taylor_degree
 from floorslide.building.model import LinearBuilding
-from floorslide.building.motions import check_record
 from floorslide.constants import G
 from floorslide.contents._oscillator_kernel import oscillator_kernel
 from floorslide.contents.sliding import friction_pairs
 from floorslide.errors import ModelError
+from floorslide.inputs import RecordLike, as_record
 
 
 @dataclass(frozen=True)
@@ -45,6 +45,9 @@ class OscillatorResult:
         Number of breakaways and reversals.
     u, z, top_accel, base_accel
         Histories at the samples (``(n_mu, npts)``) when requested.
+    notes
+        What was done to the input record (e.g. its conversion from g to m/s² when it came as
+        an ObsPy Trace in g), one line each; empty for samples given in m/s².
     """
 
     mu_k: np.ndarray
@@ -60,13 +63,14 @@ class OscillatorResult:
     z: np.ndarray | None = field(default=None, repr=False)
     top_accel: np.ndarray | None = field(default=None, repr=False)
     base_accel: np.ndarray | None = field(default=None, repr=False)
+    notes: tuple[str, ...] = ()
 
 
 def slide_oscillator(
-    acc,
-    dt: float,
-    mu,
-    frequency: float,
+    acc: RecordLike,
+    dt: float | None = None,
+    mu=None,
+    frequency: float | None = None,
     damping: float = 0.02,
     mass_ratio: float = 1.0,
     *,
@@ -87,11 +91,14 @@ def slide_oscillator(
     ----------
     acc, dt
         Ground acceleration (m/s²) and time step (s); without `building` the motion the
-        object stands on.
+        object stands on. Or an ObsPy Trace or one-trace Stream, dt from ``stats.delta`` (a
+        given dt must equal it) and units from ``stats.units`` (converted to m/s² with a
+        :class:`~floorslide.errors.UnitsConversionWarning` and a line in ``notes``; see
+        :mod:`floorslide.inputs`).
     mu
-        Kinetic friction coefficient(s) (``mu_s`` defaults to it).
+        Kinetic friction coefficient(s), required (``mu_s`` defaults to it).
     frequency
-        Clamped-base (fixed-base) natural frequency of the equipment, Hz.
+        Clamped-base (fixed-base) natural frequency of the equipment, Hz; required.
     damping
         Damping ratio of the equipment on its clamped base, in [0, 1).
     mass_ratio
@@ -112,13 +119,20 @@ def slide_oscillator(
     substeps, rtol, grip_frequency, grip_damping, integrator
         Settings of the approximate methods.
 
+    Returns
+    -------
+    OscillatorResult
+
     References
     ----------
     Westermo, B., Udwadia, F. (1983), *Earthquake Eng. Struct. Dyn.* 11, 135–146.
     Brochard, D., Gantenbein, F. (1989). Seismic response of a sliding structure. *Transactions
     SMiRT 10*, vol. K2, 1147–1152.
     """
-    a, dt = check_record(acc, dt, "acc")
+    a, dt, notes = as_record(acc, dt, "acc")
+    if mu is None or frequency is None:
+        missing = "mu" if mu is None else "frequency"
+        raise ModelError(f"slide_oscillator needs {missing}", missing)
     mk, ms = friction_pairs(mu, mu_s)
     f = float(frequency)
     xi = float(damping)
@@ -137,11 +151,12 @@ def slide_oscillator(
     if building is not None:
         building.check_floors([floor])
     if method != "exact":
-        return _approximate(
+        result = _approximate(
             a, dt, mk, ms, w, xi, r, building, floor, method, histories,
             dict(substeps=substeps, rtol=rtol, grip_frequency=grip_frequency,
                  grip_damping=grip_damping, integrator=integrator),
         )  # fmt: skip
+        return replace(result, notes=notes) if notes else result
     if on_floor:
         A, B = building.state_matrices()
         rho = max(spectral_radius(A), rho_obj)
@@ -198,6 +213,7 @@ def slide_oscillator(
         z=hist[:, :, 1].copy() if histories else None,
         top_accel=hist[:, :, 2].copy() if histories else None,
         base_accel=hist[:, :, 3].copy() if histories else None,
+        notes=notes,
     )
 
 

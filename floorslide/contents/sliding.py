@@ -9,15 +9,16 @@ friction exceeds the drive at once), so the block effectively starts at ``max(mu
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from floorslide.building.model import LinearBuilding
-from floorslide.building.motions import check_record, stepper
+from floorslide.building.motions import stepper
 from floorslide.constants import G
 from floorslide.contents._kernels import slide_kernel
 from floorslide.errors import ModelError
+from floorslide.inputs import DT_RTOL, RecordLike, as_record, is_stream, is_trace
 
 DIRECTIONS = ("both", "positive", "negative")
 METHODS = ("exact", "slammer", "newmark", "solve_ivp", "reinterpolated")
@@ -53,6 +54,10 @@ class SlideResult:
         How it was computed.
     u, v, abs_accel
         Histories at the samples (``(n_mu, npts)``), only when requested.
+    notes
+        What was done to the input records (e.g. ``acc: data of ... converted from 'g' to
+        'm/s**2' (factor 9.80665)`` for an ObsPy Trace in g), one line each; empty for samples
+        given in m/s².
     """
 
     mu_k: np.ndarray
@@ -71,6 +76,7 @@ class SlideResult:
     u: np.ndarray | None = field(default=None, repr=False)
     v: np.ndarray | None = field(default=None, repr=False)
     abs_accel: np.ndarray | None = field(default=None, repr=False)
+    notes: tuple[str, ...] = ()
 
     def to_records(self) -> list[dict]:
         """One JSON-ready dict per friction pair (snake_case keys, SI values)."""
@@ -144,14 +150,14 @@ def floor_model(building: LinearBuilding | None, floor: int | None, dt: float):
 
 
 def slide(
-    acc,
-    dt: float,
-    mu_k,
+    acc: RecordLike,
+    dt: float | None = None,
+    mu_k=None,
     mu_s=None,
     *,
     building: LinearBuilding | None = None,
     floor: int | None = None,
-    vertical=None,
+    vertical: RecordLike | None = None,
     direction: str = "both",
     method: str = "exact",
     histories: bool = False,
@@ -166,11 +172,16 @@ def slide(
     ----------
     acc
         Ground acceleration samples, m/s² (with `building`), or the motion the object stands
-        on (without), taken as piecewise linear.
+        on (without), taken as piecewise linear. Or an ObsPy Trace or one-trace Stream: dt from
+        ``stats.delta``, units from ``stats.units`` (converted to m/s² with a
+        :class:`~floorslide.errors.UnitsConversionWarning` and a line in ``notes``; a trace
+        without units or in unknown units is refused — see :mod:`floorslide.inputs`).
     dt
-        Time step, s.
+        Time step, s; required for samples, optional for a Trace (must equal
+        ``stats.delta``).
     mu_k
-        Kinetic friction coefficient(s); many values are advanced in one compiled loop.
+        Kinetic friction coefficient(s), required; many values are advanced in one compiled
+        loop.
     mu_s
         Static coefficient(s) (default ``mu_k``); any positive pair, either order.
     building, floor
@@ -178,7 +189,8 @@ def slide(
         response to the piecewise-linear ground record (floor 0 of a fixed-base building is the
         ground itself).
     vertical
-        Vertical ground acceleration samples (same dt and length), m/s²: the friction limit
+        Vertical ground acceleration samples (same dt and length), m/s², or a Trace (converted
+        like `acc`; its ``stats.delta`` must equal the horizontal's dt): the friction limit
         becomes ``mu·(g + a_v)``; lift-off (``g + a_v ≤ 0``) is reported. The building is rigid
         vertically.
     direction
@@ -202,6 +214,13 @@ def slide(
     -------
     SlideResult
 
+    Raises
+    ------
+    ModelError
+        Invalid parameters (``mu_k`` missing or negative, a floor without a building, ...).
+    RecordError, UnitsError
+        A Trace or Stream that cannot be used as is (see :mod:`floorslide.inputs`).
+
     References
     ----------
     Newmark, N. M. (1965). Effects of earthquakes on dams and embankments. *Géotechnique* 15(2).
@@ -212,7 +231,9 @@ def slide(
     Jibson, R. W. (1993). Predicting earthquake-induced landslide displacements using Newmark's
     sliding block analysis. *Transportation Research Record* 1411, 9–17.
     """
-    a, dt = check_record(acc, dt, "acc")
+    a, dt, notes = as_record(acc, dt, "acc")
+    if mu_k is None:
+        raise ModelError("mu_k (the kinetic friction coefficient or coefficients) is required")
     mk, ms = friction_pairs(mu_k, mu_s)
     _allow_pos, _allow_neg = _allowed(direction)
     if method not in METHODS:
@@ -223,7 +244,13 @@ def slide(
         raise ModelError("floor is required with building=", "floor")
     vert = None
     if vertical is not None:
-        vert, _ = check_record(vertical, dt, "vertical")
+        samples = not (is_trace(vertical) or is_stream(vertical))
+        vert, vdt, vnotes = as_record(vertical, dt if samples else None, "vertical")
+        if not abs(vdt - dt) <= DT_RTOL * dt:
+            raise ModelError(
+                f"vertical has dt = {vdt:g} s, the horizontal record {dt:g} s", "vertical"
+            )
+        notes += vnotes
         if vert.size != a.size:
             raise ModelError(
                 f"vertical has {vert.size} samples, the horizontal record {a.size}", "vertical"
@@ -231,7 +258,7 @@ def slide(
     if method != "exact":
         from floorslide.contents import approximate
 
-        return approximate.slide(
+        result = approximate.slide(
             a,
             dt,
             mk,
@@ -247,7 +274,9 @@ def slide(
             integrator,
             max_step,
         )
-    return _slide_exact(a, dt, mk, ms, building, floor, vert, direction, histories)
+    else:
+        result = _slide_exact(a, dt, mk, ms, building, floor, vert, direction, histories)
+    return replace(result, notes=notes) if notes else result
 
 
 def _slide_exact(a, dt, mk, ms, building, floor, vert, direction, histories) -> SlideResult:

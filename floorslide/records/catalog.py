@@ -26,12 +26,21 @@ Rules:
 :class:`CatalogEntry` objects without reading them (for progress bars, dry runs, or reading
 one at a time). The same rows serve as *sidecar* for :func:`~floorslide.records.read.read_record`
 when it reads a bare text file listed in an ``index.csv`` next to it.
+
+**Catalogs of components** (a row per station with ``file_h1``, ``file_h2`` — and any
+``file_<name>`` — instead of ``file``, as PEER pair flatfiles are) are recognised:
+:func:`load_catalog` with ``components=True`` (what ``floorslide inspect`` uses) gives one entry
+per component file, whose row has the component's own columns under their plain names
+(``file_h1`` → ``file``, ``npts_h1`` → ``npts``, ``comp_h1`` → ``comp``). Elsewhere (scenes,
+:func:`read_catalog`) such a catalog is refused with an error that says so: treating the
+components of a record as separate records is a choice a study must make explicitly.
 """
 
 from __future__ import annotations
 
 import csv
 import os
+import re
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -45,6 +54,14 @@ from floorslide.errors import RecordError, UnitsError
 from floorslide.records.units import canonical_units
 
 REQUIRED_COLUMNS = ("file", "dt", "units")
+
+COMPONENT_FILE = re.compile(r"^file_([a-z0-9]+)$")
+"""A ``file_<component>`` column of a catalog of components (``file_h1``, ``file_h2``, ...)."""
+
+
+def component_columns(columns: Iterable[str]) -> list[str]:
+    """The ``file_<component>`` columns of a catalog header (lower-case names)."""
+    return [c for c in columns if COMPONENT_FILE.match(c)]
 
 
 @dataclass(frozen=True, eq=False)
@@ -60,18 +77,24 @@ class CatalogEntry:
     path
         The record file (resolved against the catalog's folder).
     row
-        All columns of the row, as strings, keyed by lower-case column name.
+        All columns of the row, as strings, keyed by lower-case column name (for a catalog of
+        components: with the component's own columns under their plain names).
+    column
+        The column that names the file: ``file``, or ``file_h1``, ``file_h2`` ... in a catalog
+        of components.
     """
 
     catalog: Path
     line: int
     path: Path
     row: dict[str, str] = field(default_factory=dict)
+    column: str = "file"
 
     @property
     def where(self) -> str:
-        """``catalog:line`` for messages."""
-        return f"{self.catalog}:{self.line}"
+        """``catalog:line`` (and the file column, in a catalog of components) for messages."""
+        extra = f" ({self.column})" if self.column != "file" else ""
+        return f"{self.catalog}:{self.line}{extra}"
 
     @property
     def dt(self) -> float | None:
@@ -203,7 +226,8 @@ def _header(path: Path) -> list[str] | None:
 
 
 def is_catalog(path: str | os.PathLike) -> bool:
-    """True if ``path`` is a CSV whose header has the columns ``file``, ``dt`` and ``units``.
+    """True if ``path`` is a CSV whose header has the columns ``file``, ``dt`` and ``units`` —
+    or ``dt``, ``units`` and ``file_<component>`` columns (a catalog of components).
 
     Cheap (reads the first line) and never raises.
     """
@@ -211,7 +235,9 @@ def is_catalog(path: str | os.PathLike) -> bool:
     if not path.is_file():
         return False
     columns = _header(path)
-    return columns is not None and all(c in columns for c in REQUIRED_COLUMNS)
+    if columns is None or "dt" not in columns or "units" not in columns:
+        return False
+    return "file" in columns or bool(component_columns(columns))
 
 
 def _matches(row: Mapping[str, str], where: Mapping[str, object]) -> bool:
@@ -226,7 +252,10 @@ def _matches(row: Mapping[str, str], where: Mapping[str, object]) -> bool:
 
 
 def load_catalog(
-    path: str | os.PathLike, where: Mapping[str, object] | None = None
+    path: str | os.PathLike,
+    where: Mapping[str, object] | None = None,
+    *,
+    components: bool = False,
 ) -> list[CatalogEntry]:
     """The rows of a record catalog, filtered, without reading the records.
 
@@ -239,17 +268,22 @@ def load_catalog(
         ``pulse-like``; a list value keeps any of its values (``{"station_id": ["EMO-270",
         "EDA-270"]}``). Values are compared as strings (``6.5`` matches ``"6.5"``, not
         ``"6.50"``); several keys must all match.
+    components
+        Accept a catalog of components (``file_h1``, ``file_h2`` ... instead of ``file``):
+        one entry per non-empty component file of each row (see the module notes). Without
+        it, such a catalog is an error.
 
     Returns
     -------
     list of CatalogEntry
-        In the order of the file.
+        In the order of the file (components in the order of their columns).
 
     Raises
     ------
     RecordError
         If the catalog is missing, unreadable, lacks a required column, has a malformed row
-        (wrong number of fields, empty ``file``), or ``where`` names a column it does not have.
+        (wrong number of fields, empty ``file``), ``where`` names a column it does not have,
+        or it is a catalog of components and ``components`` is false.
     """
     path = Path(path)
     where_str = str(path)
@@ -259,7 +293,7 @@ def load_catalog(
         raise RecordError("is a directory, not a catalog CSV file", where=where_str)
     try:
         with open(path, newline="", encoding="utf-8-sig") as fh:
-            rows = list(_rows(fh, path))
+            rows = list(_rows(fh, path, components))
     except UnicodeDecodeError:
         raise RecordError("not a text CSV file", where=where_str) from None
     except OSError as exc:
@@ -287,13 +321,34 @@ def load_catalog(
         row = dict(zip(columns, (c.strip() for c in cells), strict=True))
         if where and not _matches(row, where):
             continue
-        if not row["file"]:
-            raise RecordError("empty 'file' column", where=f"{path}:{line}")
-        entries.append(CatalogEntry(path, line, path.parent / row["file"], row))
+        if "file" in row:
+            if not row["file"]:
+                raise RecordError("empty 'file' column", where=f"{path}:{line}")
+            entries.append(CatalogEntry(path, line, path.parent / row["file"], row))
+            continue
+        found = [c for c in component_columns(columns) if row[c]]
+        if not found:
+            raise RecordError(
+                f"empty {', '.join(map(repr, component_columns(columns)))} columns",
+                where=f"{path}:{line}",
+            )
+        for column in found:
+            own = _component_row(row, column)
+            entries.append(CatalogEntry(path, line, path.parent / own["file"], own, column))
     return entries
 
 
-def _rows(fh, path: Path):
+def _component_row(row: dict[str, str], column: str) -> dict[str, str]:
+    """The row of one component: its ``<name>_<component>`` columns also under ``<name>``."""
+    suffix = "_" + column[len("file_") :]
+    own = dict(row)
+    for key, value in row.items():
+        if key.endswith(suffix) and len(key) > len(suffix):
+            own[key[: -len(suffix)]] = value
+    return own
+
+
+def _rows(fh, path: Path, components: bool = False):
     """(line, cells) of the header and the data rows; checks the required columns."""
     reader = csv.reader(fh, skipinitialspace=True)
     header_seen = False
@@ -303,6 +358,16 @@ def _rows(fh, path: Path):
         if not header_seen:
             columns = [c.strip().lower() for c in cells]
             missing = [c for c in REQUIRED_COLUMNS if c not in columns]
+            per_component = component_columns(columns)
+            if missing == ["file"] and per_component and not components:
+                raise RecordError(
+                    f"a catalog of components ({', '.join(per_component)} on each row): read "
+                    "here, each row must be one record with a 'file' column (floorslide "
+                    "inspect reads every component)",
+                    where=str(path),
+                )
+            if missing == ["file"] and per_component:
+                missing = []
             if missing:
                 raise RecordError(
                     f"not a record catalog: no column {', '.join(map(repr, missing))} "

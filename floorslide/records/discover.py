@@ -5,12 +5,18 @@ of a catalog) and a list of problems, so that a batch reports every bad path and
 the others (DESIGN §9):
 
 - a **file** is a record, or a catalog if it is a CSV with the columns ``file, dt, units``
-  (then each of its rows is a source);
+  (then each of its rows is a source) or ``file_h1, file_h2 ..., dt, units`` (a catalog of
+  components: each component file of each row is a source);
 - a **directory** is searched recursively (hidden files and folders skipped): its catalogs
   give their rows, and every other file is a record — except files a catalog lists (read once,
   through the catalog, with its metadata) and documentation or other non-record files
   (``*.md``, ``*.rst``, ``*.pdf``, images, ``*.py``, ``*.json``, ``*.toml``/``*.yaml``,
   ``README*``, ``LICENSE*`` ...). A directory with no record in it is a problem;
+- a file named on its own that is documentation (``*.md``, ``README``, ``PROVENANCE`` ...:
+  what a shell glob such as ``records/*`` brings along) is skipped, but another non-record
+  file (a scene ``*.toml``, a result ``*.h5``, ``*.json``, ``*.py`` ...) is a problem, with a
+  hint at what it is; and when nothing but documentation was named, that is a problem too —
+  a command that inspects nothing never succeeds silently;
 - a path that does not exist is a problem; a file listed twice is read once.
 """
 
@@ -27,7 +33,7 @@ from floorslide.errors import RecordError
 from floorslide.records.catalog import CatalogEntry, is_catalog, load_catalog
 from floorslide.records.read import read_record
 
-NOT_RECORDS = frozenset(
+DOCUMENTATION = frozenset(
     {
         ".md",
         ".rst",
@@ -39,6 +45,15 @@ NOT_RECORDS = frozenset(
         ".jpeg",
         ".gif",
         ".svg",
+        ".doc",
+        ".docx",
+        ".log",
+    }
+)
+"""File suffixes (lower case) of documentation: skipped in folders and when named."""
+
+NOT_RECORDS = DOCUMENTATION | frozenset(
+    {
         ".py",
         ".pyc",
         ".ipynb",
@@ -52,15 +67,20 @@ NOT_RECORDS = frozenset(
         ".hdf5",
         ".xls",
         ".xlsx",
-        ".doc",
-        ".docx",
         ".zip",
         ".gz",
         ".tar",
-        ".log",
     }
 )
-"""File suffixes (lower case) that are never records."""
+"""File suffixes (lower case) that are never records: skipped in folders, a problem when
+named (unless documentation)."""
+
+HINTS = {
+    ".toml": "a scene file? run it with floorslide run",
+    ".h5": "a result file? read it with floorslide table or floorslide plot",
+    ".hdf5": "a result file? read it with floorslide table or floorslide plot",
+}
+"""What a non-record file named on the command line probably is."""
 
 NOT_RECORD_NAMES = ("readme", "license", "licence", "provenance", "changelog", "copying")
 """File name stems (lower case, prefix match) that are documentation, not records."""
@@ -106,6 +126,17 @@ def is_documentation(path: Path) -> bool:
     return path.suffix.lower() in NOT_RECORDS or name.startswith(NOT_RECORD_NAMES)
 
 
+def _is_prose(path: Path) -> bool:
+    """Documentation proper (skipped even when named: shell globs bring it along)."""
+    return path.suffix.lower() in DOCUMENTATION or path.name.lower().startswith(NOT_RECORD_NAMES)
+
+
+def _not_a_record(path: Path) -> RecordError:
+    suffix = path.suffix.lower()
+    hint = HINTS.get(suffix, "give record files, catalogs or folders")
+    return RecordError(f"not a record ({suffix[1:]} file); {hint}", where=str(path))
+
+
 def _walk(folder: Path) -> list[Path]:
     files = []
     for root, dirs, names in os.walk(folder):
@@ -132,6 +163,7 @@ def discover(paths: Iterable[str | os.PathLike]) -> tuple[list[RecordSource], li
     problems: list[RecordError] = []
     groups: list[tuple[list[Path], list[CatalogEntry]]] = []
     listed: set[Path] = set()
+    skipped: list[Path] = []
     for given in paths:
         path = Path(given)
         if not path.exists():
@@ -139,7 +171,11 @@ def discover(paths: Iterable[str | os.PathLike]) -> tuple[list[RecordSource], li
             continue
         if path.is_dir():
             files = [f for f in _walk(path) if not is_documentation(f)]
+        elif _is_prose(path):
+            skipped.append(path)
+            continue
         elif is_documentation(path):
+            problems.append(_not_a_record(path))
             continue
         else:
             files = [path]
@@ -147,7 +183,7 @@ def discover(paths: Iterable[str | os.PathLike]) -> tuple[list[RecordSource], li
         entries: list[CatalogEntry] = []
         for catalog in catalogs:
             try:
-                rows = load_catalog(catalog)
+                rows = load_catalog(catalog, components=True)
             except RecordError as exc:
                 problems.append(exc)
                 continue
@@ -160,10 +196,13 @@ def discover(paths: Iterable[str | os.PathLike]) -> tuple[list[RecordSource], li
 
     sources: list[RecordSource] = []
     seen: set[Path] = set()
-    seen_rows: set[tuple[Path, int]] = set()
+    seen_rows: set[tuple[Path, int, str]] = set()
+    if skipped and not groups and not problems:
+        names = ", ".join(str(p) for p in skipped)
+        problems.append(RecordError(f"no record to read: {names} (documentation, skipped)"))
     for plain, entries in groups:
         for entry in entries:
-            row = (entry.catalog.resolve(), entry.line)
+            row = (entry.catalog.resolve(), entry.line, entry.column)
             if row not in seen_rows:
                 seen_rows.add(row)
                 sources.append(RecordSource(entry.path, entry))

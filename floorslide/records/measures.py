@@ -46,11 +46,10 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 import numpy as np
-from obspy import Trace
 
 from floorslide.constants import G
-from floorslide.errors import RecordError, UnitsError
-from floorslide.records.units import SI_UNITS, canonical_units
+from floorslide.errors import RecordError
+from floorslide.inputs import RecordLike, is_stream, is_trace, trace_label, unwrap_record
 
 MEASURE_KEYS = (
     "dt",
@@ -65,35 +64,27 @@ MEASURE_KEYS = (
     "d5_75",
     "d5_95",
 )
-"""The keys of :func:`measures`, in the order the command line prints them."""
+"""The numeric keys of :func:`measures`, in the order the command line prints them (the dict
+also holds ``notes``)."""
 
 
-def _as_record(trace_or_array: Trace | np.ndarray | Sequence[float], dt: float | None):
-    """Acceleration (float64, m/s²) and dt from a Trace or an array, checked."""
-    where = None
-    if isinstance(trace_or_array, Trace):
-        stats = trace_or_array.stats
-        where = stats.get("record", {}).get("path") or stats.get("path") or trace_or_array.id
-        units = stats.get("units")
-        if units and canonical_units(units) != SI_UNITS:
-            raise UnitsError(
-                f"trace data are in {units}; convert to m/s**2 first (read_record does)",
-                where=where,
-            )
-        if dt is not None and abs(dt - stats.delta) > 1e-9 * stats.delta:
-            raise RecordError(f"dt = {dt} s given but the trace has {stats.delta} s", where)
-        acc, dt = np.asarray(trace_or_array.data, dtype=np.float64), float(stats.delta)
-    else:
-        acc = np.asarray(trace_or_array, dtype=np.float64)
-        if dt is None:
-            raise RecordError("measures of an array need dt (the time step in s)")
+def _as_record(
+    trace_or_array: RecordLike, dt: float | None
+) -> tuple[np.ndarray, float, tuple[str, ...]]:
+    """Acceleration (float64, m/s²), dt and notes from a Trace, Stream or array, checked."""
+    rec = unwrap_record(trace_or_array, dt, "trace_or_array", stacklevel=4)
+    source = trace_or_array.traces[0] if is_stream(trace_or_array) else trace_or_array
+    where = trace_label(source) if is_trace(source) else None
+    acc, dt = np.asarray(rec.data, dtype=np.float64), rec.dt
+    if dt is None:
+        raise RecordError("measures of an array need dt (the time step in s)")
     if acc.ndim != 1 or acc.size == 0:
         raise RecordError(f"a record is a non-empty 1-D array, got shape {acc.shape}", where)
     if not np.isfinite(dt) or dt <= 0:
         raise RecordError(f"dt = {dt!r}: the time step must be > 0 s", where)
     if not np.all(np.isfinite(acc)):
         raise RecordError("the record holds NaN or infinite samples", where)
-    return acc, float(dt)
+    return acc, float(dt), rec.notes
 
 
 def velocity_displacement(acc: np.ndarray, dt: float) -> tuple[np.ndarray, np.ndarray]:
@@ -216,15 +207,18 @@ def husid_times(acc: np.ndarray, dt: float, fractions: Sequence[float]) -> np.nd
 
 
 def measures(
-    trace_or_array: Trace | np.ndarray | Sequence[float], dt: float | None = None
-) -> dict[str, float | int]:
+    trace_or_array: RecordLike, dt: float | None = None
+) -> dict[str, float | int | tuple[str, ...]]:
     """Intensity measures of a record, exact for the piecewise-linear record.
 
     Parameters
     ----------
     trace_or_array
-        An ObsPy Trace in m/s² (as from :func:`floorslide.read_record`; a trace whose
-        ``stats.units`` is another unit is refused), or an array of accelerations in m/s².
+        An array of accelerations in m/s², or an ObsPy Trace or one-trace Stream: in m/s² as
+        from :func:`floorslide.read_record`, or in another unit named by ``stats.units``
+        (``g``, ``gal`` ...), converted to m/s² with a
+        :class:`~floorslide.errors.UnitsConversionWarning` and a line in ``notes``; a trace
+        without ``stats.units`` or in unknown units is refused (see :mod:`floorslide.inputs`).
     dt
         Time step in s; required for an array, optional (and checked) for a Trace.
 
@@ -233,16 +227,18 @@ def measures(
     dict
         ``dt`` (s), ``npts``, ``duration`` (``(npts−1)·dt``, s), ``pga`` (m/s²), ``pga_g`` (g),
         ``pgv`` (m/s), ``pgd`` (m), ``arias`` (m/s), ``cav`` (m/s), ``d5_75`` and ``d5_95``
-        (s; NaN for a record of zeros). The record starts at rest; nothing is filtered or
-        baseline-corrected here (see :func:`floorslide.process`), so PGV and PGD are those of
-        the record as given.
+        (s; NaN for a record of zeros), in the order of :data:`MEASURE_KEYS`, then ``notes``:
+        a tuple of what was done to the input (a Trace's unit conversion), empty for data in
+        m/s². The record starts at rest; nothing is filtered or baseline-corrected here (see
+        :func:`floorslide.process`), so PGV and PGD are those of the record as given.
 
     Raises
     ------
     RecordError
-        Empty or non-finite data, dt ≤ 0, or no dt for an array.
+        Empty or non-finite data, dt ≤ 0, no dt for an array, a dt that contradicts a Trace's
+        ``stats.delta``, a Stream of several traces.
     UnitsError
-        A Trace whose data are not in m/s².
+        A Trace without ``stats.units`` or in units floorslide does not know.
 
     Notes
     -----
@@ -261,7 +257,7 @@ def measures(
     >>> round(m["d5_95"], 9)
     9.0
     """
-    acc, dt = _as_record(trace_or_array, dt)
+    acc, dt, notes = _as_record(trace_or_array, dt)
     pga = float(np.abs(acc).max())
     pgv, pgd = peak_velocity_displacement(acc, dt)
     t5, t75, t95 = husid_times(acc, dt, (0.05, 0.75, 0.95))
@@ -277,4 +273,5 @@ def measures(
         "cav": cumulative_absolute_velocity(acc, dt),
         "d5_75": float(t75 - t5),
         "d5_95": float(t95 - t5),
+        "notes": notes,
     }

@@ -101,6 +101,18 @@ format, so that the error says what is wrong with it (e.g. the line and column o
 rather than "unknown format"."""
 
 
+DISPLAY_NAMES = {text.FORMAT: "text"}
+"""Formats whose internal (ObsPy plugin) name is not the one users know: floorslide's plain
+text is the ObsPy plugin ``FSTEXT`` and ``text`` to users."""
+
+
+def format_name(fmt: str) -> str:
+    """The name a user knows a format by, as ``floorslide inspect`` shows it and ``--format``
+    takes it: ``text`` for floorslide's plain text, otherwise the format's own name (``AT2``,
+    ``COSMOSV2``, ``MSEED``, ``KNET`` ...)."""
+    return DISPLAY_NAMES.get(fmt, fmt)
+
+
 class _UnknownFormat(RecordError):
     """No reader recognises the file."""
 
@@ -270,7 +282,7 @@ def resolve_format(format: str, where: str = "") -> str:
     if key.upper() in known:
         return key.upper()
     raise RecordError(
-        f"unknown format {format!r}; floorslide reads AT2, COSMOSV2, FSTEXT (plain text) and "
+        f"unknown format {format!r}; floorslide reads AT2, COSMOSV2, text (plain text) and "
         "the ObsPy formats (MSEED, SAC, KNET, GSE2, SEGY, ...)",
         where=where or None,
     )

@@ -32,8 +32,9 @@ from floorslide.building.exact import (
     taylor_degrees,
 )
 from floorslide.building.model import LinearBuilding
-from floorslide.building.motions import check_record, floor_motions, peak_floor_acceleration
+from floorslide.building.motions import floor_motions, peak_floor_acceleration
 from floorslide.errors import ModelError
+from floorslide.inputs import RecordLike, as_record
 from floorslide.spectra import _kernels as K
 from floorslide.spectra._kernels import NB, NCOEF, spectrum_kernel
 
@@ -61,6 +62,9 @@ class Spectrum:
         How it was computed.
     broadening
         Peak-broadening factor applied (0 when none).
+    notes
+        What was done to the input record (e.g. its conversion from g to m/s² when it came as
+        an ObsPy Trace in g), one line each; empty for samples given in m/s².
     """
 
     periods: np.ndarray
@@ -72,6 +76,7 @@ class Spectrum:
     psv: np.ndarray
     method: str = "exact"
     broadening: float = 0.0
+    notes: tuple[str, ...] = ()
 
     def to_dict(self) -> dict:
         """JSON-ready dict with SI values (``psa[i]`` belongs to ``damping[i]``)."""
@@ -85,6 +90,7 @@ class Spectrum:
             psv=self.psv.tolist(),
             method=self.method,
             broadening=self.broadening,
+            notes=list(self.notes),
         )
 
 
@@ -406,9 +412,9 @@ def _exact(a, dt, T, Z, building, floor, search_all=False):
 
 
 def response_spectrum(
-    acc,
-    dt: float,
-    periods,
+    acc: RecordLike,
+    dt: float | None = None,
+    periods=None,
     damping=0.05,
     *,
     building: LinearBuilding | None = None,
@@ -422,12 +428,15 @@ def response_spectrum(
     ----------
     acc
         Ground acceleration samples, m/s² (or, without `building`, any motion taken as piecewise
-        linear).
+        linear). Or an ObsPy Trace or one-trace Stream: dt from ``stats.delta``, units from
+        ``stats.units`` (converted to m/s² with a
+        :class:`~floorslide.errors.UnitsConversionWarning` and a line in ``notes``; see
+        :mod:`floorslide.inputs`).
     dt
-        Time step, s.
+        Time step, s; required for samples, optional for a Trace (must equal ``stats.delta``).
     periods
         Oscillator periods (s, list; 0 gives the peak of the motion) or ``{"min", "max", "n"}``
-        (log-spaced).
+        (log-spaced); required.
     damping
         Damping ratio or list of ratios.
     building, floor
@@ -440,13 +449,19 @@ def response_spectrum(
     substeps
         Sub-steps of ``"newmark"``.
 
+    Returns
+    -------
+    Spectrum
+
     References
     ----------
     Nigam, N. C., Jennings, P. C. (1969). Calculation of response spectra from strong-motion
     earthquake records. *Bull. Seismol. Soc. Am.* 59(2), 909–922.
     Van Loan (1978), Theorem 1 (the augmented matrix exponential).
     """
-    a, dt = check_record(acc, dt, "acc")
+    a, dt, notes = as_record(acc, dt, "acc")
+    if periods is None:
+        raise ModelError("periods are required: a list in s or {min, max, n}", "periods")
     T = period_grid(periods)
     Z = _damping_list(damping)
     if method not in METHODS:
@@ -466,7 +481,9 @@ def response_spectrum(
     w = np.where(T > 0, 2 * np.pi / np.where(T > 0, T, 1.0), 0.0)
     psa = sd * w**2
     psa[:, T == 0] = sa[:, T == 0]
-    return Spectrum(periods=T, damping=Z, psa=psa, sa=sa, sv=sv, sd=sd, psv=sd * w, method=method)
+    return Spectrum(
+        periods=T, damping=Z, psa=psa, sa=sa, sv=sv, sd=sd, psv=sd * w, method=method, notes=notes
+    )
 
 
 def broaden(spectrum: Spectrum, factor: float = 0.15) -> Spectrum:
@@ -527,7 +544,8 @@ def envelope(spectra: Sequence[Spectrum]) -> Spectrum:
         k: np.max([getattr(s, k) for s in spectra], axis=0)
         for k in ("psa", "sa", "sv", "sd", "psv")
     }
-    return replace(first, **stack, method="envelope")
+    notes = tuple(dict.fromkeys(n for s in spectra for n in s.notes))
+    return replace(first, **stack, method="envelope", notes=notes)
 
 
 def floor_samples(acc, dt, building, floor, oversample=1):

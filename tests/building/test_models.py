@@ -28,7 +28,7 @@ def test_kelly_closed_form_frequencies():
         wb2, ws2 = (2 * np.pi / 2.0) ** 2, (2 * np.pi / 0.3) ** 2
         gamma = 1 / (1 + ratio)
         w2 = np.sort(np.roots([1 - gamma, -(wb2 + ws2), wb2 * ws2]).real)
-        np.testing.assert_allclose(iso.modal_properties().frequencies ** 2, w2, rtol=1e-12)
+        np.testing.assert_allclose(iso.modal_properties().circular_frequencies ** 2, w2, rtol=1e-12)
 
 
 def test_from_period_gives_the_period_and_uniform_chain_eigenvalues():
@@ -38,7 +38,7 @@ def test_from_period_gives_the_period_and_uniform_chain_eigenvalues():
     k, m, N = fb.storey_stiffness[0], 2.0e5, 5
     j = np.arange(1, N + 1)
     w = 2 * np.sqrt(k / m) * np.sin((2 * j - 1) * np.pi / (2 * (2 * N + 1)))
-    np.testing.assert_allclose(fb.modal_properties().frequencies, w, rtol=1e-12)
+    np.testing.assert_allclose(fb.modal_properties().circular_frequencies, w, rtol=1e-12)
 
 
 def test_shear_profile_is_stiffer_at_the_base():
@@ -66,7 +66,7 @@ def test_effective_masses_sum_to_total_mass():
 def test_classical_damping_gives_modal_poles(damping):
     """Classically damped: poles −ξω ± iω√(1−ξ²), the ω of the undamped problem."""
     fb = ShearBuilding(masses=[3.0, 2.0, 1.0], stiffnesses=[900.0, 600.0, 300.0], damping=damping)
-    w = fb.modal_properties().frequencies
+    w = fb.modal_properties().circular_frequencies
     xi = np.broadcast_to(np.asarray(damping, float), w.shape)
     expected = np.concatenate(
         [-xi * w + 1j * w * np.sqrt(1 - xi**2), -xi * w - 1j * w * np.sqrt(1 - xi**2)]
@@ -82,7 +82,7 @@ def test_rayleigh_damping_matches_ratio_at_anchor_modes():
     fb = ShearBuilding(
         masses=[1.0] * 4, stiffnesses=[400.0] * 4, damping=Rayleigh(0.05, modes=(1, 3))
     )
-    w = fb.modal_properties().frequencies
+    w = fb.modal_properties().circular_frequencies
     phi = fb.modal_properties().shapes  # mass-normalised
     xi = np.diag(phi.T @ fb.damping_matrix @ phi) / (2 * w)
     assert xi[0] == pytest.approx(0.05, rel=1e-12)
@@ -150,3 +150,20 @@ def test_bad_parameters_give_one_clear_error(make):
     with pytest.raises(ModelError) as err:
         make()
     assert "\n" not in str(err.value) and len(str(err.value)) < 200
+
+
+def test_modal_frequencies_in_hz_and_rad_per_s():
+    """Issue 12 item 8: engineers read Hz; both units are given under unmistakable names, and the
+    old ``frequencies`` (rad/s) still works, with a DeprecationWarning naming both."""
+    sdof = ShearBuilding(masses=[2.0], stiffnesses=[800.0], damping=0.0)  # ω = √(k/m) = 20 rad/s
+    mp = sdof.modal_properties()
+    assert mp.circular_frequencies[0] == pytest.approx(20.0, rel=1e-14)
+    assert mp.frequencies_hz[0] == pytest.approx(20.0 / (2 * np.pi), rel=1e-14)
+    fb = ShearBuilding.from_period(stories=3, period=0.4, damping=0.05)
+    mp = fb.modal_properties()
+    assert mp.frequencies_hz[0] == pytest.approx(2.5, rel=1e-13)  # 1 / 0.4 s
+    np.testing.assert_allclose(mp.frequencies_hz, 1 / mp.periods, rtol=1e-14)
+    np.testing.assert_allclose(mp.circular_frequencies, 2 * np.pi * mp.frequencies_hz, rtol=1e-14)
+    with pytest.warns(DeprecationWarning, match="frequencies_hz"):
+        old = mp.frequencies
+    np.testing.assert_array_equal(old, mp.circular_frequencies)

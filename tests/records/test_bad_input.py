@@ -314,7 +314,16 @@ def good_catalog(tmp_path) -> Path:
 _FLAGS = {"format": "--format", "units": "--units", "dt": "--dt", "component": "--component"}
 
 
-@pytest.mark.parametrize("name", CASES)
+BAD_OPTION = {
+    "dt given negative": ("--dt", "must be > 0 s, got -0.01"),
+    "unknown units given": ("--units", "unknown units 'furlongs'"),
+    "unknown format": ("--format", "unknown format 'XYZ'"),
+}
+"""Cases where the fault is the option's value, not the file: bad usage (exit 2), naming the
+option, before any record is read."""
+
+
+@pytest.mark.parametrize("name", [c for c in CASES if c not in BAD_OPTION])
 def test_inspect_reports_the_bad_file_and_keeps_going(tmp_path, good_catalog, name):
     path, kwargs, _, pattern = _case(name, tmp_path)
     args = ["inspect", "--json"]
@@ -330,6 +339,20 @@ def test_inspect_reports_the_bad_file_and_keeps_going(tmp_path, good_catalog, na
     assert _search(pattern, errors[0]), errors[0]
     rows = json.loads(result.stdout)
     assert [row["station"] for row in rows] == ["El Centro"]
+
+
+@pytest.mark.parametrize("name", list(BAD_OPTION))
+def test_inspect_bad_option_value_is_bad_usage(tmp_path, good_catalog, name):
+    path, kwargs, _, _ = _case(name, tmp_path)
+    args = ["inspect", "--json"]
+    for key, value in kwargs.items():
+        args += [_FLAGS[key], str(value)]
+    result = CliRunner().invoke(cli, [*args, str(path), str(good_catalog)])
+    assert result.exit_code == 2, result.output
+    assert "Traceback" not in result.stderr and result.stdout == ""
+    errors = [line for line in result.stderr.splitlines() if line.startswith("Error:")]
+    option, text = BAD_OPTION[name]
+    assert len(errors) == 1 and option in errors[0] and text in errors[0]
 
 
 def test_inspect_directory_without_records(tmp_path, good_catalog):

@@ -41,7 +41,7 @@ def test_inspect_reads_every_bundled_record(all_bundled):
     }
     for row in all_bundled:
         assert set(row) == KEYS
-        assert row["format"] == "FSTEXT"
+        assert row["format"] == "text"  # the name --format takes, not the plugin FSTEXT
         assert row["pga"] == pytest.approx(row["pga_g"] * 9.80665, rel=1e-15)
         assert 0 < row["d5_75"] < row["d5_95"] <= row["duration"]
 
@@ -49,7 +49,7 @@ def test_inspect_reads_every_bundled_record(all_bundled):
 def test_inspect_values_are_those_of_the_api(all_bundled):
     row = next(r for r in all_bundled if r["record"].endswith(ELC_FILE))
     trace = fs.read_record(SLAMMER / ELC_FILE)[0]
-    assert {k: row[k] for k in MEASURE_KEYS} == fs.measures(trace)
+    assert {k: row[k] for k in MEASURE_KEYS} == {k: fs.measures(trace)[k] for k in MEASURE_KEYS}
     assert row["station"] == "El Centro Array #9" and row["event"] == "Imperial Valley 1940"
 
 
@@ -128,3 +128,109 @@ def test_help():
     assert result.exit_code == 0
     for option in ("--json", "--format", "--units", "--dt", "--component"):
         assert option in result.stdout
+
+
+# Issue 12 item 7: non-records, catalogs of components, format names, exit codes --------------
+
+PAIR_HEADER = (
+    "file_h1,file_h2,rsn,event,date,station,comp_h1,comp_h2,dt,npts_h1,npts_h2,units,"
+    "pga_h1_g,pga_h2_g"  # the columns of PEER pair flatfiles (shared/records/pairs/index.csv)
+)
+
+
+def pair_catalog(tmp_path: Path, npts_h2: int = 3949) -> Path:
+    """A catalog of components naming two bundled AT2 files of El Centro 1940 NS."""
+    h1, h2 = FIXTURES / "ELC180_ngawest2.AT2", FIXTURES / "ELC180_peer2000.AT2"
+    row = f"{h1},{h2},6,Imperial Valley-02,5/19/1940,El Centro Array #9,180,180,0.01,3949,"
+    path = tmp_path / "index.csv"
+    path.write_text(f"{PAIR_HEADER}\n{row}{npts_h2},g,0.3129,0.3129\n")
+    return path
+
+
+def one_error_line(result) -> str:
+    lines = result.stderr.splitlines()
+    assert len(lines) == 1 and "Traceback" not in result.stderr, result.stderr
+    return lines[0]
+
+
+def test_a_scene_file_is_not_silently_inspected(tmp_path):
+    """``floorslide inspect scene.toml`` printed nothing and exited 0."""
+    scene = tmp_path / "scene.toml"
+    scene.write_text('[scene]\nname = "x"\n')
+    result = run(str(scene))
+    assert result.exit_code == 3 and result.stdout == ""
+    line = one_error_line(result)
+    assert str(scene) in line and "not a record" in line and "floorslide run" in line
+    # the records named with it are still inspected
+    result = run("--json", str(scene), str(SLAMMER / ELC_FILE))
+    assert result.exit_code == 3 and len(json.loads(result.stdout)) == 1
+
+
+@pytest.mark.parametrize("name", ["results.h5", "notes.json"])
+def test_other_non_records_named_are_errors(tmp_path, name):
+    path = tmp_path / name
+    path.write_bytes(b"{}")
+    result = run(str(path))
+    assert result.exit_code == 3 and str(path) in one_error_line(result)
+
+
+def test_nothing_but_documentation_is_an_error(tmp_path):
+    readme = tmp_path / "README.md"
+    readme.write_text("# records\n")
+    result = run(str(readme))
+    assert result.exit_code == 3 and "no record to read" in one_error_line(result)
+
+
+def test_catalog_of_components_shows_every_component(tmp_path):
+    """A PEER pair flatfile (file_h1, file_h2) got 'line 2: 17 columns'."""
+    result = run("--json", str(pair_catalog(tmp_path)))
+    assert result.exit_code == 0, result.stderr
+    rows = json.loads(result.stdout)
+    assert [Path(r["record"]).name for r in rows] == ["ELC180_ngawest2.AT2", "ELC180_peer2000.AT2"]
+    ref = fs.measures(fs.read_record(SLAMMER / ELC_FILE)[0])  # the SLAMMER copy of the record
+    for row in rows:
+        assert row["format"] == "AT2" and row["npts"] == 3949
+        assert row["pga_g"] == pytest.approx(ref["pga_g"], rel=1e-4)
+
+
+def test_catalog_of_components_checks_each_component(tmp_path):
+    result = run("--json", str(pair_catalog(tmp_path, npts_h2=4000)))
+    assert result.exit_code == 3
+    line = one_error_line(result)
+    assert "ELC180_peer2000.AT2" in line and "npts=4000" in line
+    assert len(json.loads(result.stdout)) == 1  # h1 is still shown
+
+
+def test_catalog_of_components_elsewhere_says_what_it_is(tmp_path):
+    path = pair_catalog(tmp_path)
+    with pytest.raises(fs.RecordError, match="catalog of components"):
+        fs.read_catalog(path)
+    with pytest.raises(fs.RecordError, match="is a record catalog, not a record"):
+        fs.read_record(path)
+
+
+def test_format_column_shows_the_name_users_give():
+    result = run(str(SLAMMER / ELC_FILE))
+    assert result.exit_code == 0
+    assert "FSTEXT" not in result.stdout
+    assert result.stdout.splitlines()[1].split()[1] == "text"
+
+
+@pytest.mark.parametrize(
+    ("option", "value", "text"),
+    [
+        ("--units", "furlongs", "unknown units 'furlongs'"),
+        ("--format", "nope", "unknown format 'nope'"),
+        ("--dt", "-1", "must be > 0"),
+        ("--dt", "0", "must be > 0"),
+    ],
+)
+@pytest.mark.parametrize("command", ["inspect", "slide", "spectrum"])
+def test_bad_option_values_are_usage_errors(command, option, value, text):
+    """A bad --units/--format/--dt is bad usage (exit 2) naming the option — not an unreadable
+    record (exit 3) blamed on the file."""
+    extra = ["--mu", "0.1"] if command == "slide" else []
+    result = CliRunner().invoke(cli, [command, str(SLAMMER / ELC_FILE), *extra, option, value])
+    assert result.exit_code == 2, result.output
+    error = [line for line in result.stderr.splitlines() if line.startswith("Error:")]
+    assert len(error) == 1 and option in error[0] and text in error[0]

@@ -23,7 +23,7 @@ from obspy import Trace
 from scipy.integrate import quad
 
 import floorslide as fs
-from floorslide.errors import RecordError, UnitsError
+from floorslide.errors import RecordError, UnitsConversionWarning, UnitsError
 from floorslide.records.measures import (
     MEASURE_KEYS,
     husid,
@@ -225,8 +225,9 @@ def test_trace_and_array_agree_and_keys(elc_si):
     tr.stats.delta = 0.01
     tr.stats.units = "m/s**2"
     from_trace = fs.measures(tr)
-    assert tuple(from_trace) == MEASURE_KEYS
+    assert tuple(from_trace) == (*MEASURE_KEYS, "notes")
     assert from_trace == fs.measures(elc_si, dt=0.01)
+    assert from_trace["notes"] == ()
     assert from_trace["pga_g"] == pytest.approx(0.312881, rel=1e-12)
 
 
@@ -240,9 +241,23 @@ def test_invalid_input():
     with pytest.raises(RecordError, match="NaN or infinite"):
         fs.measures(np.array([0.0, np.inf]), dt=0.01)
     tr = Trace(np.ones(3))
-    tr.stats.units = "g"
-    with pytest.raises(UnitsError, match="convert to m/s\\*\\*2 first"):
+    with pytest.raises(UnitsError, match=r"no stats\.units"):
         fs.measures(tr)
+    tr.stats.units = "furlongs/fortnight"
+    with pytest.raises(UnitsError, match="'furlongs/fortnight'"):
+        fs.measures(tr)
+
+
+def test_trace_in_g_is_converted_with_a_note(elc_g):
+    """DESIGN §10: a Trace in g is converted (it used to be refused), and the result says so."""
+    tr = Trace(elc_g.copy())
+    tr.stats.delta = 0.01
+    tr.stats.units = "g"
+    with pytest.warns(UnitsConversionWarning, match="'g'"):
+        m = fs.measures(tr)
+    ref = fs.measures(elc_g * 9.80665, dt=0.01)
+    assert {k: m[k] for k in MEASURE_KEYS} == {k: ref[k] for k in MEASURE_KEYS}
+    assert len(m["notes"]) == 1 and "9.80665" in m["notes"][0]
 
 
 def test_zero_record_and_single_sample():

@@ -1,0 +1,98 @@
+"""One-line building specs of the command line (``--building``, issue 12 item 8)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from floorslide.building import IsolatedBuilding, Rayleigh, ShearBuilding
+from floorslide.building.spec import describe_building, parse_building
+from floorslide.errors import ModelError
+
+
+def same(a, b) -> None:
+    assert type(a) is type(b)
+    np.testing.assert_array_equal(a.mass, b.mass)
+    np.testing.assert_array_equal(a.stiffness_matrix, b.stiffness_matrix)
+    np.testing.assert_array_equal(a.damping_matrix, b.damping_matrix)
+
+
+@pytest.mark.parametrize(
+    ("spec", "model"),
+    [
+        ("fixed:period=0.4", lambda: ShearBuilding.from_period(1, 0.4, 0.05)),
+        (
+            "FIXED: period = 0.4 , stories=3, damping=0.02, mass=2e5, profile=shear",
+            lambda: ShearBuilding.from_period(3, 0.4, 0.02, mass=2e5, profile="shear"),
+        ),
+        (
+            "fixed:masses=2e5/2e5/1.5e5,stiffnesses=3e8/3e8/2e8",
+            lambda: ShearBuilding([2e5, 2e5, 1.5e5], [3e8, 3e8, 2e8], 0.05),
+        ),
+        (
+            "fixed:masses=1/1,stiffnesses=100/100,damping=0.02/0.04",
+            lambda: ShearBuilding([1, 1], [100, 100], [0.02, 0.04]),
+        ),
+        (
+            "isolated:period=2.5,damping=0.1,super_period=0.4,stories=3",
+            lambda: IsolatedBuilding(ShearBuilding.from_period(3, 0.4, 0.05), 1.0, 2.5, 0.1),
+        ),
+        (
+            "isolated:period=3,base_mass_ratio=0.5,masses=1/1,stiffnesses=100/50,super_damping=0.02",
+            lambda: IsolatedBuilding(ShearBuilding([1, 1], [100, 50], 0.02), 0.5, 3.0, 0.1),
+        ),
+    ],
+)
+def test_specs_build_the_models_they_name(spec, model):
+    same(parse_building(spec), model())
+
+
+def test_defaults_are_the_scene_defaults():
+    """DESIGN §4 / scene schema: stories 1, damping 0.05 (fixed) and 0.10 (isolation),
+    base_mass_ratio 1, uniform profile, mass 1."""
+    iso = parse_building("isolated:period=2,super_period=0.2")
+    assert iso.isolation_damping == 0.1 and iso.base_mass_ratio == 1.0 and iso.stories == 1
+    assert iso.superstructure.damping == 0.05
+    # Kelly: T_s = 0.2 s, T_b = 2.5 s, m_b = m gives T1 = 2.504010 s (DESIGN §7)
+    kelly = parse_building("isolated:period=2.5,super_period=0.2,damping=0")
+    assert kelly.periods[0] == pytest.approx(2.504010, abs=5e-7)
+
+
+@pytest.mark.parametrize(
+    ("spec", "where", "text"),
+    [
+        ("fixed:perod=0.4,foo=1", "perod", "unknown keys 'perod', 'foo'"),
+        ("fixed:period=0.4,base_mass_ratio=2", "base_mass_ratio", "known keys: period"),
+        ("fixed:period=x", "period", "'x' is not a number"),
+        ("fixed:stories=2", "period", "period is missing"),
+        ("fixed", "period", "period is missing"),
+        ("fixed:period=0.4,stories=2.5", "stories", "whole number"),
+        ("fixed:period=0.4,stories=0", "stories", "≥ 1"),
+        ("fixed:period=0.4,period=1", "period", "twice"),
+        ("fixed:period", "period", "key=value"),
+        ("fixed:period=0.4,masses=1", "period", "not both"),
+        ("fixed:masses=1/2,stiffnesses=1", "stiffnesses", "one value per storey"),
+        ("fixed:masses=1/x,stiffnesses=1/1", "masses", "separated by '/'"),
+        ("isolated:super_period=0.4", "period", "isolation period"),
+        ("isolated:period=2,super_period=0.4,super_damping=2", "super_damping", "[0, 1)"),
+        ("isolated:period=2,super_period=0", "super_period", "> 0"),
+        ("isolated:period=2,super_period=0.4,damping=-1", "damping", "[0, 1)"),
+        ("hotel:period=1", "kind", "unknown kind 'hotel'"),
+    ],
+)
+def test_mistakes_name_the_key(spec, where, text):
+    with pytest.raises(ModelError) as exc:
+        parse_building(spec)
+    assert exc.value.where == where
+    assert text in exc.value.message and "\n" not in str(exc.value)
+
+
+def test_description():
+    assert describe_building(parse_building("fixed:period=0.4,stories=3")) == (
+        "fixed-base, 3 storeys, T1 = 0.4 s, ξ = 0.05"
+    )
+    text = describe_building(parse_building("isolated:period=2.5,super_period=0.2"))
+    assert text.startswith("isolated, T_i = 2.5 s, ξ_i = 0.1, m_b/m = 1, T1 = 2.5")
+    assert text.endswith("superstructure fixed-base, 1 storey, T1 = 0.2 s, ξ = 0.05")
+    rayleigh = ShearBuilding([1, 1], [100, 100], Rayleigh(0.05))
+    assert "Rayleigh ξ = 0.05" in describe_building(rayleigh)
