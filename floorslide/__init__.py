@@ -1,7 +1,7 @@
 """floorslide: sliding of freestanding equipment on the floors of fixed-base and base-isolated
 buildings under recorded earthquakes.
 
-The public API (DESIGN §3) is re-exported here; nothing else lives in this module.
+The public API (docs/design.md §3) is re-exported here; nothing else lives in this module.
 """
 
 from importlib.metadata import PackageNotFoundError

@@ -1,6 +1,6 @@
 """The ``floorslide`` command line: parses, calls, prints; no numerics here.
 
-Exit codes (DESIGN §3, §10): 0 success; 2 bad usage, an invalid scene, or a missing, corrupt
+Exit codes (docs/design.md §3, §10): 0 success; 2 bad usage, an invalid scene, or a missing, corrupt
 or foreign result file; 3 unreadable record(s), the others still processed; 4 ``table`` or
 ``plot`` of an incomplete result file without ``--allow-incomplete``; 1 unexpected error. A user
 mistake is reported as one line naming the file or key at fault, never as a traceback.
@@ -249,7 +249,7 @@ def _read_one(
 
 
 def record_options(func):
-    """The options every single-record command takes (DESIGN §3)."""
+    """The options every single-record command takes (docs/design.md §3)."""
     for option in reversed(
         [
             FORMAT_OPTION,
@@ -777,7 +777,7 @@ def demo_summary(tables) -> str:
     of the set, one table per set and content, and each building's median PFA at the content's
     floor.
 
-    Rocking follows the tables' rule (DESIGN §10): an object that rocks under a record is not
+    Rocking follows the tables' rule (docs/design.md §10): an object that rocks under a record is not
     simulated as a slider and never counts as 0 slide; it is its own outcome, ranked above
     every slide. A cell reads ``rocks (k/n)`` when the median falls on rocking records, and a
     median that does not is followed by ``(k rock)`` when some records rock.
@@ -902,7 +902,7 @@ def demo(out_dir, workers):
     help="Directory for bench.csv, bench.md, bench.json and the figures.",
 )
 def bench(quick, as_json, out):
-    """The accuracy-versus-cost study (DESIGN §6): for every solver (rigid-block sliding on the
+    """The accuracy-versus-cost study (docs/design.md §6): for every solver (rigid-block sliding on the
     ground, a stiff floor and an isolated roof; the 2-DOF sliding oscillator; floor motions;
     response and floor response spectra) the exact method and each approximate one over a
     range of steps or tolerances, on bundled real records: relative error in peak and residual

@@ -1,4 +1,4 @@
-"""Physical constants (DESIGN §2)."""
+"""Physical constants (docs/design.md §2)."""
 
 G = 9.80665
 """Standard gravity, m/s²."""

@@ -1,7 +1,7 @@
 """Exception types users see.
 
 Every error a user can cause is a :class:`FloorslideError` carrying the file, line or key at
-fault; the command line turns it into one line and an exit code (DESIGN §3, §9).
+fault; the command line turns it into one line and an exit code (docs/design.md §3, §9).
 """
 
 from __future__ import annotations
@@ -72,7 +72,7 @@ class ResultFileError(FloorslideError):
 
 class IncompleteResultError(ResultFileError):
     """A result file whose run is not finished (tasks missing) was given for a report without
-    allowing it (exit code 4; DESIGN §10)."""
+    allowing it (exit code 4; docs/design.md §10)."""
 
     exit_code = 4
 

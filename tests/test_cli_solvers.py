@@ -1,4 +1,4 @@
-"""The single-record solver commands: floorslide slide and floorslide spectrum (DESIGN §3)."""
+"""The single-record solver commands: floorslide slide and floorslide spectrum (docs/design.md §3)."""
 
 from __future__ import annotations
 

@@ -28,6 +28,7 @@ def tour_commands() -> list[str]:
     blocks = re.findall(r"```console\n(.*?)```", tour_section(), flags=re.S)
     commands = []
     for block in blocks:
+        block = re.sub(r"\\\n\s*", " ", block)  # shell line continuations
         for line in block.splitlines():
             if line.startswith("$ floorslide"):
                 commands.append(line[2:].split("  #")[0].strip())

@@ -1,4 +1,4 @@
-"""The accuracy-versus-cost study (DESIGN §6): every solver's exact method against its
+"""The accuracy-versus-cost study (docs/design.md §6): every solver's exact method against its
 approximate ones, on bundled real records — error in what users use, CPU time, numba
 compilation apart — written as tables (CSV, Markdown, JSON) and work–precision diagrams.
 

@@ -1,5 +1,5 @@
 """The accuracy-versus-cost study: every method of every solver on bundled real records, its
-error against the exact method and its CPU time (DESIGN §6).
+error against the exact method and its CPU time (docs/design.md §6).
 
 The exact method is the reference. Its own error floor is measured too: the same exact method on
 the same piecewise-linear record sampled at ``dt/2`` (an identical input function, so any

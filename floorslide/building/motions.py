@@ -2,7 +2,7 @@
 
 The default method samples the exact response (first-order hold, :mod:`floorslide.building.exact`)
 and finds the true peak floor acceleration, including peaks inside steps. Approximate methods
-are kept for the accuracy-versus-cost study (DESIGN §6).
+are kept for the accuracy-versus-cost study (docs/design.md §6).
 """
 
 from __future__ import annotations

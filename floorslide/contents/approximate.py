@@ -1,4 +1,4 @@
-"""Approximate sliding solvers, kept for the accuracy-versus-cost study (DESIGN §6).
+"""Approximate sliding solvers, kept for the accuracy-versus-cost study (docs/design.md §6).
 
 - ``slammer``: Jibson's (1993) per-sample trapezoid, as USGS SLAMMER integrates a rigid block,
   generalised symmetrically to two-way sliding, on the sampled floor motion;

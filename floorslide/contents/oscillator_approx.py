@@ -1,5 +1,5 @@
 """Approximate solvers of the 2-DOF sliding oscillator, kept for the accuracy-versus-cost study
-(DESIGN §6).
+(docs/design.md §6).
 
 The model is the one of :mod:`floorslide.contents.oscillator` (per unit top mass: a top mass on a
 spring of circular frequency ``w`` and damping ratio ``xi`` over a base of mass ratio

@@ -1,6 +1,6 @@
 """Rigid blocks sliding with Coulomb friction on a floor: the exact, vectorised solver.
 
-Conventions (DESIGN §2): ``u`` is the object's displacement relative to its floor; while
+Conventions (docs/design.md §2): ``u`` is the object's displacement relative to its floor; while
 sliding ``u'' = −a_f(t) − mu_k·N(t)·sign(u')`` with ``N = g`` (or ``g + a_v(t)`` with vertical
 shaking); the object starts or restarts sliding only when ``|a_f| > mu_s·N``. With
 ``mu_s < mu_k`` a breakaway between ``mu_s·N`` and ``mu_k·N`` cannot move the block (kinetic

@@ -1,6 +1,6 @@
 """Records: reading accelerograms (formats as ObsPy plugins), catalogs, processing, measures.
 
-DESIGN §1 steps 1–2: any accelerogram file becomes an :class:`obspy.Trace` in m/s² with its
+docs/design.md §1 steps 1–2: any accelerogram file becomes an :class:`obspy.Trace` in m/s² with its
 metadata (:func:`read_record`, :func:`read_catalog`), processed only as asked (:func:`process`),
 and described by exact intensity measures (:func:`measures`).
 """

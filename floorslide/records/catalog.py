@@ -430,7 +430,7 @@ def read_catalog(
     errors
         ``"raise"`` (default): the first unreadable record raises its RecordError.
         ``"collect"``: unreadable records are skipped and returned as :class:`RecordFailure`
-        objects, so that a batch keeps going (DESIGN §9).
+        objects, so that a batch keeps going (docs/design.md §9).
 
     Returns
     -------

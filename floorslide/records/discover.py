@@ -2,7 +2,7 @@
 
 :func:`discover` turns paths into a list of :class:`RecordSource` (a record file, or one row
 of a catalog) and a list of problems, so that a batch reports every bad path and still reads
-the others (DESIGN §9):
+the others (docs/design.md §9):
 
 - a **file** is a record, or a catalog if it is a CSV with the columns ``file, dt, units``
   (then each of its rows is a source) or ``file_h1, file_h2 ..., dt, units`` (a catalog of

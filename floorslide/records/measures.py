@@ -1,6 +1,6 @@
 """Intensity measures of a ground-motion record, exact for the piecewise-linear record.
 
-DESIGN §2: a record is the piecewise-linear function through its samples. Within a step of
+docs/design.md §2: a record is the piecewise-linear function through its samples. Within a step of
 length ``h`` starting at sample ``k`` (``0 ≤ s ≤ h``, slope ``m = (a[k+1] − a[k])/h``)
 
 .. math::

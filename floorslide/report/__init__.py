@@ -1,4 +1,4 @@
-"""Reports: design tables and figures from a result file (DESIGN §3, §5).
+"""Reports: design tables and figures from a result file (docs/design.md §3, §5).
 
 ``design_tables(path)`` gives the statistics over record sets and the ratios between buildings
 (``.to_pandas()`` as DataFrames); ``record_table(path)`` the per-record values as a DataFrame;

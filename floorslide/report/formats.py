@@ -1,6 +1,6 @@
 """The design tables (and the per-record table) as Markdown, CSV, JSON and pandas DataFrames.
 
-Every format carries what DESIGN §10 asks a report to state: the conventions (notes: the
+Every format carries what docs/design.md §10 asks a report to state: the conventions (notes: the
 statistic, the records per set, how rocking objects enter the statistics, broadening), and an
 INCOMPLETE label when the result file's run is not finished — a title and a bold line in
 Markdown, a first line ``# INCOMPLETE: …`` in every CSV (``pandas.read_csv(path,

@@ -1,4 +1,4 @@
-"""Figures from a result file (DESIGN §3, ``floorslide plot``), drawn with matplotlib (Agg).
+"""Figures from a result file (docs/design.md §3, ``floorslide plot``), drawn with matplotlib (Agg).
 
 One figure per kind and record set, with one panel per floor or per content on a floor:
 
@@ -118,7 +118,7 @@ def _floor_label(study: Study, floor: int, buildings: Sequence[str]) -> str:
 
 def _suptitle(fig: Figure, study: Study, text: str) -> None:
     """The figure's title, wrapped to the figure's width; INCOMPLETE first (in red) when
-    tasks are missing (DESIGN §10)."""
+    tasks are missing (docs/design.md §10)."""
     import textwrap
 
     if study.status:

@@ -2,10 +2,10 @@
 whether the run is complete.
 
 The study is what :mod:`floorslide.report.tables`, :mod:`floorslide.report.records` and
-:mod:`floorslide.report.plots` read; they never open the HDF5 file themselves (DESIGN §5).
+:mod:`floorslide.report.plots` read; they never open the HDF5 file themselves (docs/design.md §5).
 
 An *incomplete* file — fewer tasks done than the plan stored in it counts, e.g. a run
-interrupted at 22 of 40 tasks — gives statistics that silently lack records. DESIGN §10:
+interrupted at 22 of 40 tasks — gives statistics that silently lack records. docs/design.md §10:
 reports from it are refused (:class:`~floorslide.errors.IncompleteResultError`, exit code 4
 on the command line) unless asked for explicitly, and then labelled INCOMPLETE everywhere.
 """

@@ -1,8 +1,8 @@
 """Design tables from a result file: statistics over record sets and ratios between buildings.
 
-Everything here reads the result file only (DESIGN §5) through
+Everything here reads the result file only (docs/design.md §5) through
 :class:`~floorslide.report.study.Study` and returns plain rows; :mod:`floorslide.report.formats`
-writes them as Markdown, CSV, JSON or pandas DataFrames (DESIGN §3, ``floorslide table``).
+writes them as Markdown, CSV, JSON or pandas DataFrames (docs/design.md §3, ``floorslide table``).
 
 Tables (one row per …, statistics over the records of a set; units in :data:`COLUMNS`):
 
@@ -553,7 +553,7 @@ def pfa_ratio_table(study: Study, pfa: list[dict], comparisons: Sequence[Compari
 
 
 def table_notes(study: Study, damping: float | None) -> list[str]:
-    """The conventions every output of the tables states (DESIGN §10)."""
+    """The conventions every output of the tables states (docs/design.md §10)."""
     notes = []
     if study.status:
         notes.append(study.status)
@@ -606,7 +606,7 @@ def design_tables(
     *,
     allow_incomplete: bool = False,
 ) -> DesignTables:
-    """Design tables of a result file (DESIGN §3, ``floorslide table``).
+    """Design tables of a result file (docs/design.md §3, ``floorslide table``).
 
     Parameters
     ----------

@@ -1,6 +1,6 @@
 """The planner: a scene becomes tasks (record × building), simulating only what is asked for.
 
-Rules (DESIGN §1), each counted in the plan and printed by ``floorslide run --dry-run``:
+Rules (docs/design.md §1), each counted in the plan and printed by ``floorslide run --dry-run``:
 
 - floors nobody asked about (no content, no spectrum there) are not output;
 - floor 0 of a fixed-base building is the ground: no building model is stepped for it;

@@ -1,4 +1,4 @@
-"""Scene files (TOML, DESIGN §4): loading and validation with every problem at once.
+"""Scene files (TOML, docs/design.md §4): loading and validation with every problem at once.
 
 A scene declares record sets, optional processing, buildings (lists sweep: one building per
 value), contents (equipment with friction coefficients on chosen floors), floor response

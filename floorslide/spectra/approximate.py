@@ -1,4 +1,4 @@
-"""Approximate response spectra, kept for the accuracy-versus-cost study (DESIGN §6).
+"""Approximate response spectra, kept for the accuracy-versus-cost study (docs/design.md §6).
 
 - ``samples``: the exact recurrence, but peaks read at the samples only;
 - ``newmark``: Newmark average acceleration (γ = 1/2, β = 1/4) at ``dt/substeps``;

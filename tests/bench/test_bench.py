@@ -1,4 +1,4 @@
-"""The accuracy-versus-cost study (DESIGN §6): ``floorslide bench --quick`` through the Python
+"""The accuracy-versus-cost study (docs/design.md §6): ``floorslide bench --quick`` through the Python
 API and the command line — the table's structure, every solver and method present, finite
 numbers, and each approximate method's error shrinking as its step or tolerance shrinks. Never
 timings: CPU times are only checked to be positive numbers.
@@ -129,7 +129,7 @@ def test_errors_shrink_as_steps_and_tolerances_shrink(quick):
 
 def test_coarse_approximations_are_visibly_wrong(quick):
     """The study shows a trade: at the record's own step the approximate methods miss by
-    percents (DESIGN §2: a re-interpolated stiff floor loses ~12 % of the FRS peak at
+    percents (docs/design.md §2: a re-interpolated stiff floor loses ~12 % of the FRS peak at
     dt = 0.02 s; measured here 14 % on the slide and 10 % on the FRS)."""
     by = {(r.solver, r.method, r.setting): r.error for r in quick.rows}
     assert by[("slide-stiff-floor", "reinterpolated", "dt/1")] > 0.05

@@ -62,7 +62,7 @@ def test_sdof_ramp_closed_form_at_coarse_dt():
 
 
 def test_sdof_harmonic_steady_state_amplitude_and_phase():
-    """Linear oscillator under a0·sin ωt (DESIGN §7): steady relative displacement amplitude
+    """Linear oscillator under a0·sin ωt (docs/design.md §7): steady relative displacement amplitude
     (a0/ω_n²)/√((1−r²)² + (2ξr)²) and phase atan2(2ξr, 1−r²). dt = T/4000: the piecewise-linear
     record differs from the sine by (ωdt)²/8 ≈ 3e-7 relative, hence rtol 2e-6."""
     Tn, xi, a0 = 0.5, 0.05, 1.5

@@ -48,12 +48,12 @@ def test_specs_build_the_models_they_name(spec, model):
 
 
 def test_defaults_are_the_scene_defaults():
-    """DESIGN §4 / scene schema: stories 1, damping 0.05 (fixed) and 0.10 (isolation),
+    """docs/design.md §4 / scene schema: stories 1, damping 0.05 (fixed) and 0.10 (isolation),
     base_mass_ratio 1, uniform profile, mass 1."""
     iso = parse_building("isolated:period=2,super_period=0.2")
     assert iso.isolation_damping == 0.1 and iso.base_mass_ratio == 1.0 and iso.stories == 1
     assert iso.superstructure.damping == 0.05
-    # Kelly: T_s = 0.2 s, T_b = 2.5 s, m_b = m gives T1 = 2.504010 s (DESIGN §7)
+    # Kelly: T_s = 0.2 s, T_b = 2.5 s, m_b = m gives T1 = 2.504010 s (docs/design.md §7)
     kelly = parse_building("isolated:period=2.5,super_period=0.2,damping=0")
     assert kelly.periods[0] == pytest.approx(2.504010, abs=5e-7)
 

@@ -3,7 +3,7 @@
 The reference is SciPy's DOP853 (rtol 1e-12) integrating the building and the block together
 with event location, restarted at every sample and with steps ≤ dt/16 so that brief threshold
 excursions inside a step are not stepped over. Agreement is required to 1e-8 relative for slides
-above 1 mm (DESIGN §7, issue 4).
+above 1 mm (docs/design.md §7, issue 4).
 """
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Rigid-block sliding against every sliding row of DESIGN §7 (closed forms and published values).
+"""Rigid-block sliding against every sliding row of docs/design.md §7 (closed forms and published values).
 
 The solver is exact for the piecewise-linear record. A sampled smooth pulse differs from the pulse
 by O(dt²), so the published values of smooth pulses are checked on the Richardson extrapolation
@@ -92,7 +92,7 @@ def test_one_sine_pulse(eta, published):
 
 def test_makris_black_self_similarity():
     """u_max/(A Tp²) depends only on eta: (0.5 g, 0.2 s) and (2 g, 1.5 s) at eta = 0.3 give
-    0.387678220557 (DESIGN §7), even for the sampled pulses (same samples per Tp)."""
+    0.387678220557 (docs/design.md §7), even for the sampled pulses (same samples per Tp)."""
     a, _ = normalized_peak("half", 0.3, A=0.5 * G, Tp=0.2)
     b, _ = normalized_peak("half", 0.3, A=2 * G, Tp=1.5)
     assert a == pytest.approx(b, rel=1e-12)

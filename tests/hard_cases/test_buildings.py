@@ -1,4 +1,4 @@
-"""DESIGN §8 hard cases for building models: finite, stable and still right."""
+"""docs/design.md §8 hard cases for building models: finite, stable and still right."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Bad input gets a clear answer, and nothing is lost (DESIGN §9, issue 2).
+"""Bad input gets a clear answer, and nothing is lost (docs/design.md §9, issue 2).
 
 Each case: ``read_record`` raises a RecordError (UnitsError for units) whose one-line message
 names the file and the problem; ``floorslide inspect`` on the bad file and a good catalog prints

@@ -1,4 +1,4 @@
-"""floorslide table and floorslide plot (DESIGN §3): outputs, exit codes, one-line errors."""
+"""floorslide table and floorslide plot (docs/design.md §3): outputs, exit codes, one-line errors."""
 
 from __future__ import annotations
 
@@ -130,7 +130,7 @@ def test_bad_result_files_give_one_line(monkeypatch, capsys, study, tmp_path, co
     files["truncated"][0].write_bytes(data[: len(data) // 2])
     path, text = files[case]
     code, out, err = invoke(monkeypatch, capsys, command, path, "-o", tmp_path / "o")
-    assert code == 2  # a bad result file is a bad argument (DESIGN §3)
+    assert code == 2  # a bad result file is a bad argument (docs/design.md §3)
     assert err.count("\n") == 1 and err.startswith("floorslide: error: ") and text in err
     assert str(path) in err and out == ""
 

@@ -1,5 +1,5 @@
 """A run killed with SIGKILL at several random moments, resumed each time, ends with tables
-byte-identical to an uninterrupted run (DESIGN §5, §9)."""
+byte-identical to an uninterrupted run (docs/design.md §5, §9)."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Scene validation: every problem at once, each with its key path (DESIGN §4, §9)."""
+"""Scene validation: every problem at once, each with its key path (docs/design.md §4, §9)."""
 
 from __future__ import annotations
 
