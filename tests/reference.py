@@ -55,6 +55,12 @@ def sliding_oscillator(acc, dt, mu, f, xi, r, g=9.80665, rtol=1e-12, max_step=No
         t = 0.0
         for _ in range(1000):
             if mode == 0:
+                # the floor already beyond the friction limit when sticking begins (a record
+                # that starts mid-motion): the base breaks away at once
+                F0 = r * (a0 + s * t) - c2 * y[3] - w2 * y[2]
+                if F0 > fb or F0 < -fb:
+                    mode = -1 if F0 > fb else 1
+                    continue
 
                 def rhs(tt, yy, a0=a0, s=s):
                     return [0.0, 0.0, yy[3], -(a0 + s * tt) - c2 * yy[3] - w2 * yy[2]]
@@ -166,3 +172,171 @@ def linear_peaks(A, b, C, acc, dt, rtol=1e-13, candidates=4):
             )
             peaks[i] = max(peaks[i], -res.fun)
     return peaks
+
+
+def _smallest_root(a2, a1, a0, lo, hi):
+    """Smallest root of ``a2 σ² + a1 σ + a0`` in ``(lo, hi]`` (stable quadratic formula), or
+    None."""
+    roots = []
+    if a2 == 0.0:
+        if a1 != 0.0:
+            roots = [-a0 / a1]
+    else:
+        disc = a1 * a1 - 4.0 * a2 * a0
+        if disc >= 0.0:
+            sq = np.sqrt(disc)
+            q = -0.5 * (a1 + (sq if a1 >= 0.0 else -sq))
+            roots = [q / a2] + ([a0 / q] if q != 0.0 else [])
+    inside = [r for r in roots if lo < r <= hi]
+    return min(inside) if inside else None
+
+
+def rigid_block_ground(acc, dt, mu_k, mu_s=None, g=9.80665):
+    """Rigid block with Coulomb friction on a piecewise-linear ground motion, in closed form.
+
+    Written apart from floorslide's kernels (no polynomial root finder, no shared convention
+    code): inside a step the ground acceleration is ``a1 + s·σ``, the breakaway instant solves a
+    linear equation, the stop instant a quadratic, and a block whose ground is already beyond
+    ``mu_s·g`` when a stick phase begins (a record that starts mid-motion) breaks away at once.
+    Returns ``(peak |u|, u at the end)``.
+    """
+    mu_s = mu_k if mu_s is None else mu_s
+    fb = max(mu_s, mu_k) * g
+    fk = mu_k * g
+    mode, v, u, peak = 0, 0.0, 0.0, 0.0
+    for k in range(acc.size - 1):
+        a0 = float(acc[k])
+        s = (float(acc[k + 1]) - a0) / dt
+        tau = 0.0
+        for _ in range(100):
+            if tau >= dt:
+                break
+            a_now = a0 + s * tau
+            if mode == 0:
+                if a_now > fb:
+                    mode = -1
+                    continue
+                if a_now < -fb:
+                    mode = 1
+                    continue
+                # first instant |a| passes fb on the way out
+                t_ev = dt
+                new = 0
+                if s > 0.0:
+                    t_up = (fb - a0) / s
+                    if tau <= t_up < dt:
+                        t_ev, new = t_up, -1
+                elif s < 0.0:
+                    t_lo = (-fb - a0) / s
+                    if tau <= t_lo < dt:
+                        t_ev, new = t_lo, 1
+                tau = t_ev
+                mode = new
+                continue
+            # slip with sign mode: v(σ) = v - (a_now + sg fk) σ - s σ²/2
+            sg = float(mode)
+            c1 = a_now + sg * fk
+            if v == 0.0 and sg * c1 > 0.0:
+                c1 = 0.0  # a slip from rest at its breakaway instant: rounding must not stop it
+            span = dt - tau
+            sig = _smallest_root(-0.5 * s, -c1, v, 0.0, span)
+            end = span if sig is None else sig
+            u = u + v * end - c1 * end * end / 2.0 - s * end**3 / 6.0
+            peak = max(peak, abs(u))
+            if sig is None:
+                v = v - c1 * span - s * span * span / 2.0
+                tau = dt
+                continue
+            tau = tau + sig
+            v = 0.0
+            a_now = a0 + s * tau
+            if a_now > fb:
+                mode = -1
+            elif a_now < -fb:
+                mode = 1
+            else:
+                mode = 0
+    return peak, u
+
+
+def rigid_block_on_system(A, b, ca, da, acc, dt, mu_k, mu_s=None, g=9.80665, rtol=1e-12):
+    """Rigid block with Coulomb friction on a floor whose absolute acceleration is
+    ``a_f = ca·x + da·a(t)`` with ``x' = A x + b a(t)`` (a building, a(t) piecewise linear), by
+    DOP853 on the augmented state ``[x, u, v]`` with event location, restarted at every sample
+    and every event (``max_step = dt/64`` so that brief excursions are seen).
+
+    Written apart from floorslide's kernels; a stick phase that begins with the floor already
+    beyond the friction limit breaks away at once. Returns ``(peak |u|, u at the end)``; within
+    a slip phase ``u`` is monotone, so its peaks are at phase ends.
+    """
+    A = np.asarray(A, dtype=float)
+    b = np.asarray(b, dtype=float).ravel()
+    ca = np.asarray(ca, dtype=float).ravel()
+    n = A.shape[0]
+    mu_s = mu_k if mu_s is None else mu_s
+    fb = max(mu_s, mu_k) * g
+    fk = mu_k * g
+    y = np.zeros(n + 2)
+    mode, peak = 0, 0.0
+    for k in range(acc.size - 1):
+        a0 = float(acc[k])
+        s = (float(acc[k + 1]) - a0) / dt
+        t = 0.0
+        for _ in range(1000):
+            af = ca @ y[:n] + da * (a0 + s * t)
+            if mode == 0 and abs(af) > fb:
+                mode = -1 if af > 0 else 1
+                continue
+            sg = float(mode)
+
+            def rhs(tt, yy, a0=a0, s=s, sg=sg):
+                ag = a0 + s * tt
+                out = np.empty(n + 2)
+                out[:n] = A @ yy[:n] + b * ag
+                out[n] = yy[n + 1]
+                out[n + 1] = 0.0 if sg == 0.0 else -(ca @ yy[:n] + da * ag) - sg * fk
+                return out
+
+            if mode == 0:
+
+                def up(tt, yy, a0=a0, s=s):
+                    return ca @ yy[:n] + da * (a0 + s * tt) - fb
+
+                def lo(tt, yy, a0=a0, s=s):
+                    return -(ca @ yy[:n] + da * (a0 + s * tt)) - fb
+
+                up.terminal = lo.terminal = True
+                up.direction = lo.direction = 1.0
+                events = [up, lo]
+            else:
+
+                def stop(tt, yy, sg=sg):
+                    return sg * yy[n + 1]
+
+                stop.terminal = True
+                stop.direction = -1.0
+                events = [stop]
+            sol = solve_ivp(
+                rhs,
+                (t, dt),
+                y,
+                method="DOP853",
+                rtol=rtol,
+                atol=1e-15,
+                events=events,
+                max_step=dt / 64,
+            )
+            y = sol.y[:, -1].copy()
+            t = sol.t[-1]
+            peak = max(peak, abs(y[n]))
+            if sol.status != 1:
+                break
+            if mode == 0:
+                mode = -1 if sol.t_events[0].size else 1
+            else:
+                y[n + 1] = 0.0
+                af = ca @ y[:n] + da * (a0 + s * t)
+                mode = -1 if af > fb else (1 if af < -fb else 0)
+            if t >= dt * (1 - 1e-13):
+                break
+    return peak, y[n]

@@ -113,6 +113,20 @@ def _general(
             else:
                 mode = STICK
         if mode == STICK:
+            # a floor already beyond the breakaway level when a stick phase begins (a record
+            # that starts mid-motion, t = 0) moves the block at once
+            a_now = poly_val(c, K, tau)
+            fb_now = mub * (n0 + sn * tau)
+            if a_now > fb_now and allow_neg:
+                mode = -1
+                v = 0.0
+                state[6] += 1
+                continue
+            if a_now < -fb_now and allow_pos:
+                mode = 1
+                v = 0.0
+                state[6] += 1
+                continue
             # first instant the floor acceleration leaves [-mub N, mub N] in an allowed way
             t_up = -1.0
             t_lo = -1.0

@@ -141,15 +141,24 @@ def oscillator_kernel(
                     t_ev = -1.0
                     new_mode = mode
                     if mode == 0:
-                        # F(σ) = r a_f − 2ξw z' − w² z
-                        for j in range(K + 1):
-                            poly[j] = r * cs[j] - c2 * Y[3, j] - w2 * Y[2, j]
-                        poly[0] -= fb
-                        t_up = first_rise(poly, K, 0.0, span, 0.0)
-                        for j in range(K + 1):
-                            poly[j] = -(r * cs[j] - c2 * Y[3, j] - w2 * Y[2, j])
-                        poly[0] -= fb
-                        t_lo = first_rise(poly, K, 0.0, span, 0.0)
+                        # F(σ) = r a_f − 2ξw z' − w² z; beyond ±fb already when the stick phase
+                        # begins (a record that starts mid-motion): the base moves at once
+                        f_now = r * cs[0] - c2 * Y[3, 0] - w2 * Y[2, 0]
+                        t_up = -1.0
+                        t_lo = -1.0
+                        if f_now > fb:
+                            t_up = 0.0
+                        elif f_now < -fb:
+                            t_lo = 0.0
+                        else:
+                            for j in range(K + 1):
+                                poly[j] = r * cs[j] - c2 * Y[3, j] - w2 * Y[2, j]
+                            poly[0] -= fb
+                            t_up = first_rise(poly, K, 0.0, span, 0.0)
+                            for j in range(K + 1):
+                                poly[j] = -(r * cs[j] - c2 * Y[3, j] - w2 * Y[2, j])
+                            poly[0] -= fb
+                            t_lo = first_rise(poly, K, 0.0, span, 0.0)
                         if t_up >= 0.0 and (t_lo < 0.0 or t_up <= t_lo):
                             t_ev, new_mode = t_up, -1
                         elif t_lo >= 0.0:
@@ -170,14 +179,14 @@ def oscillator_kernel(
                     for j in range(K + 1):
                         poly[j] = -(c2 * Y[3, j] + w2 * Y[2, j])
                     _update_peak(poly, K, 0.0, t_end, pk, 2)
-                    if mode == 0:
+                    if mode == 0 and t_end > 0.0:
                         for j in range(K + 1):
                             poly[j] = cs[j]
                         vmin, _, vmax, _ = extreme_values(poly, K, 0.0, t_end)
                         m = max(vmax, -vmin)
                         if m > pk[3]:
                             pk[3] = m
-                    else:
+                    elif mode != 0:
                         sgn = float(mode)
                         for j in range(K + 1):
                             poly[j] = (c2 * Y[3, j] + w2 * Y[2, j]) / r

@@ -147,6 +147,15 @@ def _trapezoid(af, h, nv, has_vert, mub, muk, allow_pos, allow_neg, jibson, out)
         acc_prev = 0.0
         peak = 0.0
         peak_abs = abs(af[0])
+        # a record that starts beyond the friction limit (cut mid-motion) breaks away at t = 0
+        nn = max(nv[0], 0.0)
+        dir0 = 0.0
+        if af[0] > mub[i] * nn and allow_neg:
+            acc_prev, dir0 = -af[0] + muk[i] * nn, -1.0
+        elif af[0] < -mub[i] * nn and allow_pos:
+            acc_prev, dir0 = -af[0] - muk[i] * nn, 1.0
+        if dir0 != 0.0:
+            peak_abs = muk[i] * nn
         for k in range(1, n):
             a = af[k]
             nn = nv[k] if has_vert else nv[0]
@@ -154,7 +163,8 @@ def _trapezoid(af, h, nv, has_vert, mub, muk, allow_pos, allow_neg, jibson, out)
                 nn = 0.0
             fb = mub[i] * nn
             fk = muk[i] * nn
-            sliding = abs(v) >= 1e-5 if jibson else v != 0.0
+            started = dir0 if k == 1 else 0.0
+            sliding = (abs(v) >= 1e-5 if jibson else v != 0.0) or started != 0.0
             if not sliding:
                 if a > fb and allow_neg:
                     acc_rel = -a + fk
@@ -163,10 +173,10 @@ def _trapezoid(af, h, nv, has_vert, mub, muk, allow_pos, allow_neg, jibson, out)
                 else:
                     acc_rel = 0.0
             else:
-                s = 1.0 if v > 0.0 else -1.0
+                s = 1.0 if v > 0.0 else (-1.0 if v < 0.0 else started)
                 acc_rel = -a - fk * s
             v_new = v + 0.5 * h * (acc_rel + acc_prev)
-            if sliding and v_new * v <= 0.0:
+            if sliding and v_new * (v if v != 0.0 else started) <= 0.0:
                 # the velocity changed sign between samples: the block stopped
                 u += 0.5 * h * v
                 v_new = 0.0
@@ -233,6 +243,15 @@ def _ivp_one(
                 return max(n0 + sn * tt, 0.0)
 
             if mode == 0:
+                # beyond the friction limit already when sticking begins (a record that starts
+                # mid-motion): break away at once
+                af_now = floor_acc(t, x)
+                if af_now > mub * normal(t) and allow_neg:
+                    mode = -1
+                    continue
+                if af_now < -mub * normal(t) and allow_pos:
+                    mode = 1
+                    continue
 
                 def rhs(tt, y, a0=a0, sl=sl):
                     return np.concatenate([A @ y[:n] + b * (a0 + sl * tt), [0.0, 0.0]])
