@@ -777,7 +777,8 @@ def demo_summary(tables) -> str:
     of the set, one table per set and content, and each building's median PFA at the content's
     floor.
 
-    Rocking follows the tables' rule (docs/design.md §10): an object that rocks under a record is not
+    Rocking follows the tables' rule (docs/design.md §10): an object that rocks under a record is
+    not
     simulated as a slider and never counts as 0 slide; it is its own outcome, ranked above
     every slide. A cell reads ``rocks (k/n)`` when the median falls on rocking records, and a
     median that does not is followed by ``(k rock)`` when some records rock.
@@ -902,7 +903,8 @@ def demo(out_dir, workers):
     help="Directory for bench.csv, bench.md, bench.json and the figures.",
 )
 def bench(quick, as_json, out):
-    """The accuracy-versus-cost study (docs/design.md §6): for every solver (rigid-block sliding on the
+    """The accuracy-versus-cost study (docs/design.md §6): for every solver (rigid-block sliding on
+    the
     ground, a stiff floor and an isolated roof; the 2-DOF sliding oscillator; floor motions;
     response and floor response spectra) the exact method and each approximate one over a
     range of steps or tolerances, on bundled real records: relative error in peak and residual

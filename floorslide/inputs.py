@@ -1,6 +1,7 @@
 """What the solvers accept as a record: samples and ``dt``, an ObsPy Trace, or a one-trace Stream.
 
-docs/design.md §10: a solver given an ObsPy ``Trace`` takes its time step from ``stats.delta`` and its
+docs/design.md §10: a solver given an ObsPy ``Trace`` takes its time step from ``stats.delta`` and
+its
 units from ``stats.units``; data in a unit other than m/s² are converted, never used raw, and
 the conversion is recorded. The rules, for every solver (:func:`~floorslide.slide`,
 :func:`~floorslide.slide_oscillator`, :func:`~floorslide.response_spectrum`,

@@ -1,6 +1,7 @@
 """Units of acceleration: names, spellings and the factor to m/s².
 
-floorslide works in SI inside (docs/design.md §2); a record's units are converted once, at the edge: when
+floorslide works in SI inside (docs/design.md §2); a record's units are converted once, at the
+edge: when
 a file is read (:func:`floorslide.read_record`) or when a solver is given an ObsPy Trace whose
 ``stats.units`` is not m/s² (:mod:`floorslide.inputs`). This module is neutral (NumPy-free and
 ObsPy-free) so that the numerical core can use it; ``floorslide.records.units`` re-exports it.

@@ -1,4 +1,5 @@
-"""The single-record solver commands: floorslide slide and floorslide spectrum (docs/design.md §3)."""
+"""The single-record solver commands: floorslide slide and floorslide spectrum
+(docs/design.md §3)."""
 
 from __future__ import annotations
 

@@ -1,4 +1,5 @@
-"""Solvers given ObsPy Traces and Streams (docs/design.md §10, issue 12 item 1): dt from the trace, units
+"""Solvers given ObsPy Traces and Streams (docs/design.md §10, issue 12 item 1): dt from the trace,
+units
 converted with a note or refused in one line — never used raw."""
 
 from __future__ import annotations

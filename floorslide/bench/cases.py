@@ -36,7 +36,8 @@ per floor. Each is the maximum over objects (or floors, periods) and records."""
 
 ETA = (0.2, 0.5)
 """Friction as a fraction of the peak acceleration of the motion the object stands on:
-``mu = eta·PFA/g`` (``eta = mu·g/A`` of docs/design.md §7), so that every object slides on every floor."""
+``mu = eta·PFA/g`` (``eta = mu·g/A`` of docs/design.md §7), so that every object slides on every
+floor."""
 
 OSCILLATOR = dict(frequency=6.0, damping=0.02, mass_ratio=0.5)
 """The 2-DOF sliding oscillator of Brochard & Gantenbein (1989): clamped 6 Hz, 2 %, m1/m2 = 0.5."""

@@ -1,6 +1,7 @@
 """Shear-building models: fixed-base and linearly isolated, as python-control state space.
 
-Coordinates (docs/design.md §2): every degree of freedom is a floor's horizontal displacement *relative to
+Coordinates (docs/design.md §2): every degree of freedom is a floor's horizontal displacement
+*relative to
 the ground*; floors are numbered 0 (the ground, or the isolated base mat) to N (the roof). The
 equation of motion is ``M u'' + C u' + K u = -M ι a_g(t)`` with a diagonal mass matrix and
 ``ι = 1``; the state is ``x = [u; u']`` and the model is ``x' = A x + B a_g``.

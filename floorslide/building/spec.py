@@ -1,7 +1,8 @@
 """A building in one line of text, for the command line: ``KIND:key=value,key=value,...``.
 
 ``floorslide slide`` and ``floorslide spectrum`` take ``--building SPEC`` so that a one-off floor
-check needs no scene file. The keys are those of a scene's ``[[buildings]]`` table (docs/design.md §4),
+check needs no scene file. The keys are those of a scene's ``[[buildings]]`` table
+(docs/design.md §4),
 with the superstructure of an isolated building inline:
 
 ``fixed`` — a fixed-base shear building, either from its fundamental period,

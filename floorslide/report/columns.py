@@ -1,7 +1,8 @@
 """What the design tables hold: their columns (name, unit, meaning), titles and conventions,
 and the :class:`DesignTables` container that every output format reads.
 
-The conventions every table, figure and report states (docs/design.md §10) are constants here, so that
+The conventions every table, figure and report states (docs/design.md §10) are constants here, so
+that
 the notes, the docstrings and the README say the same:
 
 - :data:`PERCENTILE`: the upper statistic, empirical (NumPy ``"linear"``);

@@ -1,4 +1,5 @@
-"""The accuracy-versus-cost study (docs/design.md §6): ``floorslide bench --quick`` through the Python
+"""The accuracy-versus-cost study (docs/design.md §6): ``floorslide bench --quick`` through the
+Python
 API and the command line — the table's structure, every solver and method present, finite
 numbers, and each approximate method's error shrinking as its step or tolerance shrinks. Never
 timings: CPU times are only checked to be positive numbers.

@@ -11,7 +11,8 @@ from floorslide.errors import ModelError
 
 
 def test_kelly_two_dof_periods_and_participation():
-    """Kelly (1996) linear isolation theory, T_s = 0.2 s, T_b = 2.5 s, m_b = m (docs/design.md §7)."""
+    """Kelly (1996) linear isolation theory, T_s = 0.2 s, T_b = 2.5 s, m_b = m
+    (docs/design.md §7)."""
     fb = ShearBuilding.from_period(stories=1, period=0.2, damping=0.02)
     iso = IsolatedBuilding(fb, base_mass_ratio=1.0, period=2.5, damping=0.10)
     mp = iso.modal_properties(normalize="first")

@@ -36,7 +36,8 @@ def test_fixed_base_limit_is_the_sdof_oscillator_exactly(elcentro):
 
 
 def test_stiff_spring_converges_to_the_rigid_block(elcentro):
-    """A very stiff spring: the 2-DOF becomes one rigid block of mass m1 + m2 (docs/design.md §8)."""
+    """A very stiff spring: the 2-DOF becomes one rigid block of mass m1 + m2
+    (docs/design.md §8)."""
     acc, dt = elcentro
     rigid = slide(acc, dt, [0.1, 0.2]).peak_slide
     errs = []

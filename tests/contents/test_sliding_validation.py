@@ -1,4 +1,5 @@
-"""Rigid-block sliding against every sliding row of docs/design.md §7 (closed forms and published values).
+"""Rigid-block sliding against every sliding row of docs/design.md §7 (closed forms and published
+values).
 
 The solver is exact for the piecewise-linear record. A sampled smooth pulse differs from the pulse
 by O(dt²), so the published values of smooth pulses are checked on the Richardson extrapolation

@@ -2,7 +2,8 @@
 
 References used here, all independent of floorslide's formulas:
 
-- the docs/design.md §7 sine record ``a0 sin 2πft`` (f = 1 Hz, T_d = 10 s): Arias ``π a0² T_d/(4g)``,
+- the docs/design.md §7 sine record ``a0 sin 2πft`` (f = 1 Hz, T_d = 10 s): Arias ``π a0²
+T_d/(4g)``,
   CAV ``2 a0 T_d/π``, D5–95 = 9.0 s (and D5–75 = 7.0 s);
 - closed forms for the *piecewise-linear* sine sampled with N = 1/(f·dt) samples per cycle (N
   even, so that every zero of the sine is a sample): ``∫a² = a0² T_d (2 + cos ωh)/6`` (the sums
@@ -249,7 +250,8 @@ def test_invalid_input():
 
 
 def test_trace_in_g_is_converted_with_a_note(elc_g):
-    """docs/design.md §10: a Trace in g is converted (it used to be refused), and the result says so."""
+    """docs/design.md §10: a Trace in g is converted (it used to be refused), and the result says
+    so."""
     tr = Trace(elc_g.copy())
     tr.stats.delta = 0.01
     tr.stats.units = "g"

@@ -1,4 +1,5 @@
-"""floorslide table and floorslide plot (docs/design.md §3): outputs, exit codes, one-line errors."""
+"""floorslide table and floorslide plot (docs/design.md §3): outputs, exit codes, one-line
+errors."""
 
 from __future__ import annotations
 
