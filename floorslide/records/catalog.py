@@ -51,6 +51,7 @@ from obspy import Stream, Trace
 from obspy.core import AttribDict
 
 from floorslide.errors import RecordError, UnitsError
+from floorslide.records.formats._text import UNDERSCORE_HINT
 from floorslide.records.units import canonical_units
 
 REQUIRED_COLUMNS = ("file", "dt", "units")
@@ -62,6 +63,17 @@ COMPONENT_FILE = re.compile(r"^file_([a-z0-9]+)$")
 def component_columns(columns: Iterable[str]) -> list[str]:
     """The ``file_<component>`` columns of a catalog header (lower-case names)."""
     return [c for c in columns if COMPONENT_FILE.match(c)]
+
+
+def _number(text: str) -> float:
+    """``float(text)``, refusing underscores (``float("0_01")`` is 1.0)."""
+    if "_" in text:
+        raise ValueError(UNDERSCORE_HINT)
+    return float(text)
+
+
+def _hint(exc: ValueError) -> str:
+    return f" ({UNDERSCORE_HINT})" if str(exc) == UNDERSCORE_HINT else ""
 
 
 @dataclass(frozen=True, eq=False)
@@ -103,9 +115,11 @@ class CatalogEntry:
         if not text:
             return None
         try:
-            value = float(text)
-        except ValueError:
-            raise RecordError(f"dt {text!r} is not a number of seconds", self.where) from None
+            value = _number(text)
+        except ValueError as exc:
+            raise RecordError(
+                f"dt {text!r} is not a number of seconds{_hint(exc)}", self.where
+            ) from None
         if not np.isfinite(value) or value <= 0:
             raise RecordError(f"dt {text}: the time step must be > 0 s", self.where)
         return value
@@ -162,9 +176,11 @@ class CatalogEntry:
         if not text:
             return
         try:
-            expected = int(float(text))
-        except ValueError:
-            raise RecordError(f"npts {text!r} is not a whole number", self.where) from None
+            expected = int(_number(text))
+        except ValueError as exc:
+            raise RecordError(
+                f"npts {text!r} is not a whole number{_hint(exc)}", self.where
+            ) from None
         if trace.stats.npts != expected:
             raise RecordError(
                 f"holds {trace.stats.npts} samples but {self.catalog.name} line {self.line} says "
