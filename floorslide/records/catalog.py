@@ -328,6 +328,7 @@ def load_catalog(
             )
         where = {key.lower(): value for key, value in where.items()}
     entries = []
+    seen: dict[tuple[Path, str], CatalogEntry] = {}
     for line, cells in rows[1:]:
         if len(cells) != len(columns):
             raise RecordError(
@@ -335,23 +336,51 @@ def load_catalog(
                 where=f"{path}:{line}",
             )
         row = dict(zip(columns, (c.strip() for c in cells), strict=True))
-        if where and not _matches(row, where):
-            continue
         if "file" in row:
             if not row["file"]:
                 raise RecordError("empty 'file' column", where=f"{path}:{line}")
-            entries.append(CatalogEntry(path, line, path.parent / row["file"], row))
+            found = [CatalogEntry(path, line, path.parent / row["file"], row)]
+        else:
+            named = [c for c in component_columns(columns) if row[c]]
+            if not named:
+                raise RecordError(
+                    f"empty {', '.join(map(repr, component_columns(columns)))} columns",
+                    where=f"{path}:{line}",
+                )
+            found = []
+            for column in named:
+                own = _component_row(row, column)
+                found.append(CatalogEntry(path, line, path.parent / own["file"], own, column))
+        for entry in found:
+            _check_duplicate(entry, seen)
+        if where and not _matches(row, where):
             continue
-        found = [c for c in component_columns(columns) if row[c]]
-        if not found:
-            raise RecordError(
-                f"empty {', '.join(map(repr, component_columns(columns)))} columns",
-                where=f"{path}:{line}",
-            )
-        for column in found:
-            own = _component_row(row, column)
-            entries.append(CatalogEntry(path, line, path.parent / own["file"], own, column))
+        entries.extend(found)
     return entries
+
+
+def _check_duplicate(entry: CatalogEntry, seen: dict[tuple[Path, str], CatalogEntry]) -> None:
+    """Refuse a second row (or component column) for the same file and component: it would be
+    read, and counted in every statistic, twice (docs/design.md §9)."""
+    key = (entry.path.resolve(), (entry.component or "").upper())
+    first = seen.setdefault(key, entry)
+    if first is entry:
+        return
+    what = repr(entry.row.get("file", entry.path.name))
+    if entry.component:
+        what += f" (component {entry.component})"
+    places = (
+        f"lines {first.line} and {entry.line} both list"
+        if first.line != entry.line
+        else f"line {entry.line} lists {what} twice ({first.column}, {entry.column}):"
+    )
+    if first.line != entry.line:
+        places += f" {what}:"
+    raise RecordError(
+        f"{places} a record must be listed once (a multi-component file needs a component "
+        "column to list each component)",
+        where=str(entry.catalog),
+    )
 
 
 def _component_row(row: dict[str, str], column: str) -> dict[str, str]:
@@ -385,9 +414,11 @@ def _rows(fh, path: Path, components: bool = False):
             if missing == ["file"] and per_component:
                 missing = []
             if missing:
+                found = ", ".join(c for c in columns if c) or "none"
                 raise RecordError(
-                    f"not a record catalog: no column {', '.join(map(repr, missing))} "
-                    f"(a catalog needs the columns {', '.join(REQUIRED_COLUMNS)})",
+                    f"not a record catalog: no column {', '.join(map(repr, missing))}; a "
+                    f"catalog needs the columns {', '.join(REQUIRED_COLUMNS)} (or "
+                    f"file_h1, file_h2 ..., dt, units); line {reader.line_num} has: {found}",
                     where=str(path),
                 )
             duplicated = sorted({c for c in columns if columns.count(c) > 1})
