@@ -262,7 +262,7 @@ def load_scene(path: str | Path) -> Scene:
     """Read and validate a scene file (all problems reported at once)."""
     path = Path(path)
     try:
-        text = path.read_text(encoding="utf-8")
+        text = path.read_text(encoding="utf-8-sig")  # a byte-order mark (Notepad) is skipped
     except FileNotFoundError:
         raise SceneError("no such scene file", str(path)) from None
     except (OSError, UnicodeDecodeError) as exc:
@@ -311,20 +311,81 @@ def record_id_of(path: str | Path) -> str:
 
 
 def _catalog_ids(catalog: str, where: dict, w: str, ck: _Checker) -> list[str] | None:
-    """Record ids of the catalog rows `where` selects (a problem if it names an unknown column
-    or selects no row); None when the catalog cannot be read here (the planner reports it)."""
+    """Record ids of the catalog rows `where` selects, or None when the catalog cannot be read
+    (a problem: a malformed catalog, duplicate rows ...). `where` must name columns of the
+    catalog, each of its values must occur in its column (a value that matches no row is a
+    typo, also inside a list), and together they must select a row."""
     from floorslide.errors import RecordError
     from floorslide.records.catalog import load_catalog
 
     try:
-        entries = load_catalog(catalog, where=where or None)
+        rows = load_catalog(catalog)
+        entries = load_catalog(catalog, where=where or None) if where else rows
     except RecordError as exc:
         if exc.message.startswith("where: "):
             ck.add(f"{w}.where", exc.message.removeprefix("where: "))
+        else:
+            ck.add(f"{w}.catalog", str(exc))
         return None
-    if not entries:
+    typos = False
+    for key, wanted in where.items():
+        values = wanted if isinstance(wanted, list) else [wanted]
+        present = {e.row.get(key.lower(), "").strip() for e in rows}
+        for j, value in enumerate(values):
+            if str(value).strip() not in present:
+                typos = True
+                shown = sorted(present)
+                listing = ", ".join(map(repr, shown[:8])) + (" …" if len(shown) > 8 else "")
+                key_path = f"{w}.where.{key}" + (f"[{j}]" if isinstance(wanted, list) else "")
+                ck.add(key_path, f"no row has {key} = {value!r} (values: {listing})")
+    if not entries and not typos:
         ck.add(f"{w}.where" if where else f"{w}.catalog", f"selects no row of {catalog}")
-    return [record_id_of(e.path) for e in entries]
+    ids = [record_id_of(e.path) for e in entries]
+    _unique_ids(ids, [str(e.path) for e in entries], f"{w}.catalog", ck)
+    return ids
+
+
+def _where_values(where: dict, w: str, ck: _Checker) -> dict:
+    """``where``: each value a string, number or boolean, or a non-empty list of them."""
+    ok = {}
+    for key, value in where.items():
+        items = value if isinstance(value, list) else [value]
+        if not items or not all(isinstance(v, str | int | float | bool) for v in items):
+            ck.add(
+                f"{w}.where.{key}",
+                f"must be a value or a list of values to match, got {value!r}",
+            )
+            continue
+        ok[key] = value
+    return ok
+
+
+def _each_file_once(files: list[str]) -> list[str]:
+    """Globs are sets of files: overlapping ones (or two spellings of a path) name each file
+    once, in the order first named."""
+    seen: set[Path] = set()
+    out = []
+    for f in files:
+        resolved = Path(f).resolve()
+        if resolved not in seen:
+            seen.add(resolved)
+            out.append(f)
+    return out
+
+
+def _unique_ids(ids: list[str], paths: list[str], key: str, ck: _Checker) -> None:
+    """Two records of one set with the same id (file name without extension) would be merged
+    or counted twice in the tables: a problem naming both."""
+    first: dict[str, str] = {}
+    for rid, path in zip(ids, paths, strict=True):
+        if rid in first and first[rid] != path:
+            ck.add(
+                key,
+                f"two records named {rid!r} in one set ({first[rid]}, {path}); a record id "
+                "(the file name without extension) must be unique within a set",
+            )
+            return
+        first.setdefault(rid, path)
 
 
 def _records(value, ck: _Checker, base: Path) -> tuple[tuple[RecordSetSpec, ...], list[str] | None]:
@@ -365,6 +426,8 @@ def _records(value, ck: _Checker, base: Path) -> tuple[tuple[RecordSetSpec, ...]
                 if not hits:
                     ck.add(f"{w}.files[{j}]", f"matches no file ({full})")
                 files += [h for h in hits if Path(h).is_file()]
+            files = _each_file_once(files)
+            _unique_ids([record_id_of(f) for f in files], files, f"{w}.files", ck)
         catalog = None
         if has_cat:
             cat = ck.string(r["catalog"], f"{w}.catalog")
@@ -378,6 +441,7 @@ def _records(value, ck: _Checker, base: Path) -> tuple[tuple[RecordSetSpec, ...]
         if not isinstance(where, dict):
             ck.add(f"{w}.where", "must be a table of column = value")
             where = {}
+        where = _where_values(where, w, ck)
         if catalog:
             got = _catalog_ids(catalog, where, w, ck) if Path(catalog).is_file() else None
             ids = None if got is None or ids is None else ids + got

@@ -324,7 +324,9 @@ def test_where_naming_nothing_is_a_scene_error():
     )
     with pytest.raises(SceneError) as err:
         parse_scene(text, ROOT / "x.toml")
-    assert [p.split(":")[0] for p in err.value.problems] == ["records[0].where"]
+    assert err.value.problems == [
+        "records[0].where.set: no row has set = 'brod-band' (values: 'broad-band', 'pulse-like')"
+    ]
     text = GOOD.replace('where = { station_id = ["ELC-180", "TAF-021"] }', 'where = { sett = "x" }')
     with pytest.raises(SceneError, match=r"records\[0\].where: no column 'sett'"):
         parse_scene(text, ROOT / "x.toml")
