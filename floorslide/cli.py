@@ -429,6 +429,21 @@ def _periods(text: str | None):
     return _floats(text, "--periods")
 
 
+def _spectrum_grid(periods: str | None, damping: str):
+    """The periods and damping ratios of ``spectrum``, checked before anything is read: at most
+    as many as a scene allows, none absurd (a usage error naming the option, exit 2)."""
+    from floorslide.errors import ModelError
+    from floorslide.spectra.core import check_oscillators, damping_ratios, period_grid
+
+    zetas = _floats(damping, "--damping")
+    try:
+        grid, ratios = period_grid(_periods(periods)), damping_ratios(zetas)
+        check_oscillators(grid, ratios)
+    except ModelError as exc:
+        raise click.BadParameter(exc.message, param_hint=f"--{exc.where}") from None
+    return grid, ratios
+
+
 @cli.command()
 @click.argument("record")
 @click.option(
@@ -452,12 +467,16 @@ def spectrum(record, damping, periods, as_json, building_spec, floor, fmt, units
     import json
 
     from floorslide.constants import G
-    from floorslide.spectra.core import response_spectrum
+    from floorslide.errors import ModelError
+    from floorslide.spectra.core import check_oscillators, response_spectrum
 
-    zetas = _floats(damping, "--damping")
-    grid = _periods(periods)
+    grid, zetas = _spectrum_grid(periods, damping)
     building, floor_no, where = _building(building_spec, floor)
     tr = _read_one(record, fmt, units, dt, component)
+    try:
+        check_oscillators(grid, zetas, tr.stats.delta)
+    except ModelError as exc:
+        raise click.BadParameter(exc.message, param_hint="--periods") from None
     sp = response_spectrum(
         tr.data,
         tr.stats.delta,

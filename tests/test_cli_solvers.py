@@ -78,6 +78,11 @@ def test_spectrum_log_spaced_periods_text_output():
         (("slide", RECORD, "--mu", "-0.1"), 2, "mu_k"),
         (("spectrum", RECORD, "--periods", "1:0.5:3"), 2, "periods"),
         (("spectrum", RECORD, "--damping", "1.5"), 2, "damping"),
+        # issue 19 item 7: killed by the OOM killer (23.8 GB), a MemoryError traceback
+        (("spectrum", RECORD, "--periods", "0.1:5:100000000"), 2, "at most 10000"),
+        (("spectrum", RECORD, "--periods", "1e-9,1e9"), 2, "1e+09 s is above 10000 s"),
+        (("spectrum", RECORD, "--periods", "1e-9,1"), 2, "1e-09 s is below dt/1000"),
+        (("spectrum", RECORD, "--periods", "0.1:5:10000", "--damping", "0.02,0.05"), 0, ""),
     ],
 )
 def test_user_mistakes_give_one_clear_line(args, code, text):

@@ -19,6 +19,7 @@ from typing import Any
 
 import numpy as np
 
+from floorslide.constants import MAX_LIST
 from floorslide.errors import SceneError
 
 TOP_KEYS = {"scene", "records", "processing", "buildings", "contents", "spectra", "report"}
@@ -69,8 +70,6 @@ SPECTRA_KEYS = {"floors", "damping", "periods", "broadening"}
 REPORT_KEYS = {"periods", "damping", "compare", "history_record"}
 MAX_STORIES = 200
 """Largest building a scene may declare (a 200-storey shear building has 400 states)."""
-MAX_LIST = 10_000
-"""Longest list (sweep, period grid) a scene may declare."""
 
 
 @dataclass(frozen=True)
@@ -834,10 +833,29 @@ def _spectra(value, ck: _Checker, stories: set[int]) -> SpectraSpec | None:
             grid = tuple(np.geomspace(lo, hi, n).tolist())
     else:
         grid = ck.numbers(periods, "spectra.periods", lo=0)
+    _spectrum_size(grid, damping, ck)
     broadening = ck.number(
         value.get("broadening", 0.0), "spectra.broadening", lo=0, hi=1, hi_open=True
     )
     return SpectraSpec(floors, damping, grid, broadening or 0.0)
+
+
+def _spectrum_size(grid: tuple[float, ...], damping: tuple[float, ...], ck: _Checker) -> None:
+    """The limits of one spectrum (:mod:`floorslide.spectra.core`): no period beyond
+    ``MAX_PERIOD``, at most ``MAX_OSCILLATORS`` periods × damping ratios. (Periods below
+    ``dt/1000`` are refused by the planner, which knows the records' dt.)"""
+    from floorslide.spectra.core import MAX_OSCILLATORS, MAX_PERIOD
+
+    if grid and max(grid) > MAX_PERIOD:
+        ck.add(
+            "spectra.periods", f"{max(grid):g} s is above {MAX_PERIOD:g} s, beyond any structure"
+        )
+    if len(grid) * len(damping) > MAX_OSCILLATORS:
+        ck.add(
+            "spectra.damping",
+            f"{len(grid)} periods x {len(damping)} damping ratios = {len(grid) * len(damping)} "
+            f"oscillators per floor: at most {MAX_OSCILLATORS}",
+        )
 
 
 def _report(

@@ -152,6 +152,37 @@ def test_the_same_record_in_two_sets_is_legitimate(tmp_path):
     assert [r.set for r in sc.records] == ["bb", "again"]
 
 
+# -------------------------------------------------------------------------------- spectra
+
+
+def test_spectra_limits(tmp_path):
+    base = SMALL.format(records=f'catalog = "{CATALOG}"\n{WHERE}')
+    problems = _problems(base + "[spectra]\nperiods = [0.1, 2e4]\n", tmp_path / "s.toml")
+    assert problems == ["spectra.periods: 20000 s is above 10000 s, beyond any structure"]
+    problems = _problems(
+        base + "[spectra]\nperiods = { min = 0.01, max = 5, n = 10000 }\n"
+        "damping = [0.01, 0.02, 0.03, 0.04, 0.05, 0.06, 0.07, 0.08, 0.09, 0.1, 0.2]\n",
+        tmp_path / "s.toml",
+    )
+    assert problems == [
+        "spectra.damping: 10000 periods x 11 damping ratios = 110000 oscillators per floor: "
+        "at most 100000"
+    ]
+
+
+def test_spectra_periods_below_dt_over_1000_are_refused_by_the_planner(tmp_path):
+    """1e-9 s at dt = 0.01 s asked for 1.3e8 sub-steps per step: a MemoryError mid-run."""
+    text = SMALL.format(records=f'catalog = "{CATALOG}"\n{WHERE}')
+    sc = parse_scene(text + "[spectra]\nperiods = [0, 1e-9, 0.5]\n", tmp_path / "s.toml")
+    with pytest.raises(SceneError) as err:
+        plan(sc, evaluate=False)
+    message = str(err.value)
+    assert "spectra.periods: 1e-09 s is below dt/1000 = 1e-05 s of record" in message
+    assert "(dt = 0.01 s)" in message and err.value.exit_code == 2
+    ok = parse_scene(text + "[spectra]\nperiods = [0, 1e-5, 0.5]\n", tmp_path / "s.toml")
+    assert len(plan(ok, evaluate=False).tasks) == 2
+
+
 # ---------------------------------------------------------------------- byte-order mark
 
 
