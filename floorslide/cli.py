@@ -9,6 +9,7 @@ mistake is reported as one line naming the file or key at fault, never as a trac
 from __future__ import annotations
 
 import sys
+import warnings
 
 import click
 
@@ -550,8 +551,10 @@ def run(scene, out, dry_run, resume, workers, scheduler, force):
     sc = load_scene(scene)
     plan = make_plan(sc, force=force)
     if dry_run:
-        click.echo(plan.describe())
+        click.echo(plan.describe())  # lists the scene's warnings
         sys.exit(EXIT_RECORD if plan.failures else EXIT_OK)
+    for warning in sc.warnings:
+        click.echo(f"floorslide: warning: {scene}: {warning}", err=True)
     out = out or f"{Path(scene).stem}.h5"
     summary = execute(plan, out, workers=workers, scheduler=scheduler, resume=resume, force=force)
     if summary.interrupted:
@@ -958,8 +961,23 @@ def bench(quick, as_json, out):
     click.echo(f"{len(paths)} files written to {out}")
 
 
+def _show_warning(message, category, filename, lineno, file=None, line=None) -> None:
+    """floorslide's own warnings as one line on stderr (``floorslide: warning: ...``); others as
+    Python shows them."""
+    from floorslide.errors import FloorslideWarning, one_line
+
+    if issubclass(category, FloorslideWarning):
+        click.echo(f"floorslide: warning: {one_line(str(message))}", err=True)
+        return
+    _python_show_warning(message, category, filename, lineno, file, line)
+
+
+_python_show_warning = warnings.showwarning
+
+
 def main() -> None:
     """Entry point of the ``floorslide`` console script."""
+    warnings.showwarning = _show_warning
     try:
         cli.main(standalone_mode=False)
     except click.exceptions.Abort:

@@ -90,6 +90,21 @@ def test_user_mistakes_give_one_clear_line(args, code, text):
     assert out.returncode == code
     assert "Traceback" not in out.stderr
     assert text in out.stderr
+    if code == 2:
+        assert len([line for line in out.stderr.splitlines() if "rror" in line]) == 1
+
+
+def test_isolation_that_does_not_isolate_is_a_one_line_warning():
+    """--building isolated:period=0.3,super_period=0.4 (issue 19 item 8): computed as asked,
+    with one warning line on stderr."""
+    spec = "isolated:period=0.3,super_period=0.4"
+    out = run("slide", RECORD, "--mu", "0.1", "--building", spec, "--json")
+    assert out.returncode == 0, out.stderr
+    assert out.stderr == (
+        "floorslide: warning: isolation period 0.3 s is not above the fixed-base period 0.4 s "
+        "of the superstructure: the isolators would not isolate (almost surely a mistake)\n"
+    )
+    assert json.loads(out.stdout)[0]["mu_k"] == 0.1
 
 
 # --building / --floor (issue 12 item 8): a one-off floor check without a scene -------------

@@ -102,6 +102,9 @@ class Plan:
                 else f", T = {b.period:g} s, ξ = {b.damping:g}"
             )
             lines.append(f"  building {b.id!r}: {b.kind}, {b.stories} storeys{extra}")
+        if self.scene.warnings:
+            lines.append("warnings (valid, but almost surely a mistake):")
+            lines += [f"  {warning}" for warning in self.scene.warnings]
         lines.append("runs:")
         for what, count in sorted(self.runs.items()):
             lines.append(f"  {count:7d}  {what}")

@@ -13,6 +13,7 @@ import glob
 import itertools
 import math
 import tomllib
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -123,13 +124,17 @@ class BuildingSpec:
         )
 
     def build(self):
-        """The building model."""
+        """The building model (a :class:`~floorslide.errors.ModelWarning` is not repeated: the
+        scene lists it, :attr:`Scene.warnings`)."""
         from floorslide.building.model import IsolatedBuilding
+        from floorslide.errors import ModelWarning
 
         if self.kind == "fixed":
             return self._shear_building(self.period, self.damping)
         sup = self._shear_building(self.super_period, self.super_damping)
-        return IsolatedBuilding(sup, self.base_mass_ratio, self.period, self.damping)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ModelWarning)
+            return IsolatedBuilding(sup, self.base_mass_ratio, self.period, self.damping)
 
 
 @dataclass(frozen=True)
@@ -180,6 +185,9 @@ class Scene:
     contents: tuple[ContentSpec, ...]
     spectra: SpectraSpec | None
     report: dict
+    warnings: tuple[str, ...] = ()
+    """Values that are valid but almost surely a mistake (``key.path: message``), shown by the
+    dry run; e.g. an isolation period not above the superstructure's fixed-base period."""
 
 
 def _floors(spec, stories: int) -> tuple[int, ...]:
@@ -195,9 +203,14 @@ class _Checker:
 
     def __init__(self):
         self.problems: list[str] = []
+        self.warnings: list[str] = []
 
     def add(self, where: str, message: str) -> None:
         self.problems.append(f"{where}: {message}")
+
+    def warn(self, where: str, message: str) -> None:
+        """A valid value that is almost surely a mistake: reported, not refused."""
+        self.warnings.append(f"{where}: {message}")
 
     def keys(self, table: dict, allowed: set, where: str) -> None:
         for key in table:
@@ -300,7 +313,18 @@ def parse_scene(text: str, path: str | Path = "scene.toml") -> Scene:
         ck.add("contents", "the scene asks for nothing: give [[contents]] or [spectra]")
     if ck.problems:
         raise SceneError(ck.problems, str(path))
-    return Scene(name, str(path), text, records, processing, buildings, contents, spectra, report)
+    return Scene(
+        name,
+        str(path),
+        text,
+        records,
+        processing,
+        buildings,
+        contents,
+        spectra,
+        report,
+        warnings=tuple(ck.warnings),
+    )
 
 
 def record_id_of(path: str | Path) -> str:
@@ -654,6 +678,8 @@ def _buildings(value, ck: _Checker) -> tuple[tuple[BuildingSpec, ...], set[str]]
             )
         fixed[bid] = variants
         out += variants
+    from floorslide.building.model import isolation_period_warning
+
     for i, b, bid in isolated:
         w = f"buildings[{i}]"
         sup = b.get("superstructure")
@@ -678,6 +704,13 @@ def _buildings(value, ck: _Checker) -> tuple[tuple[BuildingSpec, ...], set[str]]
             )
             continue
         s = fixed[sup][0]
+        listed = isinstance(b.get("period"), list)
+        for j, T in enumerate(periods):
+            if T <= s.period:
+                ck.warn(
+                    f"{w}.period" + (f"[{j}]" if listed else ""),
+                    isolation_period_warning(T, s.period, sup),
+                )
         if not bid:
             continue
         for R, T, z in itertools.product(ratios, periods, damps):

@@ -191,3 +191,42 @@ def test_scene_file_with_a_byte_order_mark(tmp_path):
     path = tmp_path / "bom.toml"
     path.write_bytes(b"\xef\xbb\xbf" + GOOD.encode())
     assert load_scene(path).name == "small"
+
+
+# ------------------------------------------------------------------ isolation period
+
+
+def test_isolation_period_not_above_the_fixed_base_period_warns(tmp_path):
+    """Accepted without a word; physically possible, so a warning, shown by the dry run."""
+    text = GOOD.replace("period = [2.0, 3.0]", "period = [0.3, 2.0, 0.2]")
+    sc = parse_scene(text, tmp_path / "x.toml")
+    assert sc.warnings == tuple(
+        f"buildings[2].period[{j}]: isolation period {T} s is not above the fixed-base period "
+        "0.3 s of the superstructure 'fb1': the isolators would not isolate (almost surely a "
+        "mistake)"
+        for j, T in ((0, "0.3"), (2, "0.2"))
+    )
+    assert parse_scene(GOOD, tmp_path / "x.toml").warnings == ()
+    described = plan(sc, evaluate=False).describe()
+    assert "warnings (valid, but almost surely a mistake):" in described
+    assert f"  {sc.warnings[1]}" in described.splitlines()
+
+
+def test_a_run_says_the_isolation_does_not_isolate(tmp_path, monkeypatch, capsys):
+    """`floorslide run` (not only --dry-run) shows the warning, one line on stderr."""
+    from floorslide.cli import main
+
+    records = f'catalog = "{CATALOG}"\nwhere = {{ station_id = "ELC-180" }}'
+    text = SMALL.format(records=records) + (
+        '\n[[buildings]]\nid = "iso"\nkind = "isolated"\nsuperstructure = "fb"\nperiod = 0.3\n'
+    )
+    path = tmp_path / "scene.toml"
+    path.write_text(text)
+    argv = ["floorslide", "run", str(path), "-o", str(tmp_path / "out.h5"), "--workers", "1"]
+    monkeypatch.setattr(sys, "argv", argv)
+    main()  # returns: exit 0
+    assert capsys.readouterr().err == (
+        f"floorslide: warning: {path}: buildings[1].period: isolation period 0.3 s is not above "
+        "the fixed-base period 0.4 s of the superstructure 'fb': the isolators would not "
+        "isolate (almost surely a mistake)\n"
+    )
