@@ -8,6 +8,7 @@ mistake is reported as one line naming the file or key at fault, never as a trac
 
 from __future__ import annotations
 
+import math
 import sys
 import warnings
 
@@ -77,6 +78,34 @@ def _print_table(rows: list[dict]) -> None:
         click.echo(
             "  ".join(c.ljust(widths[0]) if i == 0 else c.rjust(widths[i]) for i, c in enumerate(r))
         )
+
+
+def _print_notes(rows: list[dict]) -> None:
+    """The notes of the inspected records (a measure that is NaN and why ...), below the
+    table."""
+    for row in rows:
+        label = row["record"] + (f" [{row['component']}]" if row.get("multi") else "")
+        for note in row["notes"]:
+            click.echo(f"note: {label}: {note}")
+
+
+def _finite(value):
+    """`value` with every float that is NaN or infinite, at any depth, replaced by None."""
+    if isinstance(value, float):
+        return value if math.isfinite(value) else None
+    if isinstance(value, dict):
+        return {k: _finite(v) for k, v in value.items()}
+    if isinstance(value, list | tuple):
+        return [_finite(v) for v in value]
+    return value
+
+
+def _strict_json(data) -> str:
+    """`data` as strict JSON (docs/design.md §3): ``null`` for undefined numbers, never
+    ``NaN`` or ``Infinity``, which JSON does not have."""
+    import json
+
+    return json.dumps(_finite(data), indent=1, allow_nan=False)
 
 
 def _check_format(ctx, param, value: str | None) -> str | None:
@@ -166,8 +195,6 @@ def inspect(
     record, or nothing was found to read) — reported on stderr in one line each, the others
     still shown; 2 bad usage (e.g. an unknown --units or --format).
     """
-    import json
-
     from tqdm import tqdm
 
     from floorslide.errors import RecordError
@@ -202,20 +229,17 @@ def inspect(
                     "station": record.station,
                     "event": record.event,
                     **{key: values[key] for key in MEASURE_KEYS},
+                    "notes": list(values["notes"]),
                     "multi": len(stream) > 1,
                 }
                 rows.append(row)
             bar.update()
     if as_json:
-        out = []
-        for row in rows:
-            clean = {k: v for k, v in row.items() if k != "multi"}
-            out.append(
-                {k: (None if isinstance(v, float) and v != v else v) for k, v in clean.items()}
-            )
-        click.echo(json.dumps(out, indent=1))
+        out = [{k: v for k, v in row.items() if k != "multi"} for row in rows]
+        click.echo(_strict_json(out))
     elif rows:
         _print_table(rows)
+        _print_notes(rows)
     if failed:
         sys.exit(EXIT_RECORD)
 
@@ -359,8 +383,6 @@ def slide(
     building → object); no filtering unless asked. The header says where the object stands
     and, on a floor, its peak floor acceleration.
     """
-    import json
-
     from floorslide.building.motions import peak_floor_acceleration
     from floorslide.constants import G
     from floorslide.contents.sliding import slide as slide_exact
@@ -390,7 +412,7 @@ def slide(
             row["direction"] = direction
             row["building"] = building_spec
             row["floor"] = floor_no
-        click.echo(json.dumps(rows, indent=1))
+        click.echo(_strict_json(rows))
         return
     click.echo(
         f"{record}: dt = {tr.stats.delta:g} s, {tr.stats.npts} samples, direction {direction}"
@@ -465,8 +487,6 @@ def spectrum(record, damping, periods, as_json, building_spec, floor, fmt, units
     record with peaks inside steps, end to end (ground → building → oscillator). No filtering
     is applied. The header says which motion the spectra are of.
     """
-    import json
-
     from floorslide.constants import G
     from floorslide.errors import ModelError
     from floorslide.spectra.core import check_oscillators, response_spectrum
@@ -488,7 +508,7 @@ def spectrum(record, damping, periods, as_json, building_spec, floor, fmt, units
     )
     if as_json:
         out = {"record": record, "building": building_spec, "floor": floor_no, **sp.to_dict()}
-        click.echo(json.dumps(out, indent=1))
+        click.echo(_strict_json(out))
         return
     click.echo(
         f"{record}: dt = {tr.stats.delta:g} s, {tr.stats.npts} samples"
