@@ -136,6 +136,37 @@ def _check_units(ctx, param, value: str | None) -> str | None:
     return value
 
 
+def _number(text: str) -> float:
+    """``float(text)``, refusing underscores (Python reads ``0_01`` as 1.0, a typo for 0.01)."""
+    if "_" in text:
+        raise ValueError(f"{text!r}: underscores are not digit separators here")
+    return float(text)
+
+
+def _whole(text: str) -> int:
+    """``int(text)``, refusing underscores (Python reads ``1_00`` as 100)."""
+    if "_" in text:
+        raise ValueError(f"{text!r}: underscores are not digit separators here")
+    return int(text)
+
+
+class _Number(click.ParamType):
+    """A number option: as click's ``float``, but ``0_01`` is refused, not read as 1.0."""
+
+    name = "number"
+
+    def convert(self, value, param, ctx) -> float:
+        if isinstance(value, float):
+            return value
+        try:
+            return _number(str(value))
+        except ValueError:
+            self.fail(f"expected a number, got {value!r}", param, ctx)
+
+
+NUMBER = _Number()
+
+
 def _check_dt(ctx, param, value: float | None) -> float | None:
     """``--dt``: a finite time step > 0 s, else a usage error (exit 2)."""
     if value is not None and not (0 < value < float("inf")):
@@ -159,7 +190,7 @@ UNITS_OPTION = click.option(
 )
 DT_OPTION = click.option(
     "--dt",
-    type=float,
+    type=NUMBER,
     metavar="SECONDS",
     callback=_check_dt,
     help="Time step of single-column text.",
@@ -247,7 +278,7 @@ def inspect(
 def _floats(text: str, name: str) -> list[float]:
     """Comma-separated numbers of an option, or a one-line usage error naming it."""
     try:
-        values = [float(v) for v in text.split(",") if v.strip()]
+        values = [_number(v) for v in text.split(",") if v.strip()]
     except ValueError:
         raise click.BadParameter(
             f"expected numbers separated by commas, got {text!r}", param_hint=name
@@ -351,7 +382,7 @@ def _building(spec: str | None, floor: str | None):
 @click.argument("record")
 @click.option("--mu", required=True, metavar="MU[,MU...]", help="Kinetic friction coefficient(s).")
 @click.option("--mu-s", "mu_s", metavar="MU_S", help="Static coefficient(s) (default: --mu).")
-@click.option("--scale-pga", type=float, metavar="G", help="Scale the record to this PGA, in g.")
+@click.option("--scale-pga", type=NUMBER, metavar="G", help="Scale the record to this PGA, in g.")
 @click.option(
     "--direction",
     type=click.Choice(["both", "positive", "negative"]),
@@ -444,7 +475,7 @@ def _periods(text: str | None):
                 "expected MIN:MAX:N or a comma-separated list", param_hint="--periods"
             )
         try:
-            return {"min": float(parts[0]), "max": float(parts[1]), "n": int(parts[2])}
+            return {"min": _number(parts[0]), "max": _number(parts[1]), "n": _whole(parts[2])}
         except ValueError:
             raise click.BadParameter(
                 "expected MIN:MAX:N with numbers", param_hint="--periods"
@@ -670,7 +701,7 @@ _ALLOW_INCOMPLETE = click.option(
     metavar="T[,T...]",
     help="FRS periods in s (default: [report] periods, else 0.1,0.2,0.3,0.5,1,2,3).",
 )
-@click.option("--damping", type=float, metavar="Z", help="FRS damping ratio (one stored).")
+@click.option("--damping", type=NUMBER, metavar="Z", help="FRS damping ratio (one stored).")
 @click.option(
     "--table",
     "only",
@@ -779,7 +810,7 @@ def _emit(text: str, out: str | None) -> None:
     callback=_compare_option,
     help="Peak-slide ratio figures A / B (default as for floorslide table).",
 )
-@click.option("--damping", type=float, metavar="Z", help="FRS damping ratio (one stored).")
+@click.option("--damping", type=NUMBER, metavar="Z", help="FRS damping ratio (one stored).")
 @_ALLOW_INCOMPLETE
 @click.option("--json", "as_json", is_flag=True, help="Print the files written as a JSON list.")
 def plot(result, out, compare, damping, allow_incomplete, as_json):

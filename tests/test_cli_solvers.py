@@ -83,6 +83,11 @@ def test_spectrum_log_spaced_periods_text_output():
         (("spectrum", RECORD, "--periods", "1e-9,1e9"), 2, "1e+09 s is above 10000 s"),
         (("spectrum", RECORD, "--periods", "1e-9,1"), 2, "1e-09 s is below dt/1000"),
         (("spectrum", RECORD, "--periods", "0.1:5:10000", "--damping", "0.02,0.05"), 0, ""),
+        (("spectrum", RECORD, "--dt", "0_01"), 2, "'0_01'"),  # float('0_01') is 1.0
+        (("slide", RECORD, "--mu", "0_1"), 2, "--mu"),
+        (("slide", RECORD, "--mu", "0.1", "--scale-pga", "0_3"), 2, "'0_3'"),
+        (("spectrum", RECORD, "--periods", "0.1:5:1_00"), 2, "--periods"),
+        (("slide", RECORD, "--mu", "0.1", "--building", "fixed:period=0_4"), 2, "period='0_4'"),
     ],
 )
 def test_user_mistakes_give_one_clear_line(args, code, text):
