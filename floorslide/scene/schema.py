@@ -623,6 +623,7 @@ def _buildings(value, ck: _Checker) -> tuple[tuple[BuildingSpec, ...], set[str]]
     out: list[BuildingSpec] = []
     ids: set[str] = set()
     declared_fixed: set[str] = set()
+    unknown_kind: set[str] = set()  # a superstructure of these is reported at its kind
     isolated = []
     for i, b in enumerate(value):
         w = f"buildings[{i}]"
@@ -639,6 +640,8 @@ def _buildings(value, ck: _Checker) -> tuple[tuple[BuildingSpec, ...], set[str]]
         kind = b.get("kind")
         if kind not in ("fixed", "isolated"):
             ck.add(f"{w}.kind", f"must be 'fixed' or 'isolated', got {kind!r}")
+            if bid:
+                unknown_kind.add(bid)
             continue
         if kind == "isolated":
             ck.keys(b, ISOLATED_KEYS, w)
@@ -692,6 +695,8 @@ def _buildings(value, ck: _Checker) -> tuple[tuple[BuildingSpec, ...], set[str]]
         if "period" not in b:
             ck.add(f"{w}.period", "missing: the isolation period, s")
         damps = ck.numbers(b.get("damping", 0.1), f"{w}.damping", lo=0, hi=1, hi_open=True)
+        if isinstance(sup, str) and sup in unknown_kind:
+            continue  # the superstructure's kind is invalid: reported there
         if not isinstance(sup, str) or sup not in declared_fixed:
             ck.add(f"{w}.superstructure", f"must be the id of a fixed building, got {sup!r}")
             continue
