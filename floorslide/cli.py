@@ -737,7 +737,8 @@ def table(result, fmt, as_json, compare, periods, damping, only, per_record, all
     few_records (a p84 marked † in Markdown).
 
     Markdown goes to stdout by default. CSV on stdout gives each table after a line
-    '# table: NAME'; with -o DIR it writes one NAME.csv per table. NaN (undefined, e.g. 0/0
+    '# table: NAME' (one --table NAME: that table alone, a plain CSV); with -o DIR it writes
+    one NAME.csv per table. NaN (undefined, e.g. 0/0
     ratios) is '—' in Markdown, empty in CSV and null in JSON; x/0 is '∞', 'inf' and null.
     """
     from floorslide.report import formats
@@ -775,6 +776,9 @@ def table(result, fmt, as_json, compare, periods, damping, only, per_record, all
         if out:
             for path in formats.write_csv(dt, out, names):
                 click.echo(str(path))
+            return
+        if len(names) == 1:  # one table: plain CSV, as pandas.read_csv takes it
+            click.echo(formats.format_csv(names[0], dt[names[0]], dt.status), nl=False)
             return
         click.echo(formats.format_csv_sections(dt, names), nl=False)
         return
