@@ -220,7 +220,9 @@ def inspect(
     component is shown), or a directory, searched recursively for both (files a catalog lists
     are read once, through it; documentation such as *.md is skipped). --format/--units/--dt/
     --component apply to record files, not to catalog rows, which carry their own. Measures
-    are exact for the piecewise-linear record; nothing is filtered.
+    are exact for the piecewise-linear record; nothing is filtered. A measure that is undefined
+    (the durations of a record of zeros, one beyond floating point) is '-' in the table and
+    null in JSON, and a note says why.
 
     Exit codes: 0 every record read; 3 a record could not be read (or a file named is not a
     record, or nothing was found to read) — reported on stderr in one line each, the others
