@@ -8,7 +8,9 @@ mistake is reported as one line naming the file or key at fault, never as a trac
 
 from __future__ import annotations
 
+import math
 import sys
+import warnings
 
 import click
 
@@ -78,6 +80,34 @@ def _print_table(rows: list[dict]) -> None:
         )
 
 
+def _print_notes(rows: list[dict]) -> None:
+    """The notes of the inspected records (a measure that is NaN and why ...), below the
+    table."""
+    for row in rows:
+        label = row["record"] + (f" [{row['component']}]" if row.get("multi") else "")
+        for note in row["notes"]:
+            click.echo(f"note: {label}: {note}")
+
+
+def _finite(value):
+    """`value` with every float that is NaN or infinite, at any depth, replaced by None."""
+    if isinstance(value, float):
+        return value if math.isfinite(value) else None
+    if isinstance(value, dict):
+        return {k: _finite(v) for k, v in value.items()}
+    if isinstance(value, list | tuple):
+        return [_finite(v) for v in value]
+    return value
+
+
+def _strict_json(data) -> str:
+    """`data` as strict JSON (docs/design.md §3): ``null`` for undefined numbers, never
+    ``NaN`` or ``Infinity``, which JSON does not have."""
+    import json
+
+    return json.dumps(_finite(data), indent=1, allow_nan=False)
+
+
 def _check_format(ctx, param, value: str | None) -> str | None:
     """``--format``: a format floorslide or ObsPy knows, else a usage error (exit 2)."""
     if value is None:
@@ -106,6 +136,37 @@ def _check_units(ctx, param, value: str | None) -> str | None:
     return value
 
 
+def _number(text: str) -> float:
+    """``float(text)``, refusing underscores (Python reads ``0_01`` as 1.0, a typo for 0.01)."""
+    if "_" in text:
+        raise ValueError(f"{text!r}: underscores are not digit separators here")
+    return float(text)
+
+
+def _whole(text: str) -> int:
+    """``int(text)``, refusing underscores (Python reads ``1_00`` as 100)."""
+    if "_" in text:
+        raise ValueError(f"{text!r}: underscores are not digit separators here")
+    return int(text)
+
+
+class _Number(click.ParamType):
+    """A number option: as click's ``float``, but ``0_01`` is refused, not read as 1.0."""
+
+    name = "number"
+
+    def convert(self, value, param, ctx) -> float:
+        if isinstance(value, float):
+            return value
+        try:
+            return _number(str(value))
+        except ValueError:
+            self.fail(f"expected a number, got {value!r}", param, ctx)
+
+
+NUMBER = _Number()
+
+
 def _check_dt(ctx, param, value: float | None) -> float | None:
     """``--dt``: a finite time step > 0 s, else a usage error (exit 2)."""
     if value is not None and not (0 < value < float("inf")):
@@ -129,7 +190,7 @@ UNITS_OPTION = click.option(
 )
 DT_OPTION = click.option(
     "--dt",
-    type=float,
+    type=NUMBER,
     metavar="SECONDS",
     callback=_check_dt,
     help="Time step of single-column text.",
@@ -159,14 +220,14 @@ def inspect(
     component is shown), or a directory, searched recursively for both (files a catalog lists
     are read once, through it; documentation such as *.md is skipped). --format/--units/--dt/
     --component apply to record files, not to catalog rows, which carry their own. Measures
-    are exact for the piecewise-linear record; nothing is filtered.
+    are exact for the piecewise-linear record; nothing is filtered. A measure that is undefined
+    (the durations of a record of zeros, one beyond floating point) is '-' in the table and
+    null in JSON, and a note says why.
 
     Exit codes: 0 every record read; 3 a record could not be read (or a file named is not a
     record, or nothing was found to read) — reported on stderr in one line each, the others
     still shown; 2 bad usage (e.g. an unknown --units or --format).
     """
-    import json
-
     from tqdm import tqdm
 
     from floorslide.errors import RecordError
@@ -201,20 +262,17 @@ def inspect(
                     "station": record.station,
                     "event": record.event,
                     **{key: values[key] for key in MEASURE_KEYS},
+                    "notes": list(values["notes"]),
                     "multi": len(stream) > 1,
                 }
                 rows.append(row)
             bar.update()
     if as_json:
-        out = []
-        for row in rows:
-            clean = {k: v for k, v in row.items() if k != "multi"}
-            out.append(
-                {k: (None if isinstance(v, float) and v != v else v) for k, v in clean.items()}
-            )
-        click.echo(json.dumps(out, indent=1))
+        out = [{k: v for k, v in row.items() if k != "multi"} for row in rows]
+        click.echo(_strict_json(out))
     elif rows:
         _print_table(rows)
+        _print_notes(rows)
     if failed:
         sys.exit(EXIT_RECORD)
 
@@ -222,7 +280,7 @@ def inspect(
 def _floats(text: str, name: str) -> list[float]:
     """Comma-separated numbers of an option, or a one-line usage error naming it."""
     try:
-        values = [float(v) for v in text.split(",") if v.strip()]
+        values = [_number(v) for v in text.split(",") if v.strip()]
     except ValueError:
         raise click.BadParameter(
             f"expected numbers separated by commas, got {text!r}", param_hint=name
@@ -326,7 +384,7 @@ def _building(spec: str | None, floor: str | None):
 @click.argument("record")
 @click.option("--mu", required=True, metavar="MU[,MU...]", help="Kinetic friction coefficient(s).")
 @click.option("--mu-s", "mu_s", metavar="MU_S", help="Static coefficient(s) (default: --mu).")
-@click.option("--scale-pga", type=float, metavar="G", help="Scale the record to this PGA, in g.")
+@click.option("--scale-pga", type=NUMBER, metavar="G", help="Scale the record to this PGA, in g.")
 @click.option(
     "--direction",
     type=click.Choice(["both", "positive", "negative"]),
@@ -358,8 +416,6 @@ def slide(
     building → object); no filtering unless asked. The header says where the object stands
     and, on a floor, its peak floor acceleration.
     """
-    import json
-
     from floorslide.building.motions import peak_floor_acceleration
     from floorslide.constants import G
     from floorslide.contents.sliding import slide as slide_exact
@@ -389,7 +445,7 @@ def slide(
             row["direction"] = direction
             row["building"] = building_spec
             row["floor"] = floor_no
-        click.echo(json.dumps(rows, indent=1))
+        click.echo(_strict_json(rows))
         return
     click.echo(
         f"{record}: dt = {tr.stats.delta:g} s, {tr.stats.npts} samples, direction {direction}"
@@ -421,12 +477,27 @@ def _periods(text: str | None):
                 "expected MIN:MAX:N or a comma-separated list", param_hint="--periods"
             )
         try:
-            return {"min": float(parts[0]), "max": float(parts[1]), "n": int(parts[2])}
+            return {"min": _number(parts[0]), "max": _number(parts[1]), "n": _whole(parts[2])}
         except ValueError:
             raise click.BadParameter(
                 "expected MIN:MAX:N with numbers", param_hint="--periods"
             ) from None
     return _floats(text, "--periods")
+
+
+def _spectrum_grid(periods: str | None, damping: str):
+    """The periods and damping ratios of ``spectrum``, checked before anything is read: at most
+    as many as a scene allows, none absurd (a usage error naming the option, exit 2)."""
+    from floorslide.errors import ModelError
+    from floorslide.spectra.core import check_oscillators, damping_ratios, period_grid
+
+    zetas = _floats(damping, "--damping")
+    try:
+        grid, ratios = period_grid(_periods(periods)), damping_ratios(zetas)
+        check_oscillators(grid, ratios)
+    except ModelError as exc:
+        raise click.BadParameter(exc.message, param_hint=f"--{exc.where}") from None
+    return grid, ratios
 
 
 @cli.command()
@@ -449,15 +520,17 @@ def spectrum(record, damping, periods, as_json, building_spec, floor, fmt, units
     record with peaks inside steps, end to end (ground → building → oscillator). No filtering
     is applied. The header says which motion the spectra are of.
     """
-    import json
-
     from floorslide.constants import G
-    from floorslide.spectra.core import response_spectrum
+    from floorslide.errors import ModelError
+    from floorslide.spectra.core import check_oscillators, response_spectrum
 
-    zetas = _floats(damping, "--damping")
-    grid = _periods(periods)
+    grid, zetas = _spectrum_grid(periods, damping)
     building, floor_no, where = _building(building_spec, floor)
     tr = _read_one(record, fmt, units, dt, component)
+    try:
+        check_oscillators(grid, zetas, tr.stats.delta)
+    except ModelError as exc:
+        raise click.BadParameter(exc.message, param_hint="--periods") from None
     sp = response_spectrum(
         tr.data,
         tr.stats.delta,
@@ -468,7 +541,7 @@ def spectrum(record, damping, periods, as_json, building_spec, floor, fmt, units
     )
     if as_json:
         out = {"record": record, "building": building_spec, "floor": floor_no, **sp.to_dict()}
-        click.echo(json.dumps(out, indent=1))
+        click.echo(_strict_json(out))
         return
     click.echo(
         f"{record}: dt = {tr.stats.delta:g} s, {tr.stats.npts} samples"
@@ -531,8 +604,10 @@ def run(scene, out, dry_run, resume, workers, scheduler, force):
     sc = load_scene(scene)
     plan = make_plan(sc, force=force)
     if dry_run:
-        click.echo(plan.describe())
+        click.echo(plan.describe())  # lists the scene's warnings
         sys.exit(EXIT_RECORD if plan.failures else EXIT_OK)
+    for warning in sc.warnings:
+        click.echo(f"floorslide: warning: {scene}: {warning}", err=True)
     out = out or f"{Path(scene).stem}.h5"
     summary = execute(plan, out, workers=workers, scheduler=scheduler, resume=resume, force=force)
     if summary.interrupted:
@@ -628,7 +703,7 @@ _ALLOW_INCOMPLETE = click.option(
     metavar="T[,T...]",
     help="FRS periods in s (default: [report] periods, else 0.1,0.2,0.3,0.5,1,2,3).",
 )
-@click.option("--damping", type=float, metavar="Z", help="FRS damping ratio (one stored).")
+@click.option("--damping", type=NUMBER, metavar="Z", help="FRS damping ratio (one stored).")
 @click.option(
     "--table",
     "only",
@@ -664,7 +739,8 @@ def table(result, fmt, as_json, compare, periods, damping, only, per_record, all
     few_records (a p84 marked † in Markdown).
 
     Markdown goes to stdout by default. CSV on stdout gives each table after a line
-    '# table: NAME'; with -o DIR it writes one NAME.csv per table. NaN (undefined, e.g. 0/0
+    '# table: NAME' (one --table NAME: that table alone, a plain CSV); with -o DIR it writes
+    one NAME.csv per table. NaN (undefined, e.g. 0/0
     ratios) is '—' in Markdown, empty in CSV and null in JSON; x/0 is '∞', 'inf' and null.
     """
     from floorslide.report import formats
@@ -703,6 +779,9 @@ def table(result, fmt, as_json, compare, periods, damping, only, per_record, all
             for path in formats.write_csv(dt, out, names):
                 click.echo(str(path))
             return
+        if len(names) == 1:  # one table: plain CSV, as pandas.read_csv takes it
+            click.echo(formats.format_csv(names[0], dt[names[0]], dt.status), nl=False)
+            return
         click.echo(formats.format_csv_sections(dt, names), nl=False)
         return
     if fmt == "json":
@@ -737,7 +816,7 @@ def _emit(text: str, out: str | None) -> None:
     callback=_compare_option,
     help="Peak-slide ratio figures A / B (default as for floorslide table).",
 )
-@click.option("--damping", type=float, metavar="Z", help="FRS damping ratio (one stored).")
+@click.option("--damping", type=NUMBER, metavar="Z", help="FRS damping ratio (one stored).")
 @_ALLOW_INCOMPLETE
 @click.option("--json", "as_json", is_flag=True, help="Print the files written as a JSON list.")
 def plot(result, out, compare, damping, allow_incomplete, as_json):
@@ -939,8 +1018,23 @@ def bench(quick, as_json, out):
     click.echo(f"{len(paths)} files written to {out}")
 
 
+def _show_warning(message, category, filename, lineno, file=None, line=None) -> None:
+    """floorslide's own warnings as one line on stderr (``floorslide: warning: ...``); others as
+    Python shows them."""
+    from floorslide.errors import FloorslideWarning, one_line
+
+    if issubclass(category, FloorslideWarning):
+        click.echo(f"floorslide: warning: {one_line(str(message))}", err=True)
+        return
+    _python_show_warning(message, category, filename, lineno, file, line)
+
+
+_python_show_warning = warnings.showwarning
+
+
 def main() -> None:
     """Entry point of the ``floorslide`` console script."""
+    warnings.showwarning = _show_warning
     try:
         cli.main(standalone_mode=False)
     except click.exceptions.Abort:

@@ -91,3 +91,9 @@ class FloorslideWarning(UserWarning):
 class UnitsConversionWarning(FloorslideWarning):
     """A solver was given a record (ObsPy Trace) whose ``stats.units`` is not m/s²; its data
     were converted to m/s² and the conversion recorded in the result's ``notes``."""
+
+
+class ModelWarning(FloorslideWarning):
+    """Building or object parameters that are physically possible but almost surely a mistake
+    (an isolation period not above the superstructure's fixed-base period); scenes list them
+    in the dry run."""

@@ -78,6 +78,16 @@ def test_spectrum_log_spaced_periods_text_output():
         (("slide", RECORD, "--mu", "-0.1"), 2, "mu_k"),
         (("spectrum", RECORD, "--periods", "1:0.5:3"), 2, "periods"),
         (("spectrum", RECORD, "--damping", "1.5"), 2, "damping"),
+        # issue 19 item 7: killed by the OOM killer (23.8 GB), a MemoryError traceback
+        (("spectrum", RECORD, "--periods", "0.1:5:100000000"), 2, "at most 10000"),
+        (("spectrum", RECORD, "--periods", "1e-9,1e9"), 2, "1e+09 s is above 10000 s"),
+        (("spectrum", RECORD, "--periods", "1e-9,1"), 2, "1e-09 s is below dt/1000"),
+        (("spectrum", RECORD, "--periods", "0.1:5:10000", "--damping", "0.02,0.05"), 0, ""),
+        (("spectrum", RECORD, "--dt", "0_01"), 2, "'0_01'"),  # float('0_01') is 1.0
+        (("slide", RECORD, "--mu", "0_1"), 2, "--mu"),
+        (("slide", RECORD, "--mu", "0.1", "--scale-pga", "0_3"), 2, "'0_3'"),
+        (("spectrum", RECORD, "--periods", "0.1:5:1_00"), 2, "--periods"),
+        (("slide", RECORD, "--mu", "0.1", "--building", "fixed:period=0_4"), 2, "period='0_4'"),
     ],
 )
 def test_user_mistakes_give_one_clear_line(args, code, text):
@@ -85,6 +95,21 @@ def test_user_mistakes_give_one_clear_line(args, code, text):
     assert out.returncode == code
     assert "Traceback" not in out.stderr
     assert text in out.stderr
+    if code == 2:
+        assert len([line for line in out.stderr.splitlines() if "rror" in line]) == 1
+
+
+def test_isolation_that_does_not_isolate_is_a_one_line_warning():
+    """--building isolated:period=0.3,super_period=0.4 (issue 19 item 8): computed as asked,
+    with one warning line on stderr."""
+    spec = "isolated:period=0.3,super_period=0.4"
+    out = run("slide", RECORD, "--mu", "0.1", "--building", spec, "--json")
+    assert out.returncode == 0, out.stderr
+    assert out.stderr == (
+        "floorslide: warning: isolation period 0.3 s is not above the fixed-base period 0.4 s "
+        "of the superstructure: the isolators would not isolate (almost surely a mistake)\n"
+    )
+    assert json.loads(out.stdout)[0]["mu_k"] == 0.1
 
 
 # --building / --floor (issue 12 item 8): a one-off floor check without a scene -------------

@@ -18,7 +18,7 @@ import control
 import numpy as np
 import scipy.linalg
 
-from floorslide.errors import ModelError
+from floorslide.errors import ModelError, ModelWarning
 
 OUTPUTS = ("acceleration", "displacement", "velocity", "drift", "isolator")
 """Outputs a building model can give: absolute floor acceleration (m/s²), floor displacement and
@@ -449,6 +449,16 @@ class ShearBuilding(LinearBuilding):
         return cls(m, k, damping)
 
 
+def isolation_period_warning(period: float, fixed_base: float, superstructure: str = "") -> str:
+    """The warning for an isolation period at or below the superstructure's fixed-base period:
+    physically possible, but the isolation layer then does not isolate."""
+    name = f" {superstructure!r}" if superstructure else ""
+    return (
+        f"isolation period {period:g} s is not above the fixed-base period {fixed_base:.4g} s "
+        f"of the superstructure{name}: the isolators would not isolate (almost surely a mistake)"
+    )
+
+
 class IsolatedBuilding(LinearBuilding):
     """A superstructure on a base mat carried by a linear isolation layer (Kelly 1996).
 
@@ -469,6 +479,12 @@ class IsolatedBuilding(LinearBuilding):
     damping
         Isolation damping ratio ξ_i in [0, 1).
 
+    Warns
+    -----
+    ModelWarning
+        When ``period`` is not above the superstructure's fixed-base fundamental period: the
+        model is valid, but such a layer does not isolate, so it is almost surely a mistake.
+
     References
     ----------
     Kelly, J. M. (1996). *Earthquake-Resistant Design with Rubber*, 2nd ed., Springer, ch. 2,
@@ -487,6 +503,9 @@ class IsolatedBuilding(LinearBuilding):
         ratio = float(_positive(base_mass_ratio, "base_mass_ratio")[0])
         period = float(_positive(period, "period")[0])
         xi = _ratio(damping, "damping")
+        fixed_base = float(superstructure.periods[0])
+        if period <= fixed_base:
+            warnings.warn(ModelWarning(isolation_period_warning(period, fixed_base)), stacklevel=2)
         ms = superstructure.mass
         mtot = ms.sum() * (1 + ratio)
         mb = ratio * ms.sum()

@@ -51,6 +51,7 @@ from obspy import Stream, Trace
 from obspy.core import AttribDict
 
 from floorslide.errors import RecordError, UnitsError
+from floorslide.records.formats._text import UNDERSCORE_HINT
 from floorslide.records.units import canonical_units
 
 REQUIRED_COLUMNS = ("file", "dt", "units")
@@ -62,6 +63,17 @@ COMPONENT_FILE = re.compile(r"^file_([a-z0-9]+)$")
 def component_columns(columns: Iterable[str]) -> list[str]:
     """The ``file_<component>`` columns of a catalog header (lower-case names)."""
     return [c for c in columns if COMPONENT_FILE.match(c)]
+
+
+def _number(text: str) -> float:
+    """``float(text)``, refusing underscores (``float("0_01")`` is 1.0)."""
+    if "_" in text:
+        raise ValueError(UNDERSCORE_HINT)
+    return float(text)
+
+
+def _hint(exc: ValueError) -> str:
+    return f" ({UNDERSCORE_HINT})" if str(exc) == UNDERSCORE_HINT else ""
 
 
 @dataclass(frozen=True, eq=False)
@@ -103,9 +115,11 @@ class CatalogEntry:
         if not text:
             return None
         try:
-            value = float(text)
-        except ValueError:
-            raise RecordError(f"dt {text!r} is not a number of seconds", self.where) from None
+            value = _number(text)
+        except ValueError as exc:
+            raise RecordError(
+                f"dt {text!r} is not a number of seconds{_hint(exc)}", self.where
+            ) from None
         if not np.isfinite(value) or value <= 0:
             raise RecordError(f"dt {text}: the time step must be > 0 s", self.where)
         return value
@@ -162,9 +176,11 @@ class CatalogEntry:
         if not text:
             return
         try:
-            expected = int(float(text))
-        except ValueError:
-            raise RecordError(f"npts {text!r} is not a whole number", self.where) from None
+            expected = int(_number(text))
+        except ValueError as exc:
+            raise RecordError(
+                f"npts {text!r} is not a whole number{_hint(exc)}", self.where
+            ) from None
         if trace.stats.npts != expected:
             raise RecordError(
                 f"holds {trace.stats.npts} samples but {self.catalog.name} line {self.line} says "
@@ -312,6 +328,7 @@ def load_catalog(
             )
         where = {key.lower(): value for key, value in where.items()}
     entries = []
+    seen: dict[tuple[Path, str], CatalogEntry] = {}
     for line, cells in rows[1:]:
         if len(cells) != len(columns):
             raise RecordError(
@@ -319,23 +336,51 @@ def load_catalog(
                 where=f"{path}:{line}",
             )
         row = dict(zip(columns, (c.strip() for c in cells), strict=True))
-        if where and not _matches(row, where):
-            continue
         if "file" in row:
             if not row["file"]:
                 raise RecordError("empty 'file' column", where=f"{path}:{line}")
-            entries.append(CatalogEntry(path, line, path.parent / row["file"], row))
+            found = [CatalogEntry(path, line, path.parent / row["file"], row)]
+        else:
+            named = [c for c in component_columns(columns) if row[c]]
+            if not named:
+                raise RecordError(
+                    f"empty {', '.join(map(repr, component_columns(columns)))} columns",
+                    where=f"{path}:{line}",
+                )
+            found = []
+            for column in named:
+                own = _component_row(row, column)
+                found.append(CatalogEntry(path, line, path.parent / own["file"], own, column))
+        for entry in found:
+            _check_duplicate(entry, seen)
+        if where and not _matches(row, where):
             continue
-        found = [c for c in component_columns(columns) if row[c]]
-        if not found:
-            raise RecordError(
-                f"empty {', '.join(map(repr, component_columns(columns)))} columns",
-                where=f"{path}:{line}",
-            )
-        for column in found:
-            own = _component_row(row, column)
-            entries.append(CatalogEntry(path, line, path.parent / own["file"], own, column))
+        entries.extend(found)
     return entries
+
+
+def _check_duplicate(entry: CatalogEntry, seen: dict[tuple[Path, str], CatalogEntry]) -> None:
+    """Refuse a second row (or component column) for the same file and component: it would be
+    read, and counted in every statistic, twice (docs/design.md §9)."""
+    key = (entry.path.resolve(), (entry.component or "").upper())
+    first = seen.setdefault(key, entry)
+    if first is entry:
+        return
+    what = repr(entry.row.get("file", entry.path.name))
+    if entry.component:
+        what += f" (component {entry.component})"
+    places = (
+        f"lines {first.line} and {entry.line} both list"
+        if first.line != entry.line
+        else f"line {entry.line} lists {what} twice ({first.column}, {entry.column}):"
+    )
+    if first.line != entry.line:
+        places += f" {what}:"
+    raise RecordError(
+        f"{places} a record must be listed once (a multi-component file needs a component "
+        "column to list each component)",
+        where=str(entry.catalog),
+    )
 
 
 def _component_row(row: dict[str, str], column: str) -> dict[str, str]:
@@ -369,9 +414,11 @@ def _rows(fh, path: Path, components: bool = False):
             if missing == ["file"] and per_component:
                 missing = []
             if missing:
+                found = ", ".join(c for c in columns if c) or "none"
                 raise RecordError(
-                    f"not a record catalog: no column {', '.join(map(repr, missing))} "
-                    f"(a catalog needs the columns {', '.join(REQUIRED_COLUMNS)})",
+                    f"not a record catalog: no column {', '.join(map(repr, missing))}; a "
+                    f"catalog needs the columns {', '.join(REQUIRED_COLUMNS)} (or "
+                    f"file_h1, file_h2 ..., dt, units); line {reader.line_num} has: {found}",
                     where=str(path),
                 )
             duplicated = sorted({c for c in columns if columns.count(c) > 1})

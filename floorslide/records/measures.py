@@ -227,10 +227,12 @@ def measures(
     dict
         ``dt`` (s), ``npts``, ``duration`` (``(npts−1)·dt``, s), ``pga`` (m/s²), ``pga_g`` (g),
         ``pgv`` (m/s), ``pgd`` (m), ``arias`` (m/s), ``cav`` (m/s), ``d5_75`` and ``d5_95``
-        (s; NaN for a record of zeros), in the order of :data:`MEASURE_KEYS`, then ``notes``:
-        a tuple of what was done to the input (a Trace's unit conversion), empty for data in
-        m/s². The record starts at rest; nothing is filtered or baseline-corrected here (see
-        :func:`floorslide.process`), so PGV and PGD are those of the record as given.
+        (s), in the order of :data:`MEASURE_KEYS`, then ``notes``: a tuple of what was done to
+        the input (a Trace's unit conversion) and of the measures that are NaN and why (the
+        durations of a record of zeros; measures beyond floating point for absurdly large
+        samples), empty for ordinary data in m/s². The record starts at rest; nothing is
+        filtered or baseline-corrected here (see :func:`floorslide.process`), so PGV and PGD
+        are those of the record as given.
 
     Raises
     ------
@@ -259,19 +261,46 @@ def measures(
     """
     acc, dt, notes = _as_record(trace_or_array, dt)
     pga = float(np.abs(acc).max())
-    pgv, pgd = peak_velocity_displacement(acc, dt)
-    t5, t75, t95 = husid_times(acc, dt, (0.05, 0.75, 0.95))
-    return {
-        "dt": dt,
-        "npts": int(acc.size),
-        "duration": (acc.size - 1) * dt,
-        "pga": pga,
-        "pga_g": pga / G,
-        "pgv": pgv,
-        "pgd": pgd,
-        "arias": arias_intensity(acc, dt),
-        "cav": cumulative_absolute_velocity(acc, dt),
-        "d5_75": float(t75 - t5),
-        "d5_95": float(t95 - t5),
-        "notes": notes,
-    }
+    with np.errstate(over="ignore", invalid="ignore"):  # overflow: NaN and a note, below
+        pgv, pgd = peak_velocity_displacement(acc, dt)
+        t5, t75, t95 = husid_times(acc, dt, (0.05, 0.75, 0.95))
+        values = {
+            "dt": dt,
+            "npts": int(acc.size),
+            "duration": (acc.size - 1) * dt,
+            "pga": pga,
+            "pga_g": pga / G,
+            "pgv": pgv,
+            "pgd": pgd,
+            "arias": arias_intensity(acc, dt),
+            "cav": cumulative_absolute_velocity(acc, dt),
+            "d5_75": float(t75 - t5),
+            "d5_95": float(t95 - t5),
+        }
+    notes += _undefined(values)
+    return {**values, "notes": notes}
+
+
+def _undefined(values: dict) -> tuple[str, ...]:
+    """Set the measures that are not numbers to NaN (in place) and say why: the significant
+    durations when the Arias intensity is 0 (a record of zeros), and measures beyond floating
+    point (samples so large that an integral overflows; the durations too when ∫a² does)."""
+    durations = ("d5_75", "d5_95")
+    if values["arias"] == 0:
+        for key in durations:
+            values[key] = float("nan")
+        return ("d5_75, d5_95: undefined, the Arias intensity is 0 (a record of zeros)",)
+    husid_overflows = not np.isfinite(values["arias"])
+    beyond = [
+        key
+        for key in MEASURE_KEYS
+        if not np.isfinite(values[key]) or (husid_overflows and key in durations)
+    ]
+    for key in beyond:
+        values[key] = float("nan")
+    if not beyond:
+        return ()
+    return (
+        f"{', '.join(beyond)}: undefined, beyond floating point (samples up to "
+        f"{values['pga']:.3g} m/s²)",
+    )

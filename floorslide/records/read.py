@@ -214,11 +214,19 @@ def _read_record(
     entry = None
     if fmt == text.FORMAT:
         record = text.parse_text_record(path)
-        if sidecar and (
-            (record.dt is None and dt is None) or (record.units is None and given_units is None)
-        ):
-            entry = find_sidecar_entry(path)
+        if sidecar:
+            entry, problem = _sidecar(path)
+            missing = (record.dt is None and dt is None) or (
+                record.units is None and given_units is None
+            )
+            if problem and missing:
+                raise RecordError(
+                    f"its dt or units are not given, and the {SIDECAR} next to it cannot be "
+                    f"used: {problem}",
+                    where=where,
+                )
             if entry is not None:
+                _check_sidecar(entry, record, dt, given_units, where)
                 dt = dt if dt is not None else entry.dt
                 if given_units is None and entry.units is not None:
                     given_units = entry.units
@@ -461,11 +469,44 @@ def _select(stream: Stream, component: str | None, where: str) -> Stream:
 
 
 def find_sidecar_entry(path: str | os.PathLike) -> CatalogEntry | None:
-    """The row of ``index.csv`` next to ``path`` that lists it, or None."""
-    from floorslide.records.catalog import find_entry
+    """The row of ``index.csv`` next to ``path`` that lists it, or None (also when that
+    catalog cannot be read)."""
+    return _sidecar(Path(path))[0]
 
-    path = Path(path)
+
+def _sidecar(path: Path) -> tuple[CatalogEntry | None, str | None]:
+    """The row of the sidecar catalog that lists ``path`` (None if there is none), and why the
+    sidecar cannot be used when it is a catalog that does not load (duplicate rows, a
+    malformed line ...). A catalog of components serves too: its row for this component."""
+    from floorslide.records.catalog import is_catalog, load_catalog
+
     sidecar = path.parent / SIDECAR
-    if not sidecar.is_file():
-        return None
-    return find_entry(sidecar, path)
+    if not sidecar.is_file() or not is_catalog(sidecar):
+        return None, None
+    try:
+        entries = load_catalog(sidecar, components=True)
+    except RecordError as exc:
+        return None, str(exc)
+    target = path.resolve()
+    return next((e for e in entries if e.path.resolve() == target), None), None
+
+
+def _check_sidecar(
+    entry: CatalogEntry, record: text.TextRecord, dt: float | None, units: str | None, where: str
+) -> None:
+    """A dt or units given, or stated by the file, that contradicts its sidecar row is an
+    error, as a contradiction with a file's header is (never applied silently)."""
+    row = f"{entry.catalog.name} line {entry.line}"
+    listed_dt, listed_units = entry.dt, entry.units
+    if listed_dt is not None:
+        for value, who in ((dt, "was given"), (record.dt, "is in the file")):
+            if value is not None and abs(value - listed_dt) > 1e-4 * listed_dt:
+                raise RecordError(
+                    f"dt = {value:g} s {who} but {row} says {listed_dt:g} s", where=where
+                )
+    if listed_units is not None:
+        for value, who in ((units, "were given"), (record.units, "are in the file")):
+            if value is not None and value != listed_units:
+                raise UnitsError(
+                    f"units {value!r} {who} but {row} says {listed_units!r}", where=where
+                )

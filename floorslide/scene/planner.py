@@ -24,7 +24,7 @@ import numpy as np
 
 from floorslide.constants import G
 from floorslide.contents.rocking import response_mode
-from floorslide.errors import FloorslideError, RecordError
+from floorslide.errors import FloorslideError, RecordError, SceneError
 from floorslide.scene.schema import (
     BuildingSpec,
     ContentSpec,
@@ -102,6 +102,9 @@ class Plan:
                 else f", T = {b.period:g} s, ξ = {b.damping:g}"
             )
             lines.append(f"  building {b.id!r}: {b.kind}, {b.stories} storeys{extra}")
+        if self.scene.warnings:
+            lines.append("warnings (valid, but almost surely a mistake):")
+            lines += [f"  {warning}" for warning in self.scene.warnings]
         lines.append("runs:")
         for what, count in sorted(self.runs.items()):
             lines.append(f"  {count:7d}  {what}")
@@ -219,6 +222,25 @@ def _load_set(rs: RecordSetSpec, processing: dict, failures: list[str]) -> list[
     return out
 
 
+def _check_short_periods(scene: Scene, records: list[LoadedRecord]) -> None:
+    """Spectra periods below ``dt/1000`` of a record (known once the records are read and
+    processed) would need absurd sub-step counts: an invalid scene, before anything runs."""
+    from floorslide.spectra.core import MIN_PERIOD_STEPS
+
+    if scene.spectra is None or not records:
+        return
+    positive = [T for T in scene.spectra.periods if T > 0]
+    coarsest = max(records, key=lambda r: r.dt)
+    if positive and min(positive) < coarsest.dt / MIN_PERIOD_STEPS:
+        raise SceneError(
+            f"spectra.periods: {min(positive):g} s is below dt/{MIN_PERIOD_STEPS} = "
+            f"{coarsest.dt / MIN_PERIOD_STEPS:g} s of record {coarsest.label} (dt = "
+            f"{coarsest.dt:g} s); its oscillator would need over {MIN_PERIOD_STEPS} sub-steps "
+            "per step (0 gives the peak acceleration)",
+            scene.path,
+        )
+
+
 def plan(scene: Scene, *, force: bool = False, evaluate: bool = True) -> Plan:
     """Turn a scene into tasks.
 
@@ -235,6 +257,7 @@ def plan(scene: Scene, *, force: bool = False, evaluate: bool = True) -> Plan:
     records: list[LoadedRecord] = []
     for rs in scene.records:
         records += _load_set(rs, scene.processing, failures)
+    _check_short_periods(scene, records)
     history = scene.report.get("history_record")
     if history is None and records:
         history = records[0].record

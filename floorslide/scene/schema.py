@@ -13,12 +13,14 @@ import glob
 import itertools
 import math
 import tomllib
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from floorslide.constants import MAX_LIST
 from floorslide.errors import SceneError
 
 TOP_KEYS = {"scene", "records", "processing", "buildings", "contents", "spectra", "report"}
@@ -69,8 +71,6 @@ SPECTRA_KEYS = {"floors", "damping", "periods", "broadening"}
 REPORT_KEYS = {"periods", "damping", "compare", "history_record"}
 MAX_STORIES = 200
 """Largest building a scene may declare (a 200-storey shear building has 400 states)."""
-MAX_LIST = 10_000
-"""Longest list (sweep, period grid) a scene may declare."""
 
 
 @dataclass(frozen=True)
@@ -124,13 +124,17 @@ class BuildingSpec:
         )
 
     def build(self):
-        """The building model."""
+        """The building model (a :class:`~floorslide.errors.ModelWarning` is not repeated: the
+        scene lists it, :attr:`Scene.warnings`)."""
         from floorslide.building.model import IsolatedBuilding
+        from floorslide.errors import ModelWarning
 
         if self.kind == "fixed":
             return self._shear_building(self.period, self.damping)
         sup = self._shear_building(self.super_period, self.super_damping)
-        return IsolatedBuilding(sup, self.base_mass_ratio, self.period, self.damping)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ModelWarning)
+            return IsolatedBuilding(sup, self.base_mass_ratio, self.period, self.damping)
 
 
 @dataclass(frozen=True)
@@ -181,6 +185,9 @@ class Scene:
     contents: tuple[ContentSpec, ...]
     spectra: SpectraSpec | None
     report: dict
+    warnings: tuple[str, ...] = ()
+    """Values that are valid but almost surely a mistake (``key.path: message``), shown by the
+    dry run; e.g. an isolation period not above the superstructure's fixed-base period."""
 
 
 def _floors(spec, stories: int) -> tuple[int, ...]:
@@ -196,9 +203,14 @@ class _Checker:
 
     def __init__(self):
         self.problems: list[str] = []
+        self.warnings: list[str] = []
 
     def add(self, where: str, message: str) -> None:
         self.problems.append(f"{where}: {message}")
+
+    def warn(self, where: str, message: str) -> None:
+        """A valid value that is almost surely a mistake: reported, not refused."""
+        self.warnings.append(f"{where}: {message}")
 
     def keys(self, table: dict, allowed: set, where: str) -> None:
         for key in table:
@@ -262,7 +274,7 @@ def load_scene(path: str | Path) -> Scene:
     """Read and validate a scene file (all problems reported at once)."""
     path = Path(path)
     try:
-        text = path.read_text(encoding="utf-8")
+        text = path.read_text(encoding="utf-8-sig")  # a byte-order mark (Notepad) is skipped
     except FileNotFoundError:
         raise SceneError("no such scene file", str(path)) from None
     except (OSError, UnicodeDecodeError) as exc:
@@ -301,7 +313,18 @@ def parse_scene(text: str, path: str | Path = "scene.toml") -> Scene:
         ck.add("contents", "the scene asks for nothing: give [[contents]] or [spectra]")
     if ck.problems:
         raise SceneError(ck.problems, str(path))
-    return Scene(name, str(path), text, records, processing, buildings, contents, spectra, report)
+    return Scene(
+        name,
+        str(path),
+        text,
+        records,
+        processing,
+        buildings,
+        contents,
+        spectra,
+        report,
+        warnings=tuple(ck.warnings),
+    )
 
 
 def record_id_of(path: str | Path) -> str:
@@ -311,20 +334,81 @@ def record_id_of(path: str | Path) -> str:
 
 
 def _catalog_ids(catalog: str, where: dict, w: str, ck: _Checker) -> list[str] | None:
-    """Record ids of the catalog rows `where` selects (a problem if it names an unknown column
-    or selects no row); None when the catalog cannot be read here (the planner reports it)."""
+    """Record ids of the catalog rows `where` selects, or None when the catalog cannot be read
+    (a problem: a malformed catalog, duplicate rows ...). `where` must name columns of the
+    catalog, each of its values must occur in its column (a value that matches no row is a
+    typo, also inside a list), and together they must select a row."""
     from floorslide.errors import RecordError
     from floorslide.records.catalog import load_catalog
 
     try:
-        entries = load_catalog(catalog, where=where or None)
+        rows = load_catalog(catalog)
+        entries = load_catalog(catalog, where=where or None) if where else rows
     except RecordError as exc:
         if exc.message.startswith("where: "):
             ck.add(f"{w}.where", exc.message.removeprefix("where: "))
+        else:
+            ck.add(f"{w}.catalog", str(exc))
         return None
-    if not entries:
+    typos = False
+    for key, wanted in where.items():
+        values = wanted if isinstance(wanted, list) else [wanted]
+        present = {e.row.get(key.lower(), "").strip() for e in rows}
+        for j, value in enumerate(values):
+            if str(value).strip() not in present:
+                typos = True
+                shown = sorted(present)
+                listing = ", ".join(map(repr, shown[:8])) + (" …" if len(shown) > 8 else "")
+                key_path = f"{w}.where.{key}" + (f"[{j}]" if isinstance(wanted, list) else "")
+                ck.add(key_path, f"no row has {key} = {value!r} (values: {listing})")
+    if not entries and not typos:
         ck.add(f"{w}.where" if where else f"{w}.catalog", f"selects no row of {catalog}")
-    return [record_id_of(e.path) for e in entries]
+    ids = [record_id_of(e.path) for e in entries]
+    _unique_ids(ids, [str(e.path) for e in entries], f"{w}.catalog", ck)
+    return ids
+
+
+def _where_values(where: dict, w: str, ck: _Checker) -> dict:
+    """``where``: each value a string, number or boolean, or a non-empty list of them."""
+    ok = {}
+    for key, value in where.items():
+        items = value if isinstance(value, list) else [value]
+        if not items or not all(isinstance(v, str | int | float | bool) for v in items):
+            ck.add(
+                f"{w}.where.{key}",
+                f"must be a value or a list of values to match, got {value!r}",
+            )
+            continue
+        ok[key] = value
+    return ok
+
+
+def _each_file_once(files: list[str]) -> list[str]:
+    """Globs are sets of files: overlapping ones (or two spellings of a path) name each file
+    once, in the order first named."""
+    seen: set[Path] = set()
+    out = []
+    for f in files:
+        resolved = Path(f).resolve()
+        if resolved not in seen:
+            seen.add(resolved)
+            out.append(f)
+    return out
+
+
+def _unique_ids(ids: list[str], paths: list[str], key: str, ck: _Checker) -> None:
+    """Two records of one set with the same id (file name without extension) would be merged
+    or counted twice in the tables: a problem naming both."""
+    first: dict[str, str] = {}
+    for rid, path in zip(ids, paths, strict=True):
+        if rid in first and first[rid] != path:
+            ck.add(
+                key,
+                f"two records named {rid!r} in one set ({first[rid]}, {path}); a record id "
+                "(the file name without extension) must be unique within a set",
+            )
+            return
+        first.setdefault(rid, path)
 
 
 def _records(value, ck: _Checker, base: Path) -> tuple[tuple[RecordSetSpec, ...], list[str] | None]:
@@ -365,6 +449,8 @@ def _records(value, ck: _Checker, base: Path) -> tuple[tuple[RecordSetSpec, ...]
                 if not hits:
                     ck.add(f"{w}.files[{j}]", f"matches no file ({full})")
                 files += [h for h in hits if Path(h).is_file()]
+            files = _each_file_once(files)
+            _unique_ids([record_id_of(f) for f in files], files, f"{w}.files", ck)
         catalog = None
         if has_cat:
             cat = ck.string(r["catalog"], f"{w}.catalog")
@@ -378,6 +464,7 @@ def _records(value, ck: _Checker, base: Path) -> tuple[tuple[RecordSetSpec, ...]
         if not isinstance(where, dict):
             ck.add(f"{w}.where", "must be a table of column = value")
             where = {}
+        where = _where_values(where, w, ck)
         if catalog:
             got = _catalog_ids(catalog, where, w, ck) if Path(catalog).is_file() else None
             ids = None if got is None or ids is None else ids + got
@@ -536,6 +623,7 @@ def _buildings(value, ck: _Checker) -> tuple[tuple[BuildingSpec, ...], set[str]]
     out: list[BuildingSpec] = []
     ids: set[str] = set()
     declared_fixed: set[str] = set()
+    unknown_kind: set[str] = set()  # a superstructure of these is reported at its kind
     isolated = []
     for i, b in enumerate(value):
         w = f"buildings[{i}]"
@@ -552,6 +640,8 @@ def _buildings(value, ck: _Checker) -> tuple[tuple[BuildingSpec, ...], set[str]]
         kind = b.get("kind")
         if kind not in ("fixed", "isolated"):
             ck.add(f"{w}.kind", f"must be 'fixed' or 'isolated', got {kind!r}")
+            if bid:
+                unknown_kind.add(bid)
             continue
         if kind == "isolated":
             ck.keys(b, ISOLATED_KEYS, w)
@@ -591,6 +681,8 @@ def _buildings(value, ck: _Checker) -> tuple[tuple[BuildingSpec, ...], set[str]]
             )
         fixed[bid] = variants
         out += variants
+    from floorslide.building.model import isolation_period_warning
+
     for i, b, bid in isolated:
         w = f"buildings[{i}]"
         sup = b.get("superstructure")
@@ -603,6 +695,8 @@ def _buildings(value, ck: _Checker) -> tuple[tuple[BuildingSpec, ...], set[str]]
         if "period" not in b:
             ck.add(f"{w}.period", "missing: the isolation period, s")
         damps = ck.numbers(b.get("damping", 0.1), f"{w}.damping", lo=0, hi=1, hi_open=True)
+        if isinstance(sup, str) and sup in unknown_kind:
+            continue  # the superstructure's kind is invalid: reported there
         if not isinstance(sup, str) or sup not in declared_fixed:
             ck.add(f"{w}.superstructure", f"must be the id of a fixed building, got {sup!r}")
             continue
@@ -615,6 +709,13 @@ def _buildings(value, ck: _Checker) -> tuple[tuple[BuildingSpec, ...], set[str]]
             )
             continue
         s = fixed[sup][0]
+        listed = isinstance(b.get("period"), list)
+        for j, T in enumerate(periods):
+            if T <= s.period:
+                ck.warn(
+                    f"{w}.period" + (f"[{j}]" if listed else ""),
+                    isolation_period_warning(T, s.period, sup),
+                )
         if not bid:
             continue
         for R, T, z in itertools.product(ratios, periods, damps):
@@ -770,10 +871,29 @@ def _spectra(value, ck: _Checker, stories: set[int]) -> SpectraSpec | None:
             grid = tuple(np.geomspace(lo, hi, n).tolist())
     else:
         grid = ck.numbers(periods, "spectra.periods", lo=0)
+    _spectrum_size(grid, damping, ck)
     broadening = ck.number(
         value.get("broadening", 0.0), "spectra.broadening", lo=0, hi=1, hi_open=True
     )
     return SpectraSpec(floors, damping, grid, broadening or 0.0)
+
+
+def _spectrum_size(grid: tuple[float, ...], damping: tuple[float, ...], ck: _Checker) -> None:
+    """The limits of one spectrum (:mod:`floorslide.spectra.core`): no period beyond
+    ``MAX_PERIOD``, at most ``MAX_OSCILLATORS`` periods × damping ratios. (Periods below
+    ``dt/1000`` are refused by the planner, which knows the records' dt.)"""
+    from floorslide.spectra.core import MAX_OSCILLATORS, MAX_PERIOD
+
+    if grid and max(grid) > MAX_PERIOD:
+        ck.add(
+            "spectra.periods", f"{max(grid):g} s is above {MAX_PERIOD:g} s, beyond any structure"
+        )
+    if len(grid) * len(damping) > MAX_OSCILLATORS:
+        ck.add(
+            "spectra.damping",
+            f"{len(grid)} periods x {len(damping)} damping ratios = {len(grid) * len(damping)} "
+            f"oscillators per floor: at most {MAX_OSCILLATORS}",
+        )
 
 
 def _report(

@@ -33,6 +33,7 @@ from floorslide.building.exact import (
 )
 from floorslide.building.model import LinearBuilding
 from floorslide.building.motions import floor_motions, peak_floor_acceleration
+from floorslide.constants import MAX_LIST
 from floorslide.errors import ModelError
 from floorslide.inputs import RecordLike, as_record
 from floorslide.spectra import _kernels as K
@@ -42,6 +43,17 @@ from floorslide.spectra._kernels import NB, NCOEF, spectrum_kernel
 # inside, floor sub-step data computed
 SEARCHED = np.zeros(2, dtype=np.int64)
 METHODS = ("exact", "samples", "newmark", "fft", "reinterpolated")
+
+MAX_OSCILLATORS = 100_000
+"""Most oscillators (periods × damping ratios) one spectrum computes."""
+MAX_PERIOD = 1e4
+"""Longest period, s: beyond any structure (the oscillator's relative displacement is then
+the ground's displacement)."""
+MIN_PERIOD_STEPS = 1000
+"""Shortest positive period is ``dt / MIN_PERIOD_STEPS``: the exact solver steps each
+oscillator on sub-steps of at most ``MAX_PHASE/ω``, about ``4π·dt/T`` per record step, so a
+shorter one needs absurd sub-step counts (``T = 1e-9`` s at dt = 0.01 s: 1.3e8 per step and a
+MemoryError). Use ``T = 0`` for the peak acceleration."""
 
 
 @dataclass(frozen=True)
@@ -95,7 +107,9 @@ class Spectrum:
 
 
 def period_grid(periods) -> np.ndarray:
-    """Periods from a list or from ``{"min": .., "max": .., "n": ..}`` (log-spaced), validated."""
+    """Periods from a list or from ``{"min": .., "max": .., "n": ..}`` (log-spaced), validated:
+    finite, ``0 ≤ T ≤`` :data:`MAX_PERIOD`, at most :data:`~floorslide.constants.MAX_LIST` of
+    them (a scene's limit)."""
     if isinstance(periods, dict):
         try:
             lo, hi, n = float(periods["min"]), float(periods["max"]), int(periods["n"])
@@ -103,18 +117,62 @@ def period_grid(periods) -> np.ndarray:
             raise ModelError("periods must be a list or {min, max, n}", "periods") from None
         if not (0 < lo < hi and n >= 2):
             raise ModelError(f"periods need 0 < min < max and n ≥ 2, got {periods}", "periods")
-        return np.geomspace(lo, hi, n)
-    arr = np.atleast_1d(np.asarray(periods, dtype=float)).ravel()
-    if arr.size == 0 or not np.all(np.isfinite(arr)) or np.any(arr < 0):
-        raise ModelError("periods must be finite and ≥ 0 s", "periods")
+        _check_count(n, "periods")
+        arr = np.geomspace(lo, hi, n)
+    else:
+        arr = np.atleast_1d(np.asarray(periods, dtype=float)).ravel()
+        if arr.size == 0 or not np.all(np.isfinite(arr)) or np.any(arr < 0):
+            raise ModelError("periods must be finite and ≥ 0 s", "periods")
+        _check_count(arr.size, "periods")
+    if arr.max() > MAX_PERIOD:
+        raise ModelError(
+            f"period {arr.max():g} s is above {MAX_PERIOD:g} s, beyond any structure "
+            "(its spectral displacement is the ground's displacement)",
+            "periods",
+        )
     return arr
 
 
-def _damping_list(damping) -> np.ndarray:
+def _check_count(n: int, name: str) -> None:
+    """At most :data:`~floorslide.constants.MAX_LIST` periods (or damping ratios)."""
+    if n > MAX_LIST:
+        raise ModelError(f"{n} {name}: at most {MAX_LIST} in one spectrum", name)
+
+
+def damping_ratios(damping) -> np.ndarray:
+    """Damping ratios in [0, 1), at most :data:`~floorslide.constants.MAX_LIST` of them, as an
+    array."""
     arr = np.atleast_1d(np.asarray(damping, dtype=float)).ravel()
-    if arr.size == 0 or not np.all(np.isfinite(arr)) or np.any(arr < 0) or np.any(arr >= 1):
-        raise ModelError(f"damping ratios must be in [0, 1), got {arr.tolist()}", "damping")
+    if arr.size == 0:
+        raise ModelError("damping ratios must be in [0, 1), got none", "damping")
+    bad = arr[~(np.isfinite(arr) & (arr >= 0) & (arr < 1))]
+    if bad.size:
+        shown = ", ".join(f"{z:g}" for z in bad[:3]) + (" …" if bad.size > 3 else "")
+        raise ModelError(f"damping ratios must be in [0, 1), got {shown}", "damping")
+    _check_count(arr.size, "damping")
     return arr
+
+
+def check_oscillators(periods: np.ndarray, damping: np.ndarray, dt: float | None = None) -> None:
+    """Refuse a spectrum whose oscillators would exhaust memory or time: more than
+    :data:`MAX_OSCILLATORS` (periods × damping ratios), or, given the record's `dt`, a positive
+    period below ``dt /`` :data:`MIN_PERIOD_STEPS`. Raises :class:`ModelError`."""
+    if periods.size * damping.size > MAX_OSCILLATORS:
+        raise ModelError(
+            f"{periods.size} periods x {damping.size} damping ratios = "
+            f"{periods.size * damping.size} oscillators: at most {MAX_OSCILLATORS}",
+            "periods",
+        )
+    if dt is None:
+        return
+    positive = periods[periods > 0]
+    if positive.size and positive.min() < dt / MIN_PERIOD_STEPS:
+        raise ModelError(
+            f"period {positive.min():g} s is below dt/{MIN_PERIOD_STEPS} = "
+            f"{dt / MIN_PERIOD_STEPS:g} s (dt = {dt:g} s): its oscillator would need over "
+            f"{MIN_PERIOD_STEPS} sub-steps per record step; give 0 for the peak acceleration",
+            "periods",
+        )
 
 
 def _sdof_recurrence(w, xi, h):
@@ -436,9 +494,10 @@ def response_spectrum(
         Time step, s; required for samples, optional for a Trace (must equal ``stats.delta``).
     periods
         Oscillator periods (s, list; 0 gives the peak of the motion) or ``{"min", "max", "n"}``
-        (log-spaced); required.
+        (log-spaced); required. At most :data:`~floorslide.constants.MAX_LIST` (as in a scene),
+        none above :data:`MAX_PERIOD` nor, but 0, below ``dt /`` :data:`MIN_PERIOD_STEPS`.
     damping
-        Damping ratio or list of ratios.
+        Damping ratio or list of ratios (at most :data:`MAX_OSCILLATORS` oscillators in all).
     building, floor
         Floor response spectrum of `floor`, driven by the building's exact floor motion.
     method
@@ -463,7 +522,8 @@ def response_spectrum(
     if periods is None:
         raise ModelError("periods are required: a list in s or {min, max, n}", "periods")
     T = period_grid(periods)
-    Z = _damping_list(damping)
+    Z = damping_ratios(damping)
+    check_oscillators(T, Z, dt)
     if method not in METHODS:
         raise ModelError(f"unknown method {method!r}; expected one of {', '.join(METHODS)}")
     if building is not None:

@@ -168,3 +168,25 @@ def test_modal_frequencies_in_hz_and_rad_per_s():
     with pytest.warns(DeprecationWarning, match="frequencies_hz"):
         old = mp.frequencies
     np.testing.assert_array_equal(old, mp.circular_frequencies)
+
+
+def test_isolation_period_not_above_the_fixed_base_period_warns():
+    """Accepted without a word (issue 19 item 8): physically possible, almost surely a
+    mistake — a ModelWarning, not an error; the model is built as asked."""
+    from floorslide.errors import ModelWarning
+
+    fb = ShearBuilding.from_period(2, 0.5, 0.05)
+    for period in (0.5, 0.3):
+        with pytest.warns(ModelWarning) as caught:
+            iso = IsolatedBuilding(fb, 1.0, period, 0.1)
+        assert len(caught) == 1 and str(caught[0].message) == (
+            f"isolation period {period:g} s is not above the fixed-base period 0.5 s of the "
+            "superstructure: the isolators would not isolate (almost surely a mistake)"
+        )
+        assert caught[0].filename == __file__  # points at the caller
+        assert iso.isolation_period == period
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ModelWarning)
+        IsolatedBuilding(fb, 1.0, 0.51, 0.1)

@@ -119,9 +119,13 @@ def test_sidecar_gives_dt_units_and_metadata():
     assert tr.stats.record.event == "Kobe, Japan 1995"
 
 
-def test_given_dt_and_units_skip_the_sidecar(tmp_path):
+def test_given_dt_and_units_are_checked_against_the_sidecar(tmp_path):
+    """Given dt and units that agree with the sidecar row are used with its metadata; ones
+    that contradict it are errors (issue 19: --units gal on a file in g was applied)."""
     st = fs.read_record(SLAMMER / "Kobe_1995_KAK-000.txt", dt=0.01, units="g")
-    assert "catalog" not in st[0].stats
+    assert st[0].stats.catalog.station_id == "KAK-000"
+    with pytest.raises(UnitsError, match=r"units 'gal' were given but index.csv line \d+ says"):
+        fs.read_record(SLAMMER / "Kobe_1995_KAK-000.txt", dt=0.01, units="gal")
 
 
 def test_without_sidecar_a_bare_file_needs_dt_and_units(tmp_path):
@@ -142,15 +146,17 @@ def test_sidecar_that_does_not_list_the_file(tmp_path):
 
 
 def _bad_catalog(tmp_path):
-    """A copy of two bundled rows plus a missing file and a bad dt."""
+    """A copy of two bundled rows plus a missing file, a bad dt and bad units (each row its own
+    file: a catalog lists a record once)."""
     shutil.copy(SLAMMER / "Kobe_1995_KAK-000.txt", tmp_path / "Kobe_1995_KAK-000.txt")
-    shutil.copy(SLAMMER / "Kobe_1995_SHI-000.txt", tmp_path / "Kobe_1995_SHI-000.txt")
+    for name in ("Kobe_1995_SHI-000.txt", "bad_dt.txt", "bad_units.txt"):
+        shutil.copy(SLAMMER / "Kobe_1995_SHI-000.txt", tmp_path / name)
     (tmp_path / "index.csv").write_text(
         "file,dt,units,station\n"
         "Kobe_1995_KAK-000.txt,0.01,g,Kakogawa\n"
         "missing.txt,0.01,g,Nowhere\n"
-        "Kobe_1995_SHI-000.txt,-0.01,g,Shin-Osaka\n"
-        "Kobe_1995_SHI-000.txt,0.01,furlongs,Shin-Osaka\n"
+        "bad_dt.txt,-0.01,g,Shin-Osaka\n"
+        "bad_units.txt,0.01,furlongs,Shin-Osaka\n"
         "Kobe_1995_SHI-000.txt,0.01,gal,Shin-Osaka\n"
     )
     return tmp_path / "index.csv"

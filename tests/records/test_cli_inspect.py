@@ -18,7 +18,7 @@ from tests.conftest import ROOT, SLAMMER
 from tests.records.conftest import ELC_FILE, FIXTURES
 
 RECORDS = ROOT / "data" / "records"
-KEYS = {"record", "format", "component", "station", "event", *MEASURE_KEYS}
+KEYS = {"record", "format", "component", "station", "event", *MEASURE_KEYS, "notes"}
 
 
 def run(*args: str):
@@ -120,7 +120,29 @@ def test_nan_durations_are_null_in_json(tmp_path):
     zeros.write_text("# dt: 0.01\n# units: g\n" + "0\n" * 10)
     row = json.loads(run("--json", str(zeros)).stdout)[0]
     assert row["d5_95"] is None and row["pga"] == 0.0
+    assert row["notes"] == ["d5_75, d5_95: undefined, the Arias intensity is 0 (a record of zeros)"]
     assert "-" in run(str(zeros)).stdout.splitlines()[1]
+
+
+def _not_json(constant: str):
+    raise AssertionError(f"{constant} is not JSON")
+
+
+def test_json_is_strict_when_measures_overflow(tmp_path):
+    """Samples of 1e200 g printed ``"cav": Infinity``, which is not JSON, and durations of 0 s
+    (issue 19 item 6): the measures beyond floating point are null, with a note saying why."""
+    big = tmp_path / "big.txt"
+    big.write_text("# dt: 0.01\n# units: g\n1e200\n-1e200\n1e200\n0\n")
+    result = run("--json", str(big))
+    assert result.exit_code == 0 and result.stderr == ""
+    (row,) = json.loads(result.stdout, parse_constant=_not_json)
+    assert row["pga_g"] == pytest.approx(1e200) and row["pgv"] > 0
+    assert [row[k] for k in ("arias", "cav", "d5_75", "d5_95")] == [None] * 4
+    assert row["notes"] == [
+        "arias, cav, d5_75, d5_95: undefined, beyond floating point (samples up to 9.81e+200 m/s²)"
+    ]
+    table = run(str(big)).stdout
+    assert f"note: {big}: arias, cav, d5_75, d5_95: undefined" in table
 
 
 def test_help():
@@ -234,3 +256,14 @@ def test_bad_option_values_are_usage_errors(command, option, value, text):
     assert result.exit_code == 2, result.output
     error = [line for line in result.stderr.splitlines() if line.startswith("Error:")]
     assert len(error) == 1 and option in error[0] and text in error[0]
+
+
+def test_every_json_the_commands_print_is_strict():
+    """slide --json and spectrum --json go through the same helper as inspect --json."""
+    from floorslide.cli import _strict_json
+
+    data = {"a": [float("inf"), np.float64("nan"), 1.5], "b": (np.float64("-inf"), "x")}
+    assert json.loads(_strict_json(data), parse_constant=_not_json) == {
+        "a": [None, None, 1.5],
+        "b": [None, "x"],
+    }

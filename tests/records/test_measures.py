@@ -268,3 +268,21 @@ def test_zero_record_and_single_sample():
     assert np.isnan(m["d5_95"]) and np.isnan(m["d5_75"])
     one = fs.measures(np.array([-2.0]), dt=0.01)
     assert one["pga"] == 2.0 and one["duration"] == 0.0 and one["arias"] == 0.0
+    assert m["notes"] == ("d5_75, d5_95: undefined, the Arias intensity is 0 (a record of zeros)",)
+
+
+def test_measures_beyond_floating_point_are_nan_with_a_note():
+    """Samples of 1e200 m/s² gave CAV = inf, durations of 0 s and overflow RuntimeWarnings
+    (issue 19 item 6): every measure that overflows, and the durations with ∫a², is NaN and a
+    note names them."""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        m = fs.measures(np.array([1e200, -1e200, 1e200, 0.0]), dt=0.01)
+    assert m["pga"] == 1e200 and m["pgv"] == pytest.approx(5e197)
+    assert all(np.isnan(m[k]) for k in ("arias", "cav", "d5_75", "d5_95"))
+    assert m["notes"] == (
+        "arias, cav, d5_75, d5_95: undefined, beyond floating point (samples up to 1e+200 m/s²)",
+    )
+    assert fs.measures(np.array([1e150, -1e150, 0.0]), dt=0.01)["notes"] == ()

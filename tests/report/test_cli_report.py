@@ -15,6 +15,7 @@ import pytest
 
 from floorslide.cli import REPORT_TABLES, main
 from floorslide.report import COLUMNS, TABLE_NAMES, design_tables, format_markdown
+from floorslide.report.formats import format_csv
 
 PNG = b"\x89PNG\r\n\x1a\n"
 
@@ -50,7 +51,13 @@ def test_table_csv_sections_directory_and_selection(monkeypatch, capsys, study, 
     code, out, _ = invoke(
         monkeypatch, capsys, "table", study.path, "--format", "csv", "--table", "pfa"
     )
-    assert code == 0 and out.startswith("# table: pfa\n") and "# table: slides" not in out
+    # one table is a plain CSV: the '# table: pfa' line it began with is gone (issue 19 item 8)
+    assert code == 0 and "# table" not in out
+    assert out == format_csv("pfa", design_tables(study.path)["pfa"])
+    assert next(csv.DictReader(io.StringIO(out)))["building"]
+    two = ("--table", "pfa", "--table", "frs")
+    code, out, _ = invoke(monkeypatch, capsys, "table", study.path, "--format", "csv", *two)
+    assert code == 0 and out.startswith("# table: pfa\n") and "\n# table: frs\n" in out
     code, out, _ = invoke(
         monkeypatch, capsys, "table", study.path, "--format", "csv", "-o", tmp_path / "t"
     )

@@ -279,6 +279,17 @@ def test_one_bad_value_reports_only_itself():
     assert err.value.problems == ["buildings[0].period[1]: must be > 0, got -1"]
 
 
+def test_a_bad_kind_reports_only_itself():
+    """A typo in the superstructure's kind also reported the isolated building on it, and
+    the comparisons naming it (issue 19 item 8)."""
+    text = GOOD.replace('id = "fb1"\nkind = "fixed"', 'id = "fb1"\nkind = "fxed"') + (
+        '\n[report]\ncompare = ["iso:fb1", "iso@T=2,xi=0.05:fb1"]\n'
+    )
+    with pytest.raises(SceneError) as err:
+        parse_scene(text, ROOT / "x.toml")
+    assert err.value.problems == ["buildings[1].kind: must be 'fixed' or 'isolated', got 'fxed'"]
+
+
 # --- issue 12, item 6: every name in the scene is checked when it is validated --------------
 
 
@@ -324,7 +335,9 @@ def test_where_naming_nothing_is_a_scene_error():
     )
     with pytest.raises(SceneError) as err:
         parse_scene(text, ROOT / "x.toml")
-    assert [p.split(":")[0] for p in err.value.problems] == ["records[0].where"]
+    assert err.value.problems == [
+        "records[0].where.set: no row has set = 'brod-band' (values: 'broad-band', 'pulse-like')"
+    ]
     text = GOOD.replace('where = { station_id = ["ELC-180", "TAF-021"] }', 'where = { sett = "x" }')
     with pytest.raises(SceneError, match=r"records\[0\].where: no column 'sett'"):
         parse_scene(text, ROOT / "x.toml")

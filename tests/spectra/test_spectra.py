@@ -267,3 +267,27 @@ def test_approximate_spectra_are_close_and_converge(method, coarse_record):
 def test_bad_spectrum_arguments(bad):
     with pytest.raises(ModelError):
         response_spectrum(np.ones(10), 0.01, **bad)
+
+
+@pytest.mark.parametrize(
+    ("periods", "damping", "text"),
+    [
+        ({"min": 0.1, "max": 5.0, "n": 100_000_000}, 0.05, "100000000 periods: at most 10000"),
+        (np.linspace(0.1, 5, 10_001), 0.05, "10001 periods: at most 10000"),
+        ([1e-9, 1.0], 0.05, "period 1e-09 s is below dt/1000 = 1e-05 s (dt = 0.01 s)"),
+        ([1.0, 1e9], 0.05, "period 1e+09 s is above 10000 s"),
+        (np.linspace(0.1, 5, 10_000), np.linspace(0, 0.2, 11), "110000 oscillators: at most"),
+        ([1.0], np.full(10_001, 0.05), "10001 damping: at most 10000"),
+    ],
+)
+def test_spectrum_sizes_that_would_exhaust_memory_are_refused(periods, damping, text):
+    """A 1e8-period grid was killed by the OOM killer at 23.8 GB; T = 1e-9 s raised a
+    MemoryError (1.3e8 sub-steps per step): a ModelError now, before any work."""
+    with pytest.raises(ModelError) as info:
+        response_spectrum(np.ones(10), 0.01, periods, damping)
+    assert text in str(info.value) and info.value.exit_code == 2
+
+
+def test_spectrum_limits_are_inclusive():
+    sp = response_spectrum(np.sin(np.arange(200) * 0.3), 0.01, [0.0, 1e-5, 1e4], [0.0, 0.05])
+    assert sp.psa.shape == (2, 3) and np.isfinite(sp.psa).all()

@@ -7,11 +7,12 @@ column, 1-based, as an editor shows them).
 
 from __future__ import annotations
 
+import io
 import os
 import re
 from collections.abc import Iterable
 from pathlib import Path
-from typing import IO
+from typing import IO, BinaryIO
 
 import numpy as np
 
@@ -19,6 +20,11 @@ from floorslide.errors import RecordError
 
 HEAD_BYTES = 8192
 """How much of a file the ``_is_<format>`` checks look at."""
+
+BOM_UTF8 = b"\xef\xbb\xbf"
+"""The UTF-8 byte-order mark some editors (Notepad, Excel) write first: skipped."""
+
+_NON_SPACE = re.compile(rb"\S")
 
 _TOKEN = re.compile(r"[^\s,]+")
 # A Fortran fixed-width field that ran into its neighbour ("-.123E-02-.456E-02").
@@ -40,7 +46,10 @@ def read_head(filename: str | os.PathLike | IO[bytes], nbytes: int = HEAD_BYTES)
                 raw = fh.read(nbytes)
     except (OSError, TypeError, ValueError, AttributeError):
         return None
-    if not isinstance(raw, bytes) or not raw or looks_binary(raw):
+    if not isinstance(raw, bytes):
+        return None
+    raw = raw.removeprefix(BOM_UTF8)
+    if not raw or looks_binary(raw):
         return None
     return raw.decode("latin-1")
 
@@ -53,25 +62,99 @@ def looks_binary(raw: bytes) -> bool:
     return control > 0.01 * len(raw)
 
 
-def read_text(filename: str | os.PathLike) -> str:
-    """The whole file as text, with a RecordError for a missing, empty or binary file."""
+def read_bytes(filename: str | os.PathLike) -> tuple[bytes, int]:
+    """The whole file as bytes and the offset of its text (3 after a UTF-8 byte-order mark, else
+    0), with a RecordError for a missing, empty, binary or UTF-16 file. A file whose lines end
+    in a bare carriage return (classic Mac OS) comes back with line feeds."""
     path = Path(filename)
+    where = str(path)
     try:
         raw = path.read_bytes()
     except FileNotFoundError:
-        raise RecordError("no such file", where=str(path)) from None
+        raise RecordError("no such file", where=where) from None
     except IsADirectoryError:
-        raise RecordError("is a directory, not a record file", where=str(path)) from None
+        raise RecordError("is a directory, not a record file", where=where) from None
     except OSError as exc:
-        raise RecordError(f"cannot read file: {exc.strerror or exc}", where=str(path)) from None
-    if not raw.strip():
-        raise RecordError("empty file", where=str(path))
-    if looks_binary(raw[:HEAD_BYTES]):
-        raise RecordError("binary data, not a text record", where=str(path))
+        raise RecordError(f"cannot read file: {exc.strerror or exc}", where=where) from None
+    if raw.startswith((b"\xff\xfe", b"\xfe\xff")):
+        raise RecordError(
+            "UTF-16 text; floorslide reads ASCII or UTF-8 text: save the file as UTF-8",
+            where=where,
+        )
+    offset = len(BOM_UTF8) if raw.startswith(BOM_UTF8) else 0
+    if _NON_SPACE.search(raw, offset) is None:
+        raise RecordError("empty file", where=where)
+    if looks_binary(raw[offset : offset + HEAD_BYTES]):
+        raise RecordError("binary data, not a text record", where=where)
+    if b"\n" not in raw and b"\r" in raw:
+        raw = raw.replace(b"\r", b"\n")
+    return raw, offset
+
+
+def open_text(filename: str | os.PathLike) -> tuple[BinaryIO, int]:
+    """The file opened for reading bytes, and the offset of its text (3 after a UTF-8
+    byte-order mark, else 0), positioned there; a RecordError for a missing, binary or UTF-16
+    file.
+
+    Only the first kilobytes are read here, so that a large record is parsed block by block
+    rather than held whole in memory (docs/design.md §8). A file whose lines end in a bare
+    carriage return (classic Mac OS) comes back as an in-memory copy with line feeds, so that
+    lines are always separated by ``\\n``. The caller closes the file.
+    """
+    path = Path(filename)
+    where = str(path)
+    try:
+        fh: BinaryIO = open(path, "rb")
+    except FileNotFoundError:
+        raise RecordError("no such file", where=where) from None
+    except IsADirectoryError:
+        raise RecordError("is a directory, not a record file", where=where) from None
+    except OSError as exc:
+        raise RecordError(f"cannot read file: {exc.strerror or exc}", where=where) from None
+    try:
+        head = fh.read(HEAD_BYTES)
+        if head.startswith((b"\xff\xfe", b"\xfe\xff")):
+            raise RecordError(
+                "UTF-16 text; floorslide reads ASCII or UTF-8 text: save the file as UTF-8",
+                where=where,
+            )
+        offset = len(BOM_UTF8) if head.startswith(BOM_UTF8) else 0
+        if looks_binary(head[offset:]):
+            raise RecordError("binary data, not a text record", where=where)
+        if b"\n" not in head and b"\r" in head:
+            fh.seek(0)
+            raw = fh.read()
+            if b"\n" not in raw:
+                fh.close()
+                fh = io.BytesIO(raw.replace(b"\r", b"\n"))
+        fh.seek(offset)
+    except OSError as exc:
+        fh.close()
+        raise RecordError(f"cannot read file: {exc.strerror or exc}", where=where) from None
+    except RecordError:
+        fh.close()
+        raise
+    return fh, offset
+
+
+def decode(raw: bytes) -> str:
+    """Text of some bytes of a record file: UTF-8, else Latin-1 (which decodes anything)."""
     try:
         return raw.decode("utf-8")
     except UnicodeDecodeError:
         return raw.decode("latin-1")
+
+
+def read_text(filename: str | os.PathLike) -> str:
+    """The whole file as text (without a UTF-8 byte-order mark), with a RecordError for a
+    missing, empty, binary or UTF-16 file."""
+    raw, offset = read_bytes(filename)
+    return decode(raw[offset:])
+
+
+UNDERSCORE_HINT = "underscores are not digit separators in a record"
+"""Why a number such as ``1_000`` is refused: Python's ``float`` reads it as 1000, but no
+record format writes digits that way, so it is damage or a typo."""
 
 
 def parse_floats(
@@ -109,26 +192,29 @@ def parse_floats(
                     where=where,
                 )
     body = " ".join(lines).replace(",", " ")
-    try:
-        return np.array(body.split(), dtype=np.float64)
-    except ValueError:
-        pass
+    if "_" not in body:
+        try:
+            return np.array(body.split(), dtype=np.float64)
+        except ValueError:
+            pass
     values: list[float] = []
     for offset, line in enumerate(lines):
         for match in _TOKEN.finditer(line):
             token = match.group()
-            try:
-                values.append(float(token))
-                continue
-            except ValueError:
-                pass
+            if "_" not in token:
+                try:
+                    values.append(float(token))
+                    continue
+                except ValueError:
+                    pass
             parts = _NUMBER.findall(token)
             if parts and "".join(parts) == token:  # run-together fixed-width fields
                 values.extend(float(p.replace("d", "e").replace("D", "E")) for p in parts)
                 continue
+            hint = f" ({UNDERSCORE_HINT})" if "_" in token else ""
             raise RecordError(
                 f"line {first_line + offset}, column {match.start() + 1}: "
-                f"{token[:40]!r} is not {what}",
+                f"{token[:40]!r} is not {what}{hint}",
                 where=where,
             )
     return np.array(values, dtype=np.float64)
@@ -150,15 +236,18 @@ def parse_fixed_width(
         values = np.char.replace(np.char.upper(fields), "D", "E").astype(np.float64)
     except ValueError:
         values = None
-    if values is None or values.size < count:
+    if values is None or values.size < count or any("_" in field for field in fields):
         for index, field in enumerate(fields):
             try:
+                if "_" in field:
+                    raise ValueError(UNDERSCORE_HINT)
                 float(field.replace("D", "E").replace("d", "e"))
             except ValueError:
                 line, col = divmod(index, per_line)
                 raise RecordError(
                     f"line {first_line + line}, column {col * width + 1}: "
-                    f"{field.strip()[:40]!r} is not a number",
+                    f"{field.strip()[:40]!r} is not a number"
+                    + (f" ({UNDERSCORE_HINT})" if "_" in field else ""),
                     where=where,
                 ) from None
         raise RecordError(f"expected {count} values, found {fields.size}", where=where)
@@ -201,6 +290,9 @@ def check_finite(values: np.ndarray, where: str, locate=None) -> None:
 def parse_float_field(text: str, name: str, where: str) -> float:
     """A header value as float, with a RecordError naming the field."""
     try:
+        if "_" in text:
+            raise ValueError(UNDERSCORE_HINT)
         return float(text.replace("D", "E").replace("d", "e"))
     except ValueError:
-        raise RecordError(f"{name} {text!r} is not a number", where=where) from None
+        hint = f" ({UNDERSCORE_HINT})" if "_" in text else ""
+        raise RecordError(f"{name} {text!r} is not a number{hint}", where=where) from None

@@ -34,19 +34,26 @@ samples, dt ≤ 0, unknown units, an empty or binary file.
 
 from __future__ import annotations
 
+import math
 import os
 import re
-from collections.abc import Callable
+import warnings
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
-from itertools import chain
-from typing import IO
+from typing import IO, BinaryIO
 
 import numpy as np
 from obspy import Stream, Trace, UTCDateTime
 from obspy.core import AttribDict, Stats
 
 from floorslide.errors import RecordError, UnitsError
-from floorslide.records.formats._text import HEAD_BYTES, read_head, read_text
+from floorslide.records.formats._text import (
+    HEAD_BYTES,
+    UNDERSCORE_HINT,
+    decode,
+    open_text,
+    read_head,
+)
 from floorslide.records.units import canonical_units
 
 FORMAT = "FSTEXT"
@@ -56,13 +63,31 @@ _KEY_VALUE = re.compile(r"^\s*[#%!]+\s*([A-Za-z][\w \-]{0,40}?)\s*[:=]\s*(.*?)\s
 _NAME = re.compile(r"^[A-Za-z_][\w()\[\]/*.^\-]*$")
 _DT_KEYS = ("dt", "delta", "time_step", "timestep", "sample_interval", "sampling_interval")
 _RATE_KEYS = ("sampling_rate", "fs", "sample_rate", "sps")
-_LEADING_NUMBER = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([A-Za-z]*)")
+_LEADING_NUMBER = re.compile(
+    r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)(?![\d_.])\s*([A-Za-z]*)"
+)
 _TIME_TOLERANCE = 0.01  # fraction of a step a time value may be off the uniform grid
-_NONBLANK = re.compile(r"^[ \t]*\S", re.MULTILINE)
-_ROWS = {
-    1: re.compile(r"^[ \t]*\S+[ \t]*$", re.MULTILINE),
-    2: re.compile(r"^[ \t]*\S+[ \t]+\S+[ \t]*$", re.MULTILINE),
-}
+_PLAIN_NUMBER_BYTES = b"0123456789+-.eE \t\r\n\f\v,"
+# a line of one field; possessive quantifiers (no backtracking) and a leading line feed make the
+# search fast; the first line of a block is tested apart
+_ONE_FIELD_ROW = re.compile(rb"\n[ \t\r\f\v]*+[^\s]++[ \t\r\f\v]*+(?:\n|\Z)")
+_BLANK_LINE = re.compile(rb"^[ \t\r\f\v]*$", re.MULTILINE)
+_BLANK_BETWEEN = re.compile(rb"\n[ \t\r\f\v]*\n")
+_WHOLE_NUMBER = re.compile(r"^\+?\d+$")
+_MILLISECONDS = re.compile(r"(?:^|[^a-z])(?:ms|msec|millisec\w*)(?:[^a-z]|$)", re.IGNORECASE)
+
+CHUNK_BYTES = 1 << 22
+"""Data lines are parsed in blocks of about this many bytes (4 MiB)."""
+
+TIME_BLOCK = 1 << 20
+"""Samples of a time column checked at a time."""
+
+MAX_TIME_STEP = 0.5
+"""A time column stepping by this much (s) or more is refused: no accelerogram is sampled at
+2 Hz or less, and such a column is almost surely in milliseconds."""
+
+COUNT_SPIKE = 100.0
+"""A whole-number first value this many times the largest other value is a count line."""
 
 
 @dataclass
@@ -161,89 +186,213 @@ def _header_dt(header: dict[str, str], where: str) -> float | None:
     return None
 
 
-def _table(lines: list[str], start: int, where: str) -> tuple[np.ndarray, Callable[[int], int]]:
-    """The numbers of the data lines (from ``lines[start]`` on) as a (rows, columns) array, and a
-    function giving the 1-based file line of a row (for messages).
+@dataclass
+class _Chunk:
+    """Where one block of data lines lies: bytes ``[start, end)`` of the file, 1-based number of
+    its first line, index of its first row (for messages)."""
 
-    Fast path, without a Python loop over lines: when the data hold no comment lines, regular
-    expressions check that every non-blank line has the same number (1 or 2) of fields, and one
-    ``split`` converts them all. Anything unusual (comments between data lines, a bad value, a
-    ragged row, NaN) takes the line-by-line path, which says exactly where the problem is.
+    start: int
+    end: int
+    line: int
+    row: int
+
+
+class _Preamble:
+    """The lines before the data: header entries, column names, where the data start (read
+    from the open file `fh`, from byte `offset`)."""
+
+    def __init__(self, fh: BinaryIO, offset: int):
+        self.header: dict[str, str] = {}
+        self.names: list[str] = []
+        self.names_line = 0
+        self.tokens: list[str] = []  # the fields of the first data line
+        self.line = 0  # its 1-based line number
+        self.start = offset  # its byte offset (the end of the file if there are no data)
+        self.end = offset  # where it ends
+        self.empty = True  # nothing but white space before the data
+        fh.seek(offset)
+        number, pos = 0, offset
+        for raw in iter(fh.readline, b""):
+            number += 1
+            end = pos + len(raw)
+            stripped = decode(raw).strip()
+            self.empty = self.empty and not stripped
+            if stripped.startswith(COMMENT_CHARS):
+                match = _KEY_VALUE.match(stripped)
+                if match:
+                    self.header[_norm_key(match.group(1))] = match.group(2)
+            elif stripped:
+                tokens = _tokens(stripped)
+                if (
+                    not self.names
+                    and not any(_is_float(t) for t in tokens)
+                    and all(_NAME.match(t) for t in tokens)
+                ):
+                    self.names, self.names_line = tokens, number
+                else:
+                    self.tokens, self.line, self.start, self.end = tokens, number, pos, end
+                    return
+            pos = end
+        self.start = self.end = pos
+
+
+def _blocks(fh: BinaryIO, start: int, line: int) -> Iterator[tuple[bytes, int, int]]:
+    """``(block, byte offset, first line)`` of successive blocks of whole lines of about
+    :data:`CHUNK_BYTES`, from byte ``start`` (line ``line``) to the end of the file."""
+    fh.seek(start)
+    rest = b""
+    while True:
+        piece = fh.read(CHUNK_BYTES)
+        buffer = rest + piece if rest else piece
+        if not piece:
+            if buffer:
+                yield buffer, start, line
+            return
+        cut = buffer.rfind(b"\n") + 1
+        if cut == 0:
+            rest = buffer  # a line longer than a block
+            continue
+        block, rest = buffer[:cut], buffer[cut:]
+        yield block, start, line
+        start += len(block)
+        line += block.count(b"\n")
+
+
+def _count_lines(fh: BinaryIO, start: int) -> int:
+    """Line feeds from byte `start` to the end of the file, + 1 (an upper bound of the rows)."""
+    fh.seek(start)
+    return 1 + sum(piece.count(b"\n") for piece in iter(lambda: fh.read(CHUNK_BYTES), b""))
+
+
+def _fast_values(chunk: bytes, ncols: int) -> np.ndarray | None:
+    """The numbers of a block of data lines, row by row, or None if anything is unusual
+    (comments, names, NaN, a ragged row, a bad value: :func:`_values_by_lines` says where).
+
+    No Python object per line: a byte translation finds any character that is not part of a
+    plain number, one regular-expression search finds a two-column file's one-field rows, and
+    NumPy converts the whole block (correctly rounded, as ``float``). Every non-blank line then
+    holds exactly ``ncols`` numbers when their count is ``ncols`` × the non-blank lines (each
+    line has at least one field, and in two columns none has exactly one).
     """
-    body = "\n".join(lines[start:])
-    first = _tokens(lines[start]) if start < len(lines) else []
-    if len(first) in (1, 2) and not any(c in body for c in COMMENT_CHARS):
-        flat = body.replace(",", " ")
-        rows = len(_NONBLANK.findall(flat))
-        if len(_ROWS[len(first)].findall(flat)) == rows:
-            try:
-                values = np.array(flat.split(), dtype=np.float64)
-            except ValueError:
-                values = None
-            if values is not None and np.isfinite(values).all():
-                numbers: list[int] = []
-
-                def line_of(row: int) -> int:
-                    if not numbers:
-                        numbers.extend(
-                            i for i, line in enumerate(lines[start:], start + 1) if line.strip()
-                        )
-                    return numbers[row]
-
-                return values.reshape(-1, len(first)), line_of
-    return _table_by_lines(lines, start, where)
+    if chunk.translate(None, _PLAIN_NUMBER_BYTES):
+        return None
+    if b"," in chunk:
+        chunk = chunk.replace(b",", b" ")
+    if ncols == 2 and _ONE_FIELD_ROW.search(b"\n" + chunk[: chunk.find(b"\n") + 1]):
+        return None  # the block's first line
+    if ncols == 2 and _ONE_FIELD_ROW.search(chunk):
+        return None
+    rows = _nonblank_lines(chunk)
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", DeprecationWarning)
+            values = np.fromstring(chunk, dtype=np.float64, sep=" ")
+    except (ValueError, DeprecationWarning):
+        return None
+    if values.size != rows * ncols or not np.isfinite(values).all():
+        return None
+    return values
 
 
-def _table_by_lines(
-    lines: list[str], start: int, where: str
-) -> tuple[np.ndarray, Callable[[int], int]]:
-    """:func:`_table`, line by line, with the line and column of every problem."""
-    rows = [
-        (i, line)
-        for i, line in enumerate(lines[start:], start + 1)
-        if line.strip() and not line.lstrip().startswith(COMMENT_CHARS)
-    ]
-    if not rows:
+def _nonblank_lines(chunk: bytes) -> int:
+    """The number of lines of `chunk` that are not blank (quick searches when none is)."""
+    newline = chunk.find(b"\n")
+    first = chunk if newline < 0 else chunk[: newline + 1]
+    last = chunk[chunk.rfind(b"\n") + 1 :]
+    if not first.strip() or (last and not last.strip()) or _BLANK_BETWEEN.search(chunk):
+        return chunk.count(b"\n") + 1 - len(_BLANK_LINE.findall(chunk))
+    return chunk.count(b"\n") + (not chunk.endswith(b"\n"))
+
+
+def _values_by_lines(chunk: bytes, line: int, ncols: int, where: str) -> np.ndarray:
+    """:func:`_fast_values`, line by line, with the line and column of every problem."""
+    values: list[float] = []
+    for number, text in enumerate(decode(chunk).split("\n"), line):
+        stripped = text.strip()
+        if not stripped or stripped.startswith(COMMENT_CHARS):
+            continue
+        tokens = _tokens(stripped)
+        if len(tokens) != ncols:
+            raise RecordError(
+                f"line {number}: {len(tokens)} columns where the data above have {ncols}",
+                where=where,
+            )
+        for col, token in enumerate(tokens):
+            value = _float_or_none(token)
+            if value is None:
+                hint = f" ({UNDERSCORE_HINT})" if "_" in token else ""
+                raise RecordError(
+                    f"line {number}, column {text.find(token) + 1}: {token[:40]!r} is not a "
+                    f"number{hint}",
+                    where=where,
+                )
+            if not math.isfinite(value):
+                kind = "NaN" if math.isnan(value) else "infinite"
+                raise RecordError(
+                    f"line {number}: {kind} value in column {col + 1}; "
+                    "a record must hold finite numbers",
+                    where=where,
+                )
+            values.append(value)
+    return np.array(values, dtype=np.float64)
+
+
+def _float_or_none(token: str) -> float | None:
+    """``float(token)``, or None for a token that is not a number (or has underscores)."""
+    if "_" in token:
+        return None
+    try:
+        return float(token)
+    except ValueError:
+        return None
+
+
+def _table(fh: BinaryIO, pre: _Preamble, where: str) -> tuple[np.ndarray, Callable[[int], int]]:
+    """The numbers of the data lines as a (rows, columns) array, and a function giving the
+    1-based file line of a row (for messages; it reads the file again).
+
+    The data are read and parsed block by block (:data:`CHUNK_BYTES`) into one preallocated
+    array, each block by :func:`_fast_values` or, when that declines, line by line: reading
+    takes about the samples and a few blocks in memory — neither the whole file nor a Python
+    object per line (docs/design.md §8).
+    """
+    if not pre.tokens:
+        if pre.empty:
+            raise RecordError("empty file", where=where)
         raise RecordError("no data lines (only comments or blank lines)", where=where)
-    split = [_tokens(line) for _, line in rows]
-    counts = np.fromiter(map(len, split), dtype=np.int64, count=len(split))
-    ncols = int(counts[0])
+    ncols = len(pre.tokens)
     if ncols not in (1, 2):
         raise RecordError(
-            f"line {rows[0][0]}: {ncols} columns; expected 1 (acceleration) or "
+            f"line {pre.line}: {ncols} columns; expected 1 (acceleration) or "
             "2 (time, acceleration)",
             where=where,
         )
-    odd = np.flatnonzero(counts != ncols)
-    if odd.size:
-        line_no = rows[int(odd[0])][0]
-        raise RecordError(
-            f"line {line_no}: {int(counts[odd[0]])} columns where the data above have {ncols}",
-            where=where,
-        )
-    try:
-        values = np.array(list(chain.from_iterable(split)), dtype=np.float64)
-    except ValueError:
-        for (line_no, line), tokens in zip(rows, split, strict=True):
-            for token in tokens:
-                if not _is_float(token):
-                    column = line.find(token) + 1
-                    raise RecordError(
-                        f"line {line_no}, column {column}: {token[:40]!r} is not a number",
-                        where=where,
-                    ) from None
-        raise  # pragma: no cover - every ValueError has a bad token
-    table = values.reshape(-1, ncols)
-    bad = ~np.isfinite(table)
-    if bad.any():
-        row, col = np.argwhere(bad)[0]
-        kind = "NaN" if np.isnan(table[row, col]) else "infinite"
-        raise RecordError(
-            f"line {rows[row][0]}: {kind} value in column {col + 1}; "
-            "a record must hold finite numbers",
-            where=where,
-        )
-    return table, lambda row: rows[row][0]
+    out = np.empty(_count_lines(fh, pre.start) * ncols, dtype=np.float64)
+    chunks: list[_Chunk] = []
+    filled = 0
+    for block, start, line in _blocks(fh, pre.start, pre.line):
+        values = _fast_values(block, ncols)
+        if values is None:
+            values = _values_by_lines(block, line, ncols, where)
+        chunks.append(_Chunk(start, start + len(block), line, filled // ncols))
+        out[filled : filled + values.size] = values
+        filled += values.size
+    out.resize((filled,), refcheck=False)  # shrinks in place: no copy
+
+    def line_of(row: int) -> int:
+        chunk = next(c for c in reversed(chunks) if c.row <= row)
+        fh.seek(chunk.start)
+        text = decode(fh.read(chunk.end - chunk.start))
+        seen = chunk.row
+        for number, line in enumerate(text.split("\n"), chunk.line):
+            stripped = line.strip()
+            if stripped and not stripped.startswith(COMMENT_CHARS):
+                if seen == row:
+                    return number
+                seen += 1
+        return chunk.line  # pragma: no cover - every row is on a line
+
+    return out.reshape(-1, ncols), line_of
 
 
 def parse_text_record(filename: str | os.PathLike) -> TextRecord:
@@ -264,36 +413,27 @@ def parse_text_record(filename: str | os.PathLike) -> TextRecord:
         For a malformed file (see the module docstring).
     """
     where = str(filename)
-    lines = read_text(filename).splitlines()
-    header: dict[str, str] = {}
-    names: list[str] = []
-    start = len(lines)
-    for i, line in enumerate(lines):
-        stripped = line.strip()
-        if not stripped:
-            continue
-        if stripped.startswith(COMMENT_CHARS):
-            match = _KEY_VALUE.match(stripped)
-            if match:
-                header[_norm_key(match.group(1))] = match.group(2)
-            continue
-        tokens = _tokens(stripped)
-        if not names and not any(_is_float(t) for t in tokens):
-            if all(_NAME.match(t) for t in tokens):
-                names = tokens
-                continue
-        start = i
-        break
-    table, line_of = _table(lines, start, where)
-    ncols = table.shape[1]
-    dt = _header_dt(header, where)
-    t0 = 0.0
-    if ncols == 2:
-        dt, t0 = _time_column(table[:, 0], line_of, dt, where)
+    fh, offset = open_text(filename)
+    with fh:
+        try:
+            pre = _Preamble(fh, offset)
+            _check_count_line_above_two_columns(fh, pre, where)
+            table, line_of = _table(fh, pre, where)
+            header = pre.header
+            ncols = table.shape[1]
+            if ncols == 1:
+                _check_count_line(table[:, 0], pre, where)
+            dt = _header_dt(header, where)
+            t0 = 0.0
+            if ncols == 2:
+                _check_time_label(pre, where)
+                dt, t0 = _time_column(table[:, 0], line_of, dt, where)
+        except OSError as exc:
+            raise RecordError(f"cannot read file: {exc.strerror or exc}", where=where) from None
     units = None
     if header.get("units") or header.get("unit"):
-        raw = header.get("units") or header.get("unit") or ""
-        units = canonical_units_in_header(raw, where)
+        raw_units = header.get("units") or header.get("unit") or ""
+        units = canonical_units_in_header(raw_units, where)
     data = np.ascontiguousarray(table[:, -1])
     if "npts" in header:
         try:
@@ -308,7 +448,69 @@ def parse_text_record(filename: str | os.PathLike) -> TextRecord:
                 + (" (truncated)" if data.size < npts else ""),
                 where=where,
             )
-    return TextRecord(data, dt, units, header, ncols, t0, names)
+    return TextRecord(data, dt, units, header, ncols, t0, pre.names)
+
+
+def _count_hint(count: str) -> str:
+    return f"delete that line, or make it a header line '# npts: {count}' (then it is checked)"
+
+
+def _check_count_line_above_two_columns(fh: BinaryIO, pre: _Preamble, where: str) -> None:
+    """A lone whole number above two-column data is a sample-count line, not data."""
+    if len(pre.tokens) != 1 or not _WHOLE_NUMBER.match(pre.tokens[0]):
+        return
+    following = _Preamble(fh, pre.end)
+    if len(following.tokens) == 2 and not following.names:
+        raise RecordError(
+            f"line {pre.line}: a lone whole number ({pre.tokens[0]}) above two-column data: a "
+            f"sample count, not a sample; {_count_hint(pre.tokens[0])}",
+            where=where,
+        )
+
+
+def _check_count_line(values: np.ndarray, pre: _Preamble, where: str) -> None:
+    """Refuse a first value that is a sample count rather than a sample.
+
+    A first value written as a whole number that equals the number of values after it is a
+    count line (``3949`` above 3949 samples), not a 3949 g spike. One that is a whole number
+    at least :data:`COUNT_SPIKE` times the largest of the other values, which are not all
+    whole numbers, is one too, for a file whose count no longer matches (truncated).
+    """
+    token = pre.tokens[0]
+    if values.size < 2 or not _WHOLE_NUMBER.match(token):
+        return
+    first, rest = float(values[0]), values[1:]
+    if first == rest.size:
+        raise RecordError(
+            f"line {pre.line}: {token} is the number of values after it, a sample count, not "
+            f"a sample; {_count_hint(token)}",
+            where=where,
+        )
+    largest = max(float(rest.max()), -float(rest.min()))
+    if abs(first) >= COUNT_SPIKE * largest and np.any(rest != np.round(rest)):
+        raise RecordError(
+            f"line {pre.line}: {token} looks like a sample count, not a sample (a whole number "
+            f"{COUNT_SPIKE:g}x the largest other value, {largest:.3g}), but {rest.size} values "
+            f"follow it: a truncated file? {_count_hint(token)}",
+            where=where,
+        )
+
+
+def _check_time_label(pre: _Preamble, where: str) -> None:
+    """Refuse a time column labelled in milliseconds: floorslide reads times in seconds."""
+    unit = pre.header.get("time_units") or pre.header.get("time_unit") or ""
+    if _MILLISECONDS.search(unit):
+        label, line = f"time units: {unit}", "the header"
+    elif pre.names and _MILLISECONDS.search(pre.names[0]):
+        label, line = repr(pre.names[0]), f"line {pre.names_line}"
+    else:
+        return
+    raise RecordError(
+        f"{line}: the time column is in milliseconds ({label}); floorslide reads times in "
+        "seconds: convert the column to seconds, or drop it and state dt ('# dt: 0.005' or "
+        "--dt 0.005)",
+        where=where,
+    )
 
 
 def canonical_units_in_header(raw: str, where: str) -> str:
@@ -322,26 +524,40 @@ def canonical_units_in_header(raw: str, where: str) -> str:
 def _time_column(
     times: np.ndarray, line_of: Callable[[int], int], header_dt: float | None, where: str
 ) -> tuple[float, float]:
-    """dt and t0 of a uniform, increasing time column (RecordError otherwise)."""
+    """dt and t0 of a uniform, increasing time column in seconds (RecordError otherwise).
+
+    Checked block by block (:data:`TIME_BLOCK` samples), so that the temporaries stay small
+    for a long record.
+    """
     n = times.size
     if n < 2:
         raise RecordError("a two-column record needs at least two rows to give dt", where=where)
-    steps = np.diff(times)
-    if (steps <= 0).any():
-        k = int(np.argmax(steps <= 0)) + 1
-        raise RecordError(
-            f"line {line_of(k)}: time {times[k]:g} s does not increase "
-            f"(previous {times[k - 1]:g} s)",
-            where=where,
-        )
+    for lo in range(0, n - 1, TIME_BLOCK):
+        steps = np.diff(times[lo : lo + TIME_BLOCK + 1])
+        if (steps <= 0).any():
+            k = lo + int(np.argmax(steps <= 0)) + 1
+            raise RecordError(
+                f"line {line_of(k)}: time {times[k]:g} s does not increase "
+                f"(previous {times[k - 1]:g} s)",
+                where=where,
+            )
     dt = (times[-1] - times[0]) / (n - 1)
-    off = np.abs(times - (times[0] + dt * np.arange(n)))
-    if off.max() > _TIME_TOLERANCE * dt:
-        k = int(np.argmax(off > _TIME_TOLERANCE * dt))
+    for lo in range(0, n, TIME_BLOCK):
+        block = times[lo : lo + TIME_BLOCK]
+        off = np.abs(block - (times[0] + dt * np.arange(lo, lo + block.size)))
+        if off.max() > _TIME_TOLERANCE * dt:
+            k = lo + int(np.argmax(off > _TIME_TOLERANCE * dt))
+            raise RecordError(
+                f"line {line_of(k)}: time {times[k]:g} s is {off[k - lo]:.3g} s off the uniform "
+                f"grid t0 + k*dt (dt = {dt:.6g} s); floorslide needs uniformly sampled records "
+                "- resample first",
+                where=where,
+            )
+    if dt >= MAX_TIME_STEP:
         raise RecordError(
-            f"line {line_of(k)}: time {times[k]:g} s is {off[k]:.3g} s off the uniform grid "
-            f"t0 + k*dt (dt = {dt:.6g} s); floorslide needs uniformly sampled records - "
-            "resample first",
+            f"line {line_of(1)}: the time column steps by {dt:.6g} s, implausible for an "
+            f"accelerogram (dt >= {MAX_TIME_STEP:g} s; milliseconds?): give the times in "
+            "seconds, or drop the time column and state dt ('# dt: ...' or --dt)",
             where=where,
         )
     if header_dt is not None and abs(header_dt - dt) > 1e-4 * dt:
