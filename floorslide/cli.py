@@ -501,7 +501,15 @@ def _print_summary(summary, plan) -> None:
 @click.option("-o", "--out", metavar="OUT.h5", help="Result file (default: SCENE's name .h5 here).")
 @click.option("--dry-run", is_flag=True, help="Print the plan (what runs, what is skipped, why).")
 @click.option(
-    "--resume", is_flag=True, help="Continue an interrupted run; finished tasks are kept."
+    "--resume",
+    is_flag=True,
+    help="Continue an interrupted run of the same scene in OUT.h5; finished tasks are kept "
+    "(each checked against its digest; one that fails runs again).",
+)
+@click.option(
+    "--overwrite",
+    is_flag=True,
+    help="Replace an existing OUT.h5. Without it (or --resume) an existing file is refused.",
 )
 @click.option(
     "--workers",
@@ -513,28 +521,53 @@ def _print_summary(summary, plan) -> None:
     "--scheduler", metavar="ADDRESS", help="Send the tasks to a running Dask distributed scheduler."
 )
 @click.option(
+    "--scheduler-timeout",
+    type=click.FloatRange(min=0, min_open=True),
+    metavar="SECONDS",
+    help="With --scheduler: give up after this long without any worker connected (default: 60).",
+)
+@click.option(
     "--force", is_flag=True, hidden=True, help="Integrate even where the answer is known."
 )
-def run(scene, out, dry_run, resume, workers, scheduler, force):
+def run(scene, out, dry_run, resume, overwrite, workers, scheduler, scheduler_timeout, force):
     """Run a scene file (TOML): records × buildings × contents → OUT.h5.
 
     The planner simulates only what the scene asks for and says what it skipped; results are
     written as tasks finish, so an interrupted run keeps them and --resume continues it.
-    Unreadable records are reported and the others still run (exit code 3).
+    An existing OUT.h5 is never replaced unless --overwrite is given. Unreadable records are
+    reported and the others still run (exit code 3).
+
+    Exit codes: 0 done; 1 results could not be written (e.g. a full disk: the finished tasks
+    are kept, free space and rerun with --resume) or no Dask worker came; 2 bad usage, an
+    invalid scene, or OUT.h5 exists (without --resume or --overwrite) or is foreign; 3 a
+    record could not be read; 130 interrupted.
     """
     from pathlib import Path
 
-    from floorslide.run.execute import execute
+    from floorslide.run.execute import SCHEDULER_TIMEOUT, execute
     from floorslide.scene.planner import plan as make_plan
     from floorslide.scene.schema import load_scene
 
+    if resume and overwrite:
+        raise click.UsageError("--resume and --overwrite exclude each other")
+    if scheduler_timeout is not None and not scheduler:
+        raise click.BadParameter("needs --scheduler", param_hint="--scheduler-timeout")
     sc = load_scene(scene)
     plan = make_plan(sc, force=force)
     if dry_run:
         click.echo(plan.describe())
         sys.exit(EXIT_RECORD if plan.failures else EXIT_OK)
     out = out or f"{Path(scene).stem}.h5"
-    summary = execute(plan, out, workers=workers, scheduler=scheduler, resume=resume, force=force)
+    summary = execute(
+        plan,
+        out,
+        workers=workers,
+        scheduler=scheduler,
+        resume=resume,
+        overwrite=overwrite,
+        force=force,
+        scheduler_timeout=scheduler_timeout or SCHEDULER_TIMEOUT,
+    )
     if summary.interrupted:
         click.echo(
             f"floorslide: interrupted; {summary.ran + summary.resumed} finished tasks are in "
@@ -588,6 +621,8 @@ def _load_for_report(result: str, allow_incomplete: bool):
 
     study = load_study(result)
     study.require_complete(allow_incomplete)
+    for note in study.notes:
+        click.echo(f"floorslide: note: {study.source}: {note}", err=True)
     if study.status:
         click.echo(
             f"floorslide: warning: {study.source}: {study.status}; output labelled INCOMPLETE",

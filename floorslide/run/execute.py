@@ -11,6 +11,7 @@ from __future__ import annotations
 import multiprocessing
 import os
 import sys
+import time
 from collections.abc import Callable
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from dataclasses import dataclass
@@ -18,7 +19,7 @@ from dataclasses import dataclass
 from tqdm import tqdm
 
 from floorslide.errors import FloorslideError
-from floorslide.run.store import ResultWriter
+from floorslide.run.store import ResultWriter, warn_stderr
 from floorslide.run.task import run_task
 from floorslide.scene.planner import Plan
 
@@ -102,9 +103,22 @@ def _run_task_single_blas(task, force):
         return run_task(task, force)
 
 
-def _run_dask(todo, address: str, force: bool, on_result: Callable) -> None:
+SCHEDULER_TIMEOUT = 60.0
+"""Seconds a run on a Dask scheduler waits for a worker when none is connected."""
+
+POLL = 0.5
+"""Seconds between looks at a Dask scheduler's workers while no task finishes."""
+
+
+def _workers(client) -> int:
+    return len(client.scheduler_info().get("workers", {}))
+
+
+def _run_dask(
+    todo, address: str, force: bool, on_result: Callable, timeout: float, warn: Callable
+) -> None:
     try:
-        from dask.distributed import Client, as_completed
+        from dask.distributed import Client, wait
     except ImportError:  # pragma: no cover - dask[distributed] is a dependency
         raise FloorslideError("--scheduler needs dask.distributed installed") from None
     try:
@@ -114,12 +128,37 @@ def _run_dask(todo, address: str, force: bool, on_result: Callable) -> None:
             f"cannot reach the Dask scheduler at {address}: {exc}", "--scheduler"
         ) from None
     try:
-        futures = [
+        pending = {
             client.submit(_run_task_single_blas, t, force, pure=False, retries=2) for t in todo
-        ]
-        for fut in as_completed(futures):
-            on_result(fut.result())
-            fut.release()
+        }
+        idle_since = None  # since when no worker is connected
+        told = False
+        while pending:
+            try:
+                done, pending = wait(pending, timeout=POLL, return_when="FIRST_COMPLETED")
+            except TimeoutError:
+                done = set()
+            for fut in done:
+                on_result(fut.result())
+                fut.release()
+            if done or _workers(client):
+                idle_since = None
+                continue
+            now = time.monotonic()
+            idle_since = now if idle_since is None else idle_since
+            if not told:
+                warn(
+                    f"no Dask worker is connected to the scheduler at {address}; waiting up to "
+                    f"{timeout:g} s for one (--scheduler-timeout)"
+                )
+                told = True
+            if now - idle_since >= timeout:
+                raise FloorslideError(
+                    f"no Dask worker connected to the scheduler at {address} within "
+                    f"{timeout:g} s; start workers (dask worker {address}) or wait longer "
+                    "(--scheduler-timeout), then rerun with --resume",
+                    "--scheduler",
+                )
     finally:
         client.close()
 
@@ -131,8 +170,11 @@ def execute(
     workers: int | None = None,
     scheduler: str | None = None,
     resume: bool = False,
+    overwrite: bool = False,
     force: bool = False,
     progress: bool | None = None,
+    scheduler_timeout: float = SCHEDULER_TIMEOUT,
+    warn: Callable[[str], None] = warn_stderr,
 ) -> RunSummary:
     """Run every task of `plan` not already done in `out` and write the results.
 
@@ -147,17 +189,43 @@ def execute(
     scheduler
         Address of a running ``dask.distributed`` scheduler to send the tasks to instead.
     resume
-        Continue an interrupted run of the same scene: finished tasks are kept and skipped.
+        Continue an interrupted run of the same scene: finished tasks are kept and skipped;
+        tasks that fail their integrity check and journal entries that are refused run again.
+    overwrite
+        Replace an existing `out` (without it, or `resume`, an existing `out` is refused).
     force
         Integrate every object even where the answer is known (checks the planner's rules).
     progress
         Show a progress bar with ETA (default: when stderr is a terminal).
-    """
-    import time
+    scheduler_timeout
+        With `scheduler`: seconds to wait while no Dask worker is connected before giving up.
+    warn
+        Called with one line for each warning: entries refused or tasks rebuilt on resume, a
+        scheduler without workers (default: printed on stderr).
 
+    Raises
+    ------
+    OutputExistsError
+        `out` exists and neither `resume` nor `overwrite` was given.
+    OutputError
+        Results cannot be written (a full disk): one line, how many tasks are kept; no worker
+        process is left behind and every journaled task is kept for ``--resume``.
+    FloorslideError
+        The Dask scheduler cannot be reached, or has no worker for `scheduler_timeout` s.
+    """
     t0 = time.perf_counter()
     sc = plan.scene
-    writer = ResultWriter(out, sc.text, sc.path, sc.name, plan.summary(), resume=resume)
+    writer = ResultWriter(
+        out,
+        sc.text,
+        sc.path,
+        sc.name,
+        plan.summary(),
+        resume=resume,
+        overwrite=overwrite,
+        task_ids=[t.task_id for t in plan.tasks],
+        warn=warn,
+    )
     todo = [t for t in plan.tasks if t.task_id not in writer.done]
     resumed = len(plan.tasks) - len(todo)
     show = sys.stderr.isatty() if progress is None else progress
@@ -182,12 +250,15 @@ def execute(
 
     try:
         if scheduler:
-            _run_dask(todo, scheduler, force, on_result)
+            _run_dask(todo, scheduler, force, on_result, scheduler_timeout, warn)
         else:
             with threadpool_limits(limits=1):
                 _run_local(todo, workers or os.cpu_count() or 1, force, on_result)
     except KeyboardInterrupt:
         interrupted = True
+    except Exception:
+        writer.abandon()
+        raise
     finally:
         bar.close()
     if not interrupted and len(writer.done) == len(plan.tasks):

@@ -17,7 +17,7 @@ import pytest
 from floorslide.errors import OutputError, ResultFileError
 from floorslide.run import store
 from floorslide.run.execute import execute
-from floorslide.run.store import ResultFile, journal_dir
+from floorslide.run.store import ResultFile, journal_dir, journal_entries
 from floorslide.scene.planner import plan
 from floorslide.scene.schema import parse_scene
 from tests.conftest import ROOT
@@ -39,17 +39,17 @@ def reference(the_plan, tmp_path_factory):
 
 
 def fail_after(monkeypatch, n):
-    """Make the n-th write of a task to the HDF5 file fail as on a full disk."""
-    real = store.ResultWriter._write_h5
+    """Make the n-th write of a task into the open HDF5 file fail as on a full disk."""
+    real = store.write_node
     calls = {"n": 0}
 
-    def flaky(self, result):
+    def flaky(*args):
         calls["n"] += 1
         if calls["n"] == n:
             raise OSError(errno.ENOSPC, "No space left on device")
-        return real(self, result)
+        return real(*args)
 
-    monkeypatch.setattr(store.ResultWriter, "_write_h5", flaky)
+    monkeypatch.setattr(store, "write_node", flaky)
 
 
 def test_full_disk_gives_a_clear_error_and_keeps_what_finished(
@@ -60,7 +60,9 @@ def test_full_disk_gives_a_clear_error_and_keeps_what_finished(
     with pytest.raises(OutputError) as err:
         execute(the_plan, str(out), workers=1, progress=False)
     msg = str(err.value)
-    assert "No space left on device" in msg and "--resume" in msg and "\n" not in msg
+    assert msg == (
+        f"no space left on device writing {out}; 4 tasks kept; free space and rerun with --resume"
+    )
     assert len(ResultFile(out).done_tasks()) == 3  # the file is readable with what finished
     monkeypatch.undo()
     summary = execute(the_plan, str(out), workers=1, progress=False, resume=True)
@@ -159,12 +161,12 @@ def test_dask_worker_killed_mid_run_is_recovered(the_plan, reference, tmp_path):
         th.start()
         journal = journal_dir(out)
         deadline = time.time() + 60
-        while time.time() < deadline and not (journal.exists() and any(journal.glob("*.pkl"))):
+        while time.time() < deadline and not journal_entries(out):
             time.sleep(0.01)
         with Client(lc.scheduler_address) as client:
             pids = list(client.run(os.getpid).values())
         assert len(pids) == 2 and journal.exists()
-        done_before = len(list(journal.glob("*.pkl")))
+        done_before = len(journal_entries(out))
         os.kill(pids[0], signal.SIGKILL)  # a worker process dies mid-run
         th.join(timeout=120)
         assert not th.is_alive() and not errors, errors
