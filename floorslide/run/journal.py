@@ -153,7 +153,7 @@ def _decode_value(spec: Any, payload: memoryview) -> Any:
     _need(isinstance(code, str) and len(code) <= 8, "bad dtype")
     try:
         dtype = np.dtype(code)
-    except TypeError:
+    except (TypeError, ValueError):
         raise EntryError(f"bad dtype {code!r}") from None
     _need(dtype.kind in "biufc" and dtype.str == code, f"refused dtype {code!r}")
     for n in (offset, nbytes):

@@ -18,24 +18,8 @@ from floorslide.errors import OutputError, ResultFileError
 from floorslide.run import store
 from floorslide.run.execute import execute
 from floorslide.run.store import ResultFile, journal_dir, journal_entries
-from floorslide.scene.planner import plan
-from floorslide.scene.schema import parse_scene
 from tests.conftest import ROOT
 from tests.run.test_runs import SCENE, assert_same, results
-
-
-@pytest.fixture(scope="module")
-def the_plan(tmp_path_factory):
-    path = tmp_path_factory.mktemp("scene") / "study.toml"
-    path.write_text(SCENE)
-    return plan(parse_scene(SCENE, path))
-
-
-@pytest.fixture(scope="module")
-def reference(the_plan, tmp_path_factory):
-    out = tmp_path_factory.mktemp("ref") / "ref.h5"
-    execute(the_plan, str(out), workers=1, progress=False)
-    return results(out)
 
 
 def fail_after(monkeypatch, n):
