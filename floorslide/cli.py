@@ -864,6 +864,34 @@ def demo_summary(tables) -> str:
     return "\n".join(out)
 
 
+def _demo_may_replace(h5, scene_text: str) -> bool:
+    """Whether the demo may replace `h5` (and the journal beside it): only its own output.
+
+    Returns
+    -------
+    bool
+        True when `h5` is a result of the demo scene (finished or not), or is absent with an
+        old journal beside it; False when there is nothing to replace.
+
+    Raises
+    ------
+    OutputExistsError
+        `h5` is anything else (exit code 2): it is left alone.
+    """
+    from floorslide.errors import OutputExistsError
+    from floorslide.run.store import journal_entries, written_for
+
+    if not (h5.exists() or h5.is_symlink()):
+        return bool(journal_entries(h5))
+    if written_for(h5, scene_text):
+        return True
+    raise OutputExistsError(
+        "exists and is not a floorslide result of the demo scene; not replaced (choose "
+        "another folder with -o, or move the file away)",
+        str(h5),
+    )
+
+
 @cli.command()
 @click.option(
     "-o",
@@ -885,6 +913,10 @@ def demo(out_dir, workers):
     1-storey fixed-base building (T = 0.2 s, 2 %) and the same on isolation swept over
     T_i = 1.5…4 s (ξ_i = 10 %), equipment with mu = 0.05…0.5 on the roof, floor response
     spectra per floor. Writes DIR/results.h5, DIR/tables (CSV and Markdown) and DIR/figures.
+
+    Run again, it replaces DIR/results.h5 only if that file is a floorslide result of the demo
+    scene (a previous demo, finished or not); any other file there is left alone and the demo
+    stops (exit code 2).
     """
     import importlib.resources
     from pathlib import Path
@@ -900,10 +932,9 @@ def demo(out_dir, workers):
         plan = make_plan(sc)
     out = Path(out_dir)
     h5 = out / "results.h5"
-    if h5.exists():
-        h5.unlink()
+    replace = _demo_may_replace(h5, sc.text)
     click.echo(plan.describe())
-    summary = execute(plan, str(h5), workers=workers)
+    summary = execute(plan, str(h5), workers=workers, overwrite=replace)
     if summary.interrupted:
         click.echo(f"floorslide: interrupted; finished tasks are in {h5}", err=True)
         sys.exit(130)

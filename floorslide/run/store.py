@@ -809,6 +809,39 @@ class ResultFile:
             raise ResultFileError(f"corrupt result file: {exc}", str(self.path)) from None
 
 
+def _journal_of(path: Path, scene_sha256: str) -> bool:
+    """Whether a journal entry beside `path` was written for the scene of this digest."""
+    for entry in journal_entries(path):
+        try:
+            journal.decode(entry.read_bytes(), scene_sha256)
+        except (OSError, journal.EntryError):
+            continue
+        return True
+    return False
+
+
+def written_for(path: str | Path, scene_text: str) -> bool:
+    """Whether `path` holds a run of the scene `scene_text`: a floorslide result file of that
+    scene, or the unreadable remains of one (a run killed mid-write) whose journal is of it.
+
+    Parameters
+    ----------
+    path
+        The file (it may be missing: then False).
+    scene_text
+        The scene's text, as stored in ``/scene``.
+    """
+    path = Path(path)
+    if not path.is_file():
+        return False
+    try:
+        return ResultFile(path).scene_text == scene_text
+    except UnreadableResultError:
+        return _journal_of(path, scene_digest(scene_text))
+    except ResultFileError:
+        return False
+
+
 def _s(value) -> str:
     return value.decode() if isinstance(value, bytes) else str(value)
 
