@@ -145,9 +145,17 @@ ENTRY_SUFFIX = ".entry"
 """Suffix of a journal entry file (``<task>.entry``)."""
 HDF5_SIGNATURE = b"\x89HDF\r\n\x1a\n"
 LOCK_WAIT = 10.0
-"""Seconds to wait for an HDF5 file lock held by another process before giving up. A lock can
-outlive its holder's close for a moment: a child process forked (and not yet exec'd) while the
-file was open shares the lock until it closes its copy of the descriptor."""
+"""Seconds the writer waits for an HDF5 file lock held by another process before giving up.
+
+HDF5 locks a file with ``flock``, which belongs to the open file description, not to the
+process: a child forked while the writer has the file open (a Dask nanny restarting a lost
+worker in the writer's process, any ``subprocess`` or ``multiprocessing`` start from another
+thread) holds a copy of the descriptor, and with it the lock, until it closes its copies (at
+exec, or at once with ``close_fds``). Closing the file in the writer does not release the lock
+then, and reopening it at once fails with errno 11 (EAGAIN, "unable to lock file"). The lock is
+gone a moment later, so the writer waits for it."""
+READ_LOCK_WAIT = 1.0
+"""Seconds a reader waits for the lock of a file being written (then: one-line error)."""
 RESERVE_MIN = 1 << 20
 RESERVE_PER_OBJECT = 4096
 """Disk space made sure of before a task is written: twice its values' bytes, this much per
@@ -268,9 +276,10 @@ def _no_space(exc: BaseException) -> bool:
     )
 
 
-def _open_h5(path: Path, mode: str, wait: float = LOCK_WAIT) -> h5py.File:
-    """``h5py.File(path, mode)``, waiting up to `wait` seconds for another process's lock."""
-    deadline = time.monotonic() + wait
+def _open_h5(path: Path, mode: str, wait: float | None = None) -> h5py.File:
+    """``h5py.File(path, mode)``, waiting up to `wait` seconds (default :data:`LOCK_WAIT`)
+    for a lock held by another process (see :data:`LOCK_WAIT` for why one can linger)."""
+    deadline = time.monotonic() + (LOCK_WAIT if wait is None else wait)
     delay = 0.005
     while True:
         try:
@@ -685,7 +694,7 @@ class ResultFile:
         try:
             if not _is_hdf5(self.path):
                 raise ValueError("not an HDF5 file")
-            with _open_h5(self.path, "r", wait=1.0) as f:
+            with _open_h5(self.path, "r", wait=READ_LOCK_WAIT) as f:
                 if f.attrs.get("floorslide_format") != FORMAT or "tasks" not in f:
                     raise ResultFileError("not a floorslide result file", str(self.path))
                 self.verified = DIGESTS_ATTR in f.attrs
@@ -789,7 +798,7 @@ class ResultFile:
         """
         legacy = self._legacy_broadening()
         try:
-            with _open_h5(self.path, "r", wait=1.0) as f:
+            with _open_h5(self.path, "r", wait=READ_LOCK_WAIT) as f:
                 tasks = f["tasks"]
                 for i, tid in enumerate(self._done):
                     node, problem = self._task(tasks, tid)

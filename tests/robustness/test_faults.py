@@ -126,6 +126,46 @@ def test_unwritable_output_gives_one_line(tmp_path):
     assert "cannot create the output folder" in out.stderr
 
 
+def fork_while_open(monkeypatch, hold: float) -> list[int]:
+    """Fork a child process while the writer has the result file open for the first task (as
+    a Dask nanny restarting a lost worker in the writer's process does); the child keeps its
+    copy of the file's descriptor, and so HDF5's lock, for `hold` seconds."""
+    real = store.write_node
+    children: list[int] = []
+
+    def write_then_fork(*args):
+        group = real(*args)
+        if not children:
+            pid = os.fork()
+            if pid == 0:  # the child: holds the descriptors it inherited, then goes
+                time.sleep(hold)
+                os._exit(0)
+            children.append(pid)
+        return group
+
+    monkeypatch.setattr(store, "write_node", write_then_fork)
+    return children
+
+
+def test_a_lock_held_by_a_forked_child_is_waited_for(the_plan, reference, tmp_path, monkeypatch):
+    """The cause of the rare errno-11 failure of the Dask test below, made certain: HDF5's
+    ``flock`` belongs to the open file description, which a forked child shares, so the
+    writer's next open of the file (to mark the task done) finds it locked although the writer
+    closed it. Without waiting for the lock, the run stops; with the wait, it completes."""
+    out = tmp_path / "nowait.h5"
+    monkeypatch.setattr(store, "LOCK_WAIT", 0.0)
+    children = fork_while_open(monkeypatch, hold=1.0)
+    with pytest.raises(OutputError, match="HDF5 file lock"):
+        execute(the_plan, str(out), workers=1, progress=False)
+    os.waitpid(children[0], 0)
+    monkeypatch.undo()
+    out = tmp_path / "wait.h5"
+    children = fork_while_open(monkeypatch, hold=0.5)
+    execute(the_plan, str(out), workers=1, progress=False)
+    os.waitpid(children[0], 0)
+    assert_same(results(out), reference)
+
+
 def test_dask_worker_killed_mid_run_is_recovered(the_plan, reference, tmp_path):
     from dask.distributed import Client, LocalCluster
 
