@@ -19,6 +19,7 @@ from floorslide.run import store
 from floorslide.run.execute import execute
 from floorslide.run.store import ResultFile, journal_dir, journal_entries
 from tests.conftest import ROOT
+from tests.robustness.conftest import cli
 from tests.run.test_runs import SCENE, assert_same, results
 
 
@@ -196,3 +197,69 @@ def test_dask_worker_killed_mid_run_is_recovered(the_plan, reference, tmp_path):
         assert not th.is_alive() and not errors, errors
         assert done_before < len(the_plan.tasks)
     assert_same(results(out), reference)
+
+
+@pytest.fixture()
+def empty_scheduler():
+    """A Dask scheduler with no worker (the address a user gives before starting workers)."""
+    from dask.distributed import LocalCluster
+
+    with LocalCluster(
+        n_workers=0, processes=False, protocol="tcp://", dashboard_address=None
+    ) as lc:
+        yield lc
+
+
+def test_a_scheduler_without_workers_says_so_and_gives_up(the_plan, empty_scheduler, tmp_path):
+    """Issue 19 item 7: it used to wait forever, silently. Now one line says it waits and for
+    how long, a second gives up (exit code 1), and nothing is left behind."""
+    out = tmp_path / "s.h5"
+    address = empty_scheduler.scheduler_address
+    t0 = time.monotonic()
+    proc = cli(
+        "run", str(the_plan.scene.path), "-o", str(out), "--scheduler", address,
+        "--scheduler-timeout", "2",
+    )  # fmt: skip
+    assert time.monotonic() - t0 < 60
+    assert proc.returncode == 1, proc.stderr
+    assert proc.stderr.strip().splitlines() == [
+        f"floorslide: warning: no Dask worker is connected to the scheduler at {address}; "
+        "waiting up to 2 s for one (--scheduler-timeout)",
+        f"floorslide: error: --scheduler: no Dask worker connected to the scheduler at {address} "
+        f"within 2 s; start workers (dask worker {address}) or wait longer "
+        "(--scheduler-timeout), then rerun with --resume",
+    ]
+    assert not out.exists() and not journal_dir(out).exists()
+
+
+def test_a_worker_that_comes_while_the_run_waits_is_used(
+    the_plan, reference, empty_scheduler, tmp_path
+):
+    out = tmp_path / "late.h5"
+    warned: list[str] = []
+    timer = threading.Timer(2.0, empty_scheduler.scale, args=(1,))
+    timer.start()
+    try:
+        summary = execute(
+            the_plan,
+            str(out),
+            scheduler=empty_scheduler.scheduler_address,
+            progress=False,
+            scheduler_timeout=120,
+            warn=warned.append,
+        )
+    finally:
+        timer.cancel()
+    assert summary.ran == 9
+    assert len(warned) == 1 and warned[0].startswith("no Dask worker is connected")
+    assert_same(results(out), reference)
+
+
+def test_scheduler_timeout_usage(the_plan, tmp_path):
+    scene = str(the_plan.scene.path)
+    out = cli("run", scene, "-o", str(tmp_path / "x.h5"), "--scheduler-timeout", "5")
+    assert out.returncode == 2 and "needs --scheduler" in out.stderr
+    out = cli("run", scene, "--scheduler", "tcp://127.0.0.1:1", "--scheduler-timeout", "0")
+    assert out.returncode == 2 and "--scheduler-timeout" in out.stderr
+    help_text = cli("run", "--help").stdout
+    assert "--scheduler-timeout" in help_text and "default: 60" in help_text
