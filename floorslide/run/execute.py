@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import multiprocessing
 import os
+import queue
 import sys
 import time
 from collections.abc import Callable
@@ -114,53 +115,92 @@ def _workers(client) -> int:
     return len(client.scheduler_info().get("workers", {}))
 
 
+class _WorkerWait:
+    """How long a run has had no Dask worker: says so once, gives up after `timeout` s."""
+
+    def __init__(self, address: str, timeout: float, warn: Callable[[str], None]):
+        self.address, self.timeout, self.warn = address, timeout, warn
+        self.since: float | None = None
+        self.told = False
+
+    def progress(self) -> None:
+        """A task finished, or a worker is connected: the wait is over."""
+        self.since = None
+
+    def idle(self) -> None:
+        """No task finished for a while and no worker is connected.
+
+        Raises
+        ------
+        FloorslideError
+            No worker for `timeout` seconds.
+        """
+        now = time.monotonic()
+        self.since = now if self.since is None else self.since
+        if not self.told:
+            self.warn(
+                f"no Dask worker is connected to the scheduler at {self.address}; waiting up "
+                f"to {self.timeout:g} s for one (--scheduler-timeout)"
+            )
+            self.told = True
+        if now - self.since >= self.timeout:
+            raise FloorslideError(
+                f"no Dask worker connected to the scheduler at {self.address} within "
+                f"{self.timeout:g} s; start workers (dask worker {self.address}) or wait "
+                "longer (--scheduler-timeout), then rerun with --resume",
+                "--scheduler",
+            )
+
+
 def _run_dask(
     todo, address: str, force: bool, on_result: Callable, timeout: float, warn: Callable
 ) -> None:
+    """Run `todo` on the Dask scheduler at `address`, calling `on_result` as each finishes.
+
+    Finished futures are collected by their done-callbacks, not with ``distributed.wait`` or
+    ``as_completed``: those use the process's *default* client, which is another one (with its
+    own event loop) whenever a second Client is made in the same process during the run (a
+    notebook's, a test's), and then fail with "bound to a different event loop".
+    """
     try:
-        from dask.distributed import Client, wait
+        from dask.distributed import Client
     except ImportError:  # pragma: no cover - dask[distributed] is a dependency
         raise FloorslideError("--scheduler needs dask.distributed installed") from None
     try:
-        client = Client(address, timeout="10s")
+        client = Client(address, timeout="10s", set_as_default=False)
     except (OSError, TimeoutError, ValueError) as exc:
         raise FloorslideError(
             f"cannot reach the Dask scheduler at {address}: {exc}", "--scheduler"
         ) from None
     try:
-        pending = {
+        finished: queue.Queue = queue.Queue()
+        futures = [
             client.submit(_run_task_single_blas, t, force, pure=False, retries=2) for t in todo
-        }
-        idle_since = None  # since when no worker is connected
-        told = False
-        while pending:
-            try:
-                done, pending = wait(pending, timeout=POLL, return_when="FIRST_COMPLETED")
-            except TimeoutError:
-                done = set()
-            for fut in done:
-                on_result(fut.result())
-                fut.release()
-            if done or _workers(client):
-                idle_since = None
-                continue
-            now = time.monotonic()
-            idle_since = now if idle_since is None else idle_since
-            if not told:
-                warn(
-                    f"no Dask worker is connected to the scheduler at {address}; waiting up to "
-                    f"{timeout:g} s for one (--scheduler-timeout)"
-                )
-                told = True
-            if now - idle_since >= timeout:
-                raise FloorslideError(
-                    f"no Dask worker connected to the scheduler at {address} within "
-                    f"{timeout:g} s; start workers (dask worker {address}) or wait longer "
-                    "(--scheduler-timeout), then rerun with --resume",
-                    "--scheduler",
-                )
+        ]
+        for fut in futures:  # the list keeps every future alive until it is collected
+            fut.add_done_callback(finished.put)
+        waiting = _WorkerWait(address, timeout, warn)
+        for _ in todo:
+            fut = _next_finished(finished, client, waiting)
+            on_result(fut.result())
+            fut.release()
     finally:
         client.close()
+
+
+def _next_finished(finished: queue.Queue, client, waiting: _WorkerWait):
+    """The next future to finish, looking at the scheduler's workers every :data:`POLL` s."""
+    while True:
+        try:
+            fut = finished.get(timeout=POLL)
+        except queue.Empty:
+            if _workers(client):
+                waiting.progress()
+            else:
+                waiting.idle()
+            continue
+        waiting.progress()
+        return fut
 
 
 def execute(
