@@ -11,8 +11,9 @@ import h5py
 import numpy as np
 import pytest
 
-from floorslide.errors import ResultFileError
+from floorslide.errors import FloorslideError, ResultFileError
 from floorslide.report import design_tables, plot_figures, record_table
+from floorslide.report.study import load_study
 from floorslide.run.execute import execute
 from floorslide.run.store import ResultFile
 from tests.robustness.conftest import cli
@@ -156,3 +157,46 @@ def test_digest_covers_values_dtypes_shapes_and_attributes(copy):
         g["pfa"].attrs["units"] = "m/s**2"
     with pytest.raises(ResultFileError, match=f"task {TASK} fails"):
         list(ResultFile(copy).tasks())
+
+
+def flipped_copies(reference_file, tmp_path, n: int, seed: int):
+    """`n` copies of the reference file, each with one bit flipped anywhere in it."""
+    raw = reference_file.read_bytes()
+    rng = np.random.default_rng(seed)
+    for k in range(n):
+        damaged = bytearray(raw)
+        pos = int(rng.integers(0, len(raw)))
+        damaged[pos] ^= 1 << int(rng.integers(0, 8))
+        path = tmp_path / f"flip{k}" / "r.h5"
+        path.parent.mkdir()
+        path.write_bytes(bytes(damaged))
+        yield pos, path
+
+
+def test_a_flipped_bit_anywhere_is_refused_or_harmless(reference_file, reference, tmp_path):
+    """Reading a file with one bit flipped anywhere gives the reference values or a one-line
+    ResultFileError — never other values, never another exception."""
+    outcomes = {"same": 0, "refused": 0}
+    for pos, path in flipped_copies(reference_file, tmp_path, 60, seed=19):
+        try:
+            got = results(path)
+            load_study(path)
+        except ResultFileError as exc:
+            assert "\n" not in str(exc), pos
+            outcomes["refused"] += 1
+            continue
+        assert_same(got, reference)
+        outcomes["same"] += 1
+    assert outcomes["refused"] > 20, outcomes  # most of the file is task data
+
+
+def test_resume_after_a_flipped_bit_anywhere(the_plan, reference_file, reference, tmp_path):
+    """``--resume`` on such a file without a journal completes the same results (rebuilding
+    what fails) or stops with a one-line floorslide error: never a traceback."""
+    for pos, path in flipped_copies(reference_file, tmp_path, 12, seed=7):
+        try:
+            execute(the_plan, str(path), workers=1, progress=False, resume=True, warn=print)
+        except FloorslideError as exc:
+            assert "\n" not in str(exc), pos
+            continue
+        assert_same(results(path), reference)
