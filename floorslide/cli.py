@@ -1,9 +1,12 @@
 """The ``floorslide`` command line: parses, calls, prints; no numerics here.
 
-Exit codes (docs/design.md §3, §10): 0 success; 2 bad usage, an invalid scene, or a missing, corrupt
-or foreign result file; 3 unreadable record(s), the others still processed; 4 ``table`` or
-``plot`` of an incomplete result file without ``--allow-incomplete``; 1 unexpected error. A user
-mistake is reported as one line naming the file or key at fault, never as a traceback.
+Exit codes (docs/design.md §3, §10): 0 success; 2 bad usage, an invalid scene, a missing,
+corrupt or foreign result file (or one with a task that fails its integrity check), or an
+output file that exists (``run`` without ``--resume`` or ``--overwrite``); 3 unreadable
+record(s), the others still processed; 4 ``table`` or ``plot`` of an incomplete result file
+without ``--allow-incomplete``; 1 unexpected error, results that could not be written (a full
+disk) or a Dask scheduler without workers. A user mistake is reported as one line naming the
+file or key at fault, never as a traceback.
 """
 
 from __future__ import annotations
@@ -585,8 +588,10 @@ REPORT_TABLES = ("slides", "pfa", "frs", "slide_ratios", "pfa_ratios")
 
 REPORT_EXIT_CODES = (
     "Exit codes: 0 written; 2 bad usage, or OUT.h5 missing, corrupt or not a floorslide result "
-    "file; 4 OUT.h5 is incomplete (tasks missing: finish it with floorslide run SCENE -o OUT.h5 "
-    "--resume, or pass --allow-incomplete for output labelled INCOMPLETE)."
+    "file, or a task in it fails its integrity check (its values changed after it was written: "
+    "rebuild it with floorslide run SCENE -o OUT.h5 --resume); 4 OUT.h5 is incomplete (tasks "
+    "missing: finish it with floorslide run SCENE -o OUT.h5 --resume, or pass "
+    "--allow-incomplete for output labelled INCOMPLETE)."
 )
 
 
