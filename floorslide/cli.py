@@ -1,9 +1,12 @@
 """The ``floorslide`` command line: parses, calls, prints; no numerics here.
 
-Exit codes (docs/design.md §3, §10): 0 success; 2 bad usage, an invalid scene, or a missing, corrupt
-or foreign result file; 3 unreadable record(s), the others still processed; 4 ``table`` or
-``plot`` of an incomplete result file without ``--allow-incomplete``; 1 unexpected error. A user
-mistake is reported as one line naming the file or key at fault, never as a traceback.
+Exit codes (docs/design.md §3, §10): 0 success; 2 bad usage, an invalid scene, a missing,
+corrupt or foreign result file (or one with a task that fails its integrity check), or an
+output file that exists (``run`` without ``--resume`` or ``--overwrite``); 3 unreadable
+record(s), the others still processed; 4 ``table`` or ``plot`` of an incomplete result file
+without ``--allow-incomplete``; 1 unexpected error, results that could not be written (a full
+disk) or a Dask scheduler without workers. A user mistake is reported as one line naming the
+file or key at fault, never as a traceback.
 """
 
 from __future__ import annotations
@@ -574,7 +577,15 @@ def _print_summary(summary, plan) -> None:
 @click.option("-o", "--out", metavar="OUT.h5", help="Result file (default: SCENE's name .h5 here).")
 @click.option("--dry-run", is_flag=True, help="Print the plan (what runs, what is skipped, why).")
 @click.option(
-    "--resume", is_flag=True, help="Continue an interrupted run; finished tasks are kept."
+    "--resume",
+    is_flag=True,
+    help="Continue an interrupted run of the same scene in OUT.h5; finished tasks are kept "
+    "(each checked against its digest; one that fails runs again).",
+)
+@click.option(
+    "--overwrite",
+    is_flag=True,
+    help="Replace an existing OUT.h5. Without it (or --resume) an existing file is refused.",
 )
 @click.option(
     "--workers",
@@ -586,21 +597,37 @@ def _print_summary(summary, plan) -> None:
     "--scheduler", metavar="ADDRESS", help="Send the tasks to a running Dask distributed scheduler."
 )
 @click.option(
+    "--scheduler-timeout",
+    type=click.FloatRange(min=0, min_open=True),
+    metavar="SECONDS",
+    help="With --scheduler: give up after this long without any worker connected (default: 60).",
+)
+@click.option(
     "--force", is_flag=True, hidden=True, help="Integrate even where the answer is known."
 )
-def run(scene, out, dry_run, resume, workers, scheduler, force):
+def run(scene, out, dry_run, resume, overwrite, workers, scheduler, scheduler_timeout, force):
     """Run a scene file (TOML): records × buildings × contents → OUT.h5.
 
     The planner simulates only what the scene asks for and says what it skipped; results are
     written as tasks finish, so an interrupted run keeps them and --resume continues it.
-    Unreadable records are reported and the others still run (exit code 3).
+    An existing OUT.h5 is never replaced unless --overwrite is given. Unreadable records are
+    reported and the others still run (exit code 3).
+
+    Exit codes: 0 done; 1 results could not be written (e.g. a full disk: the finished tasks
+    are kept, free space and rerun with --resume) or no Dask worker came; 2 bad usage, an
+    invalid scene, or OUT.h5 exists (without --resume or --overwrite) or is foreign; 3 a
+    record could not be read; 130 interrupted.
     """
     from pathlib import Path
 
-    from floorslide.run.execute import execute
+    from floorslide.run.execute import SCHEDULER_TIMEOUT, execute
     from floorslide.scene.planner import plan as make_plan
     from floorslide.scene.schema import load_scene
 
+    if resume and overwrite:
+        raise click.UsageError("--resume and --overwrite exclude each other")
+    if scheduler_timeout is not None and not scheduler:
+        raise click.BadParameter("needs --scheduler", param_hint="--scheduler-timeout")
     sc = load_scene(scene)
     plan = make_plan(sc, force=force)
     if dry_run:
@@ -609,7 +636,16 @@ def run(scene, out, dry_run, resume, workers, scheduler, force):
     for warning in sc.warnings:
         click.echo(f"floorslide: warning: {scene}: {warning}", err=True)
     out = out or f"{Path(scene).stem}.h5"
-    summary = execute(plan, out, workers=workers, scheduler=scheduler, resume=resume, force=force)
+    summary = execute(
+        plan,
+        out,
+        workers=workers,
+        scheduler=scheduler,
+        resume=resume,
+        overwrite=overwrite,
+        force=force,
+        scheduler_timeout=scheduler_timeout or SCHEDULER_TIMEOUT,
+    )
     if summary.interrupted:
         click.echo(
             f"floorslide: interrupted; {summary.ran + summary.resumed} finished tasks are in "
@@ -627,8 +663,10 @@ REPORT_TABLES = ("slides", "pfa", "frs", "slide_ratios", "pfa_ratios")
 
 REPORT_EXIT_CODES = (
     "Exit codes: 0 written; 2 bad usage, or OUT.h5 missing, corrupt or not a floorslide result "
-    "file; 4 OUT.h5 is incomplete (tasks missing: finish it with floorslide run SCENE -o OUT.h5 "
-    "--resume, or pass --allow-incomplete for output labelled INCOMPLETE)."
+    "file, or a task in it fails its integrity check (its values changed after it was written: "
+    "rebuild it with floorslide run SCENE -o OUT.h5 --resume); 4 OUT.h5 is incomplete (tasks "
+    "missing: finish it with floorslide run SCENE -o OUT.h5 --resume, or pass "
+    "--allow-incomplete for output labelled INCOMPLETE)."
 )
 
 
@@ -663,6 +701,8 @@ def _load_for_report(result: str, allow_incomplete: bool):
 
     study = load_study(result)
     study.require_complete(allow_incomplete)
+    for note in study.notes:
+        click.echo(f"floorslide: note: {study.source}: {note}", err=True)
     if study.status:
         click.echo(
             f"floorslide: warning: {study.source}: {study.status}; output labelled INCOMPLETE",
@@ -908,6 +948,34 @@ def demo_summary(tables) -> str:
     return "\n".join(out)
 
 
+def _demo_may_replace(h5, scene_text: str) -> bool:
+    """Whether the demo may replace `h5` (and the journal beside it): only its own output.
+
+    Returns
+    -------
+    bool
+        True when `h5` is a result of the demo scene (finished or not), or is absent with an
+        old journal beside it; False when there is nothing to replace.
+
+    Raises
+    ------
+    OutputExistsError
+        `h5` is anything else (exit code 2): it is left alone.
+    """
+    from floorslide.errors import OutputExistsError
+    from floorslide.run.store import journal_entries, written_for
+
+    if not (h5.exists() or h5.is_symlink()):
+        return bool(journal_entries(h5))
+    if written_for(h5, scene_text):
+        return True
+    raise OutputExistsError(
+        "exists and is not a floorslide result of the demo scene; not replaced (choose "
+        "another folder with -o, or move the file away)",
+        str(h5),
+    )
+
+
 @cli.command()
 @click.option(
     "-o",
@@ -929,6 +997,10 @@ def demo(out_dir, workers):
     1-storey fixed-base building (T = 0.2 s, 2 %) and the same on isolation swept over
     T_i = 1.5…4 s (ξ_i = 10 %), equipment with mu = 0.05…0.5 on the roof, floor response
     spectra per floor. Writes DIR/results.h5, DIR/tables (CSV and Markdown) and DIR/figures.
+
+    Run again, it replaces DIR/results.h5 only if that file is a floorslide result of the demo
+    scene (a previous demo, finished or not); any other file there is left alone and the demo
+    stops (exit code 2).
     """
     import importlib.resources
     from pathlib import Path
@@ -944,10 +1016,9 @@ def demo(out_dir, workers):
         plan = make_plan(sc)
     out = Path(out_dir)
     h5 = out / "results.h5"
-    if h5.exists():
-        h5.unlink()
+    replace = _demo_may_replace(h5, sc.text)
     click.echo(plan.describe())
-    summary = execute(plan, str(h5), workers=workers)
+    summary = execute(plan, str(h5), workers=workers, overwrite=replace)
     if summary.interrupted:
         click.echo(f"floorslide: interrupted; finished tasks are in {h5}", err=True)
         sys.exit(130)

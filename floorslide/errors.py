@@ -83,6 +83,13 @@ class OutputError(FloorslideError):
     exit_code = 1
 
 
+class OutputExistsError(FloorslideError):
+    """A run would replace an existing file (or the journal of an unfinished run) without
+    ``--resume`` or ``--overwrite`` (a bad argument: exit code 2)."""
+
+    exit_code = 2
+
+
 class FloorslideWarning(UserWarning):
     """Base class of the warnings floorslide gives: something was done to the input that the
     caller should know of (the same text is kept in the result's ``notes``)."""

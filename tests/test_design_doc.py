@@ -56,3 +56,20 @@ def test_every_command_is_documented():
     text = DOC.read_text(encoding="utf-8")
     missing = [name for name in cli.commands if f"`floorslide {name}" not in text]
     assert not missing, missing
+
+
+def test_every_command_option_is_documented():
+    """Each visible option of each command (e.g. ``run --overwrite``, ``--scheduler-timeout``)
+    appears in §3 by one of its names."""
+    from floorslide.cli import cli
+
+    doc = DOC.read_text(encoding="utf-8")
+    text = doc[doc.index("## §3 ") : doc.index("## §4 ")]
+    missing = [
+        f"{name} {param.opts[0]}"
+        for name, command in cli.commands.items()
+        for param in command.params
+        if param.param_type_name == "option" and not getattr(param, "hidden", False)
+        if not any(opt in text for opt in param.opts)
+    ]
+    assert not missing, missing

@@ -130,12 +130,15 @@ def load_study(result: str | Path | ResultFile | Study) -> Study:
     Raises
     ------
     ResultFileError
-        The file is missing, corrupt, not a floorslide result file, or holds no finished task.
+        The file is missing, corrupt, not a floorslide result file, holds no finished task, or
+        a task fails its integrity check (its values changed after it was written: every such
+        task is named).
 
     Notes
     -----
     An incomplete file is read (``Study.complete`` is False, ``Study.status`` its label);
-    :meth:`Study.require_complete` refuses it.
+    :meth:`Study.require_complete` refuses it. A file written before floorslide kept task
+    digests is read with a note in ``Study.notes`` that its values are unverified.
     """
     if isinstance(result, Study):
         return result
@@ -150,7 +153,9 @@ def load_study(result: str | Path | ResultFile | Study) -> Study:
     report = scene.get("report", {})
     if not isinstance(report, dict):
         report = {}
-    tasks = list(rf.tasks())
+    tasks = list(rf.tasks())  # each checked against its digest
+    if not rf.verified:
+        notes.append("written before floorslide kept task digests: its values are read unverified")
     if not tasks:
         raise ResultFileError(
             "holds no finished task (run the scene, or continue it with floorslide run --resume)",

@@ -10,7 +10,9 @@ from __future__ import annotations
 
 import multiprocessing
 import os
+import queue
 import sys
+import time
 from collections.abc import Callable
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from dataclasses import dataclass
@@ -18,7 +20,7 @@ from dataclasses import dataclass
 from tqdm import tqdm
 
 from floorslide.errors import FloorslideError
-from floorslide.run.store import ResultWriter
+from floorslide.run.store import ResultWriter, warn_stderr
 from floorslide.run.task import run_task
 from floorslide.scene.planner import Plan
 
@@ -102,26 +104,103 @@ def _run_task_single_blas(task, force):
         return run_task(task, force)
 
 
-def _run_dask(todo, address: str, force: bool, on_result: Callable) -> None:
+SCHEDULER_TIMEOUT = 60.0
+"""Seconds a run on a Dask scheduler waits for a worker when none is connected."""
+
+POLL = 0.5
+"""Seconds between looks at a Dask scheduler's workers while no task finishes."""
+
+
+def _workers(client) -> int:
+    return len(client.scheduler_info().get("workers", {}))
+
+
+class _WorkerWait:
+    """How long a run has had no Dask worker: says so once, gives up after `timeout` s."""
+
+    def __init__(self, address: str, timeout: float, warn: Callable[[str], None]):
+        self.address, self.timeout, self.warn = address, timeout, warn
+        self.since: float | None = None
+        self.told = False
+
+    def progress(self) -> None:
+        """A task finished, or a worker is connected: the wait is over."""
+        self.since = None
+
+    def idle(self) -> None:
+        """No task finished for a while and no worker is connected.
+
+        Raises
+        ------
+        FloorslideError
+            No worker for `timeout` seconds.
+        """
+        now = time.monotonic()
+        self.since = now if self.since is None else self.since
+        if not self.told:
+            self.warn(
+                f"no Dask worker is connected to the scheduler at {self.address}; waiting up "
+                f"to {self.timeout:g} s for one (--scheduler-timeout)"
+            )
+            self.told = True
+        if now - self.since >= self.timeout:
+            raise FloorslideError(
+                f"no Dask worker connected to the scheduler at {self.address} within "
+                f"{self.timeout:g} s; start workers (dask worker {self.address}) or wait "
+                "longer (--scheduler-timeout), then rerun with --resume",
+                "--scheduler",
+            )
+
+
+def _run_dask(
+    todo, address: str, force: bool, on_result: Callable, timeout: float, warn: Callable
+) -> None:
+    """Run `todo` on the Dask scheduler at `address`, calling `on_result` as each finishes.
+
+    Finished futures are collected by their done-callbacks, not with ``distributed.wait`` or
+    ``as_completed``: those use the process's *default* client, which is another one (with its
+    own event loop) whenever a second Client is made in the same process during the run (a
+    notebook's, a test's), and then fail with "bound to a different event loop".
+    """
     try:
-        from dask.distributed import Client, as_completed
+        from dask.distributed import Client
     except ImportError:  # pragma: no cover - dask[distributed] is a dependency
         raise FloorslideError("--scheduler needs dask.distributed installed") from None
     try:
-        client = Client(address, timeout="10s")
+        client = Client(address, timeout="10s", set_as_default=False)
     except (OSError, TimeoutError, ValueError) as exc:
         raise FloorslideError(
             f"cannot reach the Dask scheduler at {address}: {exc}", "--scheduler"
         ) from None
     try:
+        finished: queue.Queue = queue.Queue()
         futures = [
             client.submit(_run_task_single_blas, t, force, pure=False, retries=2) for t in todo
         ]
-        for fut in as_completed(futures):
+        for fut in futures:  # the list keeps every future alive until it is collected
+            fut.add_done_callback(finished.put)
+        waiting = _WorkerWait(address, timeout, warn)
+        for _ in todo:
+            fut = _next_finished(finished, client, waiting)
             on_result(fut.result())
             fut.release()
     finally:
         client.close()
+
+
+def _next_finished(finished: queue.Queue, client, waiting: _WorkerWait):
+    """The next future to finish, looking at the scheduler's workers every :data:`POLL` s."""
+    while True:
+        try:
+            fut = finished.get(timeout=POLL)
+        except queue.Empty:
+            if _workers(client):
+                waiting.progress()
+            else:
+                waiting.idle()
+            continue
+        waiting.progress()
+        return fut
 
 
 def execute(
@@ -131,8 +210,11 @@ def execute(
     workers: int | None = None,
     scheduler: str | None = None,
     resume: bool = False,
+    overwrite: bool = False,
     force: bool = False,
     progress: bool | None = None,
+    scheduler_timeout: float = SCHEDULER_TIMEOUT,
+    warn: Callable[[str], None] = warn_stderr,
 ) -> RunSummary:
     """Run every task of `plan` not already done in `out` and write the results.
 
@@ -147,17 +229,43 @@ def execute(
     scheduler
         Address of a running ``dask.distributed`` scheduler to send the tasks to instead.
     resume
-        Continue an interrupted run of the same scene: finished tasks are kept and skipped.
+        Continue an interrupted run of the same scene: finished tasks are kept and skipped;
+        tasks that fail their integrity check and journal entries that are refused run again.
+    overwrite
+        Replace an existing `out` (without it, or `resume`, an existing `out` is refused).
     force
         Integrate every object even where the answer is known (checks the planner's rules).
     progress
         Show a progress bar with ETA (default: when stderr is a terminal).
-    """
-    import time
+    scheduler_timeout
+        With `scheduler`: seconds to wait while no Dask worker is connected before giving up.
+    warn
+        Called with one line for each warning: entries refused or tasks rebuilt on resume, a
+        scheduler without workers (default: printed on stderr).
 
+    Raises
+    ------
+    OutputExistsError
+        `out` exists and neither `resume` nor `overwrite` was given.
+    OutputError
+        Results cannot be written (a full disk): one line, how many tasks are kept; no worker
+        process is left behind and every journaled task is kept for ``--resume``.
+    FloorslideError
+        The Dask scheduler cannot be reached, or has no worker for `scheduler_timeout` s.
+    """
     t0 = time.perf_counter()
     sc = plan.scene
-    writer = ResultWriter(out, sc.text, sc.path, sc.name, plan.summary(), resume=resume)
+    writer = ResultWriter(
+        out,
+        sc.text,
+        sc.path,
+        sc.name,
+        plan.summary(),
+        resume=resume,
+        overwrite=overwrite,
+        task_ids=[t.task_id for t in plan.tasks],
+        warn=warn,
+    )
     todo = [t for t in plan.tasks if t.task_id not in writer.done]
     resumed = len(plan.tasks) - len(todo)
     show = sys.stderr.isatty() if progress is None else progress
@@ -182,12 +290,15 @@ def execute(
 
     try:
         if scheduler:
-            _run_dask(todo, scheduler, force, on_result)
+            _run_dask(todo, scheduler, force, on_result, scheduler_timeout, warn)
         else:
             with threadpool_limits(limits=1):
                 _run_local(todo, workers or os.cpu_count() or 1, force, on_result)
     except KeyboardInterrupt:
         interrupted = True
+    except Exception:
+        writer.abandon()
+        raise
     finally:
         bar.close()
     if not interrupted and len(writer.done) == len(plan.tasks):

@@ -2,7 +2,8 @@
 
 Layout (every dataset carries a ``units`` attribute; ``1`` means dimensionless)::
 
-    /                        attrs floorslide_format=1, floorslide_version, scene_name, created
+    /                        attrs floorslide_format=1, floorslide_version, scene_name, created,
+                             task_digest="sha256-1" (every task carries its digest)
     /scene                   the scene file's text (attr path)
     /plan                    the plan as JSON text (what runs, what was skipped and why)
     /tasks/<task>            one group per (record × building); attrs: record_set, record,
@@ -10,7 +11,7 @@ Layout (every dataset carries a ``units`` attribute; ``1`` means dimensionless):
                              building_base (the scene's id), building_kind, stories,
                              isolation_period, isolation_damping (NaN when fixed),
                              superstructure, fixed_period, dt, npts, pga, scale, seconds;
-                             done = 1, set last
+                             sha256 (the task's digest, written with it); done = 1, set last
       floors                 floors output (0 = ground or base mat)
       pfa                    true peak floor acceleration per floor (m/s**2)
       contents/<content>/floor_<f>/
@@ -42,28 +43,61 @@ Histories without ``z``/``top_accel`` read as rigid-block histories.
 The plan (``/plan``, attr-free JSON) holds ``tasks``, the number of tasks of the run: a file
 with fewer tasks done is incomplete (:attr:`ResultFile.complete`).
 
-A task is written, the file closed (flushed), then marked done. Beside the file, the journal
-``<file>.journal/`` keeps every finished task as its own small file written atomically first,
-so a run killed at any moment loses no finished task: ``--resume`` copies journal entries the
-result file lacks (or rebuilds the file from the journal if the kill left it unreadable) and
-skips tasks already done. The journal is removed when a run completes.
+**Integrity.** Each task's ``sha256`` attribute is the SHA-256 of its group — every dataset's
+values, dtype and shape and every attribute, in a canonical order, its own ``sha256`` and
+``done`` left out (:func:`floorslide.run.snapshot.digest`). Every reader checks it:
+:meth:`ResultFile.tasks` (so ``table``, ``plot`` and every report) refuses a file with a task
+that fails, naming the task, and ``--resume`` rebuilds such a task. A file without the root
+attribute ``task_digest`` was written before floorslide kept digests: it reads as
+before, with a note that its values are unverified (:attr:`ResultFile.verified`).
+
+**Writing.** A task is first journaled, then written with its digest and the file closed
+(flushed), then marked done. The journal ``<file>.journal/`` beside the file keeps every
+finished task as its own file ``<task>.entry``, written atomically first (JSON and raw array
+bytes, checked against the task's digest when read, never able to run code: see
+:mod:`floorslide.run.journal`), so a run killed at any moment loses no finished task:
+``--resume`` copies journal entries the result file lacks (or rebuilds the file from the
+journal if the kill left it unreadable) and skips tasks already done and verified. The journal
+is removed when a run completes. Before each write the file is grown by the disk space the
+write needs (``posix_fallocate``; HDF5 trims it to its data when it closes the file), so that a
+full disk stops the run with a clean error before HDF5 writes — HDF5 does not survive running
+out of space in the middle of a write.
+
+**Existing files.** A run never replaces a file: ``--resume`` continues the run of the same
+scene in it, ``--overwrite`` replaces it, anything else is refused (:class:`OutputExistsError`).
 """
 
 from __future__ import annotations
 
+import contextlib
+import errno
+import hashlib
+import io
 import json
 import os
-import pickle
+import shutil
+import sys
 import time
 import tomllib
-from collections.abc import Iterator
+from collections.abc import Callable, Collection, Iterator
 from pathlib import Path
 
 import h5py
 import numpy as np
 
-from floorslide.errors import OutputError, ResultFileError
+from floorslide.errors import OutputError, OutputExistsError, ResultFileError, one_line
+from floorslide.run import journal
 from floorslide.run.results import ContentResult, Histories, SpectrumResult, TaskResult
+from floorslide.run.snapshot import (
+    DIGEST_SCHEME,
+    H5_ERRORS,
+    Data,
+    Node,
+    SnapshotError,
+    digest,
+    snapshot,
+    write_node,
+)
 
 FORMAT = 1
 UNITS = {
@@ -101,21 +135,254 @@ CONTENT_FIELDS = (
 SPECTRUM_FIELDS = ("periods", "damping", "psa", "sa", "sv", "sd")
 ORDINATE_FIELDS = ("psa", "sa", "sv", "sd")
 
+DIGEST_ATTR = "sha256"
+"""Attribute of a task group: the digest of the group (:func:`floorslide.run.snapshot.digest`)."""
+DIGESTS_ATTR = "task_digest"
+"""Root attribute of files whose every task carries a digest: the digest's scheme."""
+BOOKKEEPING = frozenset({"done", DIGEST_ATTR})
+"""Attributes of a task group that its digest leaves out (set after the group is written)."""
+ENTRY_SUFFIX = ".entry"
+"""Suffix of a journal entry file (``<task>.entry``)."""
+HDF5_SIGNATURE = b"\x89HDF\r\n\x1a\n"
+LOCK_WAIT = 10.0
+"""Seconds the writer waits for an HDF5 file lock held by another process before giving up.
 
-def _put(group: h5py.Group, name: str, data) -> h5py.Dataset:
-    ds = group.create_dataset(name, data=np.asarray(data))
-    ds.attrs["units"] = UNITS.get(name, "1")
-    return ds
+HDF5 locks a file with ``flock``, which belongs to the open file description, not to the
+process: a child forked while the writer has the file open (a Dask nanny restarting a lost
+worker in the writer's process, any ``subprocess`` or ``multiprocessing`` start from another
+thread) holds a copy of the descriptor, and with it the lock, until it closes its copies (at
+exec, or at once with ``close_fds``). Closing the file in the writer does not release the lock
+then, and reopening it at once fails with errno 11 (EAGAIN, "unable to lock file"). The lock is
+gone a moment later, so the writer waits for it."""
+READ_LOCK_WAIT = 1.0
+"""Seconds a reader waits for the lock of a file being written (then: one-line error)."""
+RESERVE_MIN = 1 << 20
+RESERVE_PER_OBJECT = 4096
+"""Disk space made sure of before a task is written: twice its values' bytes, this much per
+HDF5 object and RESERVE_MIN (measured: a task of the demo grows the file by about 30 kB)."""
 
 
-def journal_dir(path: Path) -> Path:
+def _noop(message: str) -> None:
+    del message
+
+
+def warn_stderr(message: str) -> None:
+    """Print `message` on stderr as one line, ``floorslide: warning: ...``."""
+    print(f"floorslide: warning: {one_line(message)}", file=sys.stderr, flush=True)
+
+
+def scene_digest(text: str) -> str:
+    """SHA-256 (hex) of a scene's text: which scene a journal entry was computed for."""
+    return hashlib.sha256(text.encode("utf-8", "surrogateescape")).hexdigest()
+
+
+def journal_dir(path: str | Path) -> Path:
     """The journal folder beside a result file."""
     path = Path(path)
     return path.with_name(path.name + ".journal")
 
 
+def journal_entries(path: str | Path) -> list[Path]:
+    """The journal entries (finished tasks) of the run writing `path`, in name order."""
+    folder = journal_dir(path)
+    return sorted(folder.glob(f"*{ENTRY_SUFFIX}")) if folder.is_dir() else []
+
+
+# --- the layout of a task ----------------------------------------------------------------
+
+
+def _data(name: str, value) -> Data:
+    return Data(np.asarray(value), {"units": UNITS.get(name, "1")})
+
+
+def task_node(result: TaskResult) -> Node:
+    """The group of one task as it is stored (the layout in this module's docstring), without
+    its digest and ``done`` mark."""
+    meta = {k: v for k, v in result.meta.items() if k not in BOOKKEEPING}
+    g = Node({**meta, "seconds": result.seconds})
+    g.children["floors"] = _data("floors", result.floors.astype(np.int64))
+    g.children["pfa"] = _data("pfa", result.pfa)
+    contents = g.group("contents")
+    for c in result.contents:
+        h = contents.group(c.content).group(f"floor_{c.floor}")
+        for name in CONTENT_FIELDS:
+            h.children[name] = _data(name, getattr(c, name))
+        for name in ("peak_deformation", "peak_top_accel"):
+            if getattr(c, name) is not None:
+                h.children[name] = _data(name, getattr(c, name))
+        if c.modes is not None:
+            h.children["modes"] = Data(np.asarray(c.modes, dtype=object), {"units": "1"})
+        h.attrs.update(model=c.model, mode=c.mode, skipped=c.skipped, vertical=c.vertical)
+    spectra = g.group("spectra")
+    for s in result.spectra:
+        h = spectra.group(f"floor_{s.floor}")
+        h.attrs["broadening"] = float(s.broadening)
+        for name in SPECTRUM_FIELDS:
+            h.children[name] = _data(name, getattr(s, name))
+            if name in ORDINATE_FIELDS:
+                h.children[name].attrs["broadening"] = 0.0
+        if s.broadening:
+            b = h.group("broadened")
+            b.attrs["broadening"] = float(s.broadening)
+            for name in ORDINATE_FIELDS:
+                b.children[name] = _data(name, getattr(s, f"{name}_broadened"))
+                b.children[name].attrs["broadening"] = float(s.broadening)
+    if result.histories is not None:
+        hi = result.histories
+        hg = g.group("histories")
+        hg.attrs["dt"] = hi.dt
+        hg.children["floors"] = _data("floors", hi.floors)
+        hg.children["floor_acceleration"] = _data("floor_acceleration", hi.floor_acceleration)
+        for key, u in hi.slides.items():
+            sg = hg.group(f"slides/{key}")
+            sg.children["u"] = _data("u", u)
+            sg.children["mu_k"] = _data("mu_k", hi.mu_k[key])
+            oscillator = key in hi.deformation
+            sg.attrs["model"] = "oscillator" if oscillator else "rigid"
+            if oscillator:
+                sg.children["z"] = _data("z", hi.deformation[key])
+                sg.children["top_accel"] = _data("top_accel", hi.top_accel[key])
+    return g
+
+
+def _node_size(node: Node) -> tuple[int, int]:
+    """Bytes of the values and number of objects of a group (to reserve disk space)."""
+    nbytes, objects = 0, 1
+    for child in node.children.values():
+        if isinstance(child, Node):
+            b, o = _node_size(child)
+            nbytes, objects = nbytes + b, objects + o
+        else:
+            value = np.asarray(child.value)
+            nbytes += value.size * 64 if value.dtype.kind == "O" else value.nbytes
+            objects += 1
+    return nbytes, objects
+
+
+# --- low-level file operations -----------------------------------------------------------
+
+
+def _is_lock_conflict(exc: BaseException) -> bool:
+    return isinstance(exc, BlockingIOError) or "unable to lock file" in str(exc)
+
+
+def _no_space(exc: BaseException) -> bool:
+    code = getattr(exc, "errno", None)
+    text = str(exc)
+    return (
+        code in (errno.ENOSPC, errno.EDQUOT)
+        or "errno = 28," in text
+        or "No space left on device" in text
+    )
+
+
+def _open_h5(path: Path, mode: str, wait: float | None = None) -> h5py.File:
+    """``h5py.File(path, mode)``, waiting up to `wait` seconds (default :data:`LOCK_WAIT`)
+    for a lock held by another process (see :data:`LOCK_WAIT` for why one can linger)."""
+    deadline = time.monotonic() + (LOCK_WAIT if wait is None else wait)
+    delay = 0.005
+    while True:
+        try:
+            return h5py.File(path, mode)
+        except OSError as exc:
+            if not _is_lock_conflict(exc) or time.monotonic() >= deadline:
+                raise
+        time.sleep(delay)
+        delay = min(2 * delay, 0.25)
+
+
+def _is_hdf5(path: Path) -> bool:
+    with open(path, "rb") as fh:
+        return fh.read(len(HDF5_SIGNATURE)) == HDF5_SIGNATURE
+
+
+def _write_file(path: Path, data: bytes) -> None:
+    """Write `data` as the file `path` atomically: a temporary file, fsync, rename. A failure
+    (a full disk) removes the temporary file and leaves `path` as it was."""
+    tmp = path.with_name(path.name + ".tmp")
+    try:
+        fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o666)
+        try:
+            view = memoryview(data)
+            while view:
+                view = view[os.write(fd, view) :]
+            os.fsync(fd)
+        finally:
+            os.close(fd)
+        os.replace(tmp, path)
+    except OSError:
+        with contextlib.suppress(OSError):
+            tmp.unlink()
+        raise
+
+
+_fallocate = getattr(os, "posix_fallocate", None)
+
+
+def _reserve(path: Path, nbytes: int) -> None:
+    """Allocate `nbytes` of disk at the end of the HDF5 file `path`, for the write that follows.
+
+    HDF5 writes new objects at its end of data, inside this space, and trims the file to its
+    end of data when it closes it; a file left with the space (a kill in between) reads as it
+    is. Without ``posix_fallocate`` (or on a file system without it) the free space is
+    checked instead.
+
+    Raises
+    ------
+    OSError
+        ENOSPC (or EDQUOT) when the space is not there; the file is left as it was.
+    """
+    fd = os.open(path, os.O_RDWR)
+    try:
+        size = os.fstat(fd).st_size
+        try:
+            if _fallocate is None:
+                raise OSError(errno.EOPNOTSUPP, os.strerror(errno.EOPNOTSUPP))
+            _fallocate(fd, size, nbytes)
+        except OSError as exc:
+            with contextlib.suppress(OSError):
+                os.ftruncate(fd, size)
+            if exc.errno not in (errno.EOPNOTSUPP, errno.ENOSYS, errno.EINVAL):
+                raise
+            if shutil.disk_usage(path.parent).free < nbytes:
+                raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC), str(path)) from None
+    finally:
+        os.close(fd)
+
+
+# --- writing -----------------------------------------------------------------------------
+
+
 class ResultWriter:
-    """The single writer of a result file (not shared between processes)."""
+    """The single writer of a result file (not shared between processes).
+
+    Parameters
+    ----------
+    path
+        The result file.
+    scene_text, scene_path, scene_name, plan
+        What the file stores about its run (``/scene``, its ``path``, the ``scene_name``
+        attribute, ``/plan``).
+    resume
+        Continue the run of the same scene in `path`: its verified tasks and the valid entries
+        of its journal are kept; a task that fails its integrity check is rebuilt.
+    overwrite
+        Replace whatever is at `path` (and an old journal beside it).
+    task_ids
+        The run's task ids: a journal entry of any other task is refused (default: any).
+    warn
+        Called with one line for each thing a resumed run refuses or rebuilds (default: none).
+
+    Raises
+    ------
+    OutputExistsError
+        `path` exists (or a journal of an unfinished run is beside it) and neither `resume`
+        nor `overwrite` was given.
+    ResultFileError
+        `resume` on a file that is not a floorslide result file, or of another scene.
+    OutputError
+        The file or its journal cannot be written.
+    """
 
     def __init__(
         self,
@@ -125,10 +392,28 @@ class ResultWriter:
         scene_name: str,
         plan: dict,
         resume: bool = False,
+        *,
+        overwrite: bool = False,
+        task_ids: Collection[str] | None = None,
+        warn: Callable[[str], None] | None = None,
     ):
+        if resume and overwrite:
+            raise ValueError("resume and overwrite exclude each other")
         self.path = Path(path)
         self.journal = journal_dir(self.path)
+        self.scene_text, self.scene_path, self.scene_name = scene_text, scene_path, scene_name
+        self.plan = plan
+        self.scene_sha256 = scene_digest(scene_text)
+        self.task_ids = None if task_ids is None else set(task_ids)
+        self.warn = warn or _noop
         self.done: set[str] = set()
+        """Tasks in the file, verified (or unverified in a file that predates digests)."""
+        self.kept: set[str] = set()
+        """Tasks kept whatever happens next: in the file or in the journal."""
+        self.created = False
+        """Whether this writer created the file (so that a run that keeps nothing removes it)."""
+        if not resume:
+            self._refuse_to_replace(overwrite)
         try:
             self.path.parent.mkdir(parents=True, exist_ok=True)
             self.journal.mkdir(parents=True, exist_ok=True)
@@ -136,184 +421,318 @@ class ResultWriter:
             raise OutputError(
                 f"cannot create the output folder: {exc.strerror}", str(self.path)
             ) from None
-        fresh = True
-        if resume and self.path.exists():
-            try:
-                reader = ResultFile(self.path)
-                if reader.scene_text != scene_text:
-                    raise ResultFileError(
-                        "was written for a different scene; resume with the same scene file",
-                        str(self.path),
-                    )
-                self.done = set(reader.done_tasks())
-                fresh = False
-            except ResultFileError as exc:
-                if "different scene" in exc.message:
-                    raise
-                # unreadable after a kill: rebuild it from the journal below
-                fresh = True
-        if fresh:
-            self._create(scene_text, scene_path, scene_name, plan)
         if resume:
-            for entry in sorted(self.journal.glob("*.pkl")):
-                try:
-                    with open(entry, "rb") as fh:
-                        result = pickle.load(fh)
-                except (OSError, pickle.UnpicklingError, EOFError):
-                    continue  # an entry cut short by the kill: that task runs again
-                if result.task_id not in self.done:
-                    self._write_h5(result)
-                    self.done.add(result.task_id)
+            self._open_for_resume()
+            self._recover_journal()
+        else:
+            self._create()
 
-    def _create(self, scene_text, scene_path, scene_name, plan) -> None:
+    # opening
+
+    def _refuse_to_replace(self, overwrite: bool) -> None:
+        if overwrite:
+            if self.journal.is_dir():
+                shutil.rmtree(self.journal, ignore_errors=True)
+            return
+        if self.path.exists() or self.path.is_symlink():
+            raise OutputExistsError(
+                "exists; not replaced (continue its run with --resume, same scene; or replace "
+                "it with --overwrite)",
+                str(self.path),
+            )
+        entries = journal_entries(self.path)
+        if entries:
+            raise OutputExistsError(
+                f"holds {len(entries)} finished tasks of an unfinished run; continue it with "
+                "--resume (same scene) or start again with --overwrite",
+                str(self.journal),
+            )
+
+    def _image(self) -> bytes:
+        """A new result file holding no task, as bytes."""
         from floorslide import __version__
 
-        tmp = self.path.with_name(self.path.name + ".tmp")
+        buf = io.BytesIO()
+        with h5py.File(buf, "w") as f:
+            f.attrs["floorslide_format"] = FORMAT
+            f.attrs["floorslide_version"] = __version__
+            f.attrs["scene_name"] = self.scene_name
+            f.attrs["created"] = time.strftime("%Y-%m-%dT%H:%M:%S")
+            f.attrs[DIGESTS_ATTR] = DIGEST_SCHEME
+            ds = f.create_dataset("scene", data=self.scene_text)
+            ds.attrs["path"] = self.scene_path
+            f.create_dataset("plan", data=json.dumps(self.plan))
+            f.create_group("tasks")
+        return buf.getvalue()
+
+    def _create(self) -> None:
+        """A new file in place of `path` (written in memory, then as plain bytes, so that a
+        full disk is a clean error)."""
         try:
-            with h5py.File(tmp, "w") as f:
-                f.attrs["floorslide_format"] = FORMAT
-                f.attrs["floorslide_version"] = __version__
-                f.attrs["scene_name"] = scene_name
-                f.attrs["created"] = time.strftime("%Y-%m-%dT%H:%M:%S")
-                ds = f.create_dataset("scene", data=scene_text)
-                ds.attrs["path"] = scene_path
-                f.create_dataset("plan", data=json.dumps(plan))
-                f.create_group("tasks")
-            os.replace(tmp, self.path)
+            _write_file(self.path, self._image())
         except OSError as exc:
-            raise OutputError(f"cannot write the result file: {exc}", str(self.path)) from None
+            raise self._failure(exc, self.path) from None
+        self.done = set()
+        self.created = True
+
+    def _open_for_resume(self) -> None:
+        if not self.path.exists():
+            self._create()
+            return
+        if not self.path.is_file() or not _is_hdf5(self.path):
+            raise ResultFileError(
+                "not a floorslide result file; not replaced (choose another -o, or replace it "
+                "with --overwrite)",
+                str(self.path),
+            )
+        try:
+            reader = ResultFile(self.path, repair=True)
+        except UnreadableResultError as exc:
+            self.warn(
+                f"{self.path}: {exc.message}; it is rebuilt from its journal and the tasks "
+                "missing from the journal run again"
+            )
+            self._create()
+            return
+        if reader.scene_text != self.scene_text:
+            raise ResultFileError(
+                "was written for a different scene; resume with the same scene file",
+                str(self.path),
+            )
+        problems = reader.verify()
+        for tid, problem in problems.items():
+            self.warn(f"{self.path}: task {tid} fails the integrity check ({problem}); rebuilt")
+        self.done = set(reader.done_tasks()) - set(problems)
+        self.kept = set(self.done)
+        if not reader.verified:
+            self.warn(
+                f"{self.path}: written before floorslide kept task digests; its "
+                f"{len(self.done)} finished tasks are kept unverified"
+            )
+        damaged = set(reader.damaged) | set(problems)
+        partial = set(reader.partial)
+        if damaged:
+            self._rebuild(reader)
+        elif partial:
+            try:
+                with _open_h5(self.path, "a") as f:
+                    for name in sorted(partial):
+                        del f["tasks"][name]
+            except H5_ERRORS:
+                self._rebuild(reader)
+
+    def _rebuild(self, reader: ResultFile) -> None:
+        """Rewrite the file with its verified tasks only (a damaged group cannot always be
+        deleted in place: HDF5 reads it to free it)."""
+        tmp = self.path.with_name(self.path.name + ".rebuild")
+        try:
+            _write_file(tmp, self._image())
+            _reserve(tmp, 2 * self.path.stat().st_size + RESERVE_MIN)
+            with _open_h5(self.path, "r") as src, _open_h5(tmp, "a") as dst:
+                for tid in reader.done_tasks():
+                    if tid in self.done:
+                        src.copy(src["tasks"][tid], dst["tasks"], name=tid)
+            os.replace(tmp, self.path)
+        except (*H5_ERRORS, OSError) as exc:
+            with contextlib.suppress(OSError):
+                tmp.unlink()
+            raise self._failure(exc, tmp) from None
+
+    def _recover_journal(self) -> None:
+        """Put the journal's valid entries the file lacks into it; refuse the others."""
+        refused = 0
+        for entry in sorted(self.journal.iterdir()):
+            if entry.name.endswith(".tmp"):  # cut short by a kill: that task runs again
+                with contextlib.suppress(OSError):
+                    entry.unlink()
+                continue
+            try:
+                if not entry.name.endswith(ENTRY_SUFFIX):
+                    raise journal.EntryError(
+                        "not a floorslide journal entry (pickle files are never loaded: they "
+                        "could run code)"
+                    )
+                tid, node = journal.decode(entry.read_bytes(), self.scene_sha256)
+                if entry.name != f"{tid}{ENTRY_SUFFIX}":
+                    raise journal.EntryError(f"holds task {tid}, not {entry.stem}")
+                if self.task_ids is not None and tid not in self.task_ids:
+                    raise journal.EntryError(f"{tid} is not a task of this run")
+                _read_task(node, tid)  # the layout of a task, or refused
+            except (OSError, journal.EntryError, KeyError, ValueError, TypeError) as exc:
+                refused += 1
+                if refused <= 10:
+                    self.warn(f"{entry}: refused ({exc}); its task runs again")
+                continue
+            if tid not in self.done:
+                self._store(tid, node)
+            self.kept.add(tid)
+        if refused > 10:
+            self.warn(f"{self.journal}: {refused - 10} more entries refused; their tasks run again")
+
+    # writing
+
+    def _failure(self, exc: BaseException, where: Path) -> OutputError:
+        kept = len(self.kept)
+        if _no_space(exc):
+            return OutputError(
+                f"no space left on device writing {where}; {kept} tasks kept; free space and "
+                "rerun with --resume"
+            )
+        if _is_lock_conflict(exc):
+            return OutputError(
+                f"{where} is open in another program (HDF5 file lock); {kept} tasks kept; close "
+                "it and rerun with --resume"
+            )
+        reason = getattr(exc, "strerror", None) or str(exc)
+        return OutputError(
+            f"cannot write {where}: {reason}; {kept} tasks kept; rerun with --resume"
+        )
 
     def write(self, result: TaskResult) -> None:
-        """Journal the task atomically, write it to the file, close (flush), mark it done."""
-        entry = self.journal / f"{result.task_id}.pkl"
-        tmp = entry.with_suffix(".tmp")
-        try:
-            with open(tmp, "wb") as fh:
-                pickle.dump(result, fh, protocol=pickle.HIGHEST_PROTOCOL)
-                fh.flush()
-                os.fsync(fh.fileno())
-            os.replace(tmp, entry)
-            self._write_h5(result)
-        except OSError as exc:
-            raise OutputError(
-                f"cannot write task {result.task_id}: {exc.strerror or exc}; finished tasks are "
-                f"kept (resume with --resume)",
-                str(self.path),
-            ) from None
-        self.done.add(result.task_id)
+        """Journal the task atomically, write it with its digest, close (flush), mark it done.
 
-    def _write_h5(self, result: TaskResult) -> None:
-        with h5py.File(self.path, "a") as f:
-            tasks = f["tasks"]
-            if result.task_id in tasks:
-                del tasks[result.task_id]
-            g = tasks.create_group(result.task_id)
-            for key, value in result.meta.items():
-                g.attrs[key] = value
-            g.attrs["seconds"] = result.seconds
-            _put(g, "floors", result.floors.astype(np.int64))
-            _put(g, "pfa", result.pfa)
-            cg = g.create_group("contents")
-            for c in result.contents:
-                h = cg.require_group(c.content).create_group(f"floor_{c.floor}")
-                for name in CONTENT_FIELDS:
-                    _put(h, name, getattr(c, name))
-                for name in ("peak_deformation", "peak_top_accel"):
-                    if getattr(c, name) is not None:
-                        _put(h, name, getattr(c, name))
-                if c.modes is not None:
-                    ds = h.create_dataset(
-                        "modes", data=np.asarray(c.modes, dtype=object), dtype=h5py.string_dtype()
-                    )
-                    ds.attrs["units"] = "1"
-                h.attrs["model"] = c.model
-                h.attrs["mode"] = c.mode
-                h.attrs["skipped"] = c.skipped
-                h.attrs["vertical"] = c.vertical
-            sg = g.create_group("spectra")
-            for s in result.spectra:
-                h = sg.create_group(f"floor_{s.floor}")
-                h.attrs["broadening"] = float(s.broadening)
-                for name in SPECTRUM_FIELDS:
-                    ds = _put(h, name, getattr(s, name))
-                    if name in ORDINATE_FIELDS:
-                        ds.attrs["broadening"] = 0.0
-                if s.broadening:
-                    b = h.create_group("broadened")
-                    b.attrs["broadening"] = float(s.broadening)
-                    for name in ORDINATE_FIELDS:
-                        ds = _put(b, name, getattr(s, f"{name}_broadened"))
-                        ds.attrs["broadening"] = float(s.broadening)
-            if result.histories is not None:
-                hi = result.histories
-                hg = g.create_group("histories")
-                hg.attrs["dt"] = hi.dt
-                _put(hg, "floors", hi.floors)
-                _put(hg, "floor_acceleration", hi.floor_acceleration)
-                for key, u in hi.slides.items():
-                    sgr = hg.require_group(f"slides/{key}")
-                    _put(sgr, "u", u)
-                    _put(sgr, "mu_k", hi.mu_k[key])
-                    # getattr: a journal entry pickled before these fields existed
-                    deformation = getattr(hi, "deformation", {})
-                    oscillator = key in deformation
-                    sgr.attrs["model"] = "oscillator" if oscillator else "rigid"
-                    if oscillator:
-                        _put(sgr, "z", deformation[key])
-                        _put(sgr, "top_accel", hi.top_accel[key])
-            f.flush()
-        with h5py.File(self.path, "a") as f:
-            f["tasks"][result.task_id].attrs["done"] = 1
+        Raises
+        ------
+        OutputError
+            One line: what could not be written (a full disk: "no space left on device"), how
+            many tasks are kept, and to rerun with ``--resume``.
+        """
+        node = task_node(result)
+        tid = result.task_id
+        entry = self.journal / f"{tid}{ENTRY_SUFFIX}"
+        try:
+            _write_file(entry, journal.encode(tid, self.scene_sha256, node))
+        except OSError as exc:
+            raise self._failure(exc, entry) from None
+        self.kept.add(tid)
+        self._store(tid, node)
+
+    def _store(self, tid: str, node: Node) -> None:
+        """Write one task's group with its digest, close the file, then mark the task done."""
+        nbytes, objects = _node_size(node)
+        try:
+            _reserve(self.path, 2 * nbytes + RESERVE_PER_OBJECT * objects + RESERVE_MIN)
+            with _open_h5(self.path, "a") as f:
+                tasks = f["tasks"]
+                if tid in tasks:
+                    del tasks[tid]
+                group = write_node(tasks, tid, node)
+                group.attrs[DIGEST_ATTR] = digest(node, BOOKKEEPING)
+                f.flush()
+            _reserve(self.path, RESERVE_MIN)
+            with _open_h5(self.path, "a") as f:
+                f["tasks"][tid].attrs["done"] = 1
+        except (*H5_ERRORS, OSError) as exc:
+            raise self._failure(exc, self.path) from None
+        self.done.add(tid)
 
     def finish(self) -> None:
         """A completed run: the journal is no longer needed."""
-        for entry in self.journal.glob("*"):
-            entry.unlink()
-        try:
+        shutil.rmtree(self.journal, ignore_errors=True)
+
+    def abandon(self) -> None:
+        """A run that failed before keeping any task: remove the file it created (and its empty
+        journal), so that the same command can simply be run again."""
+        if not self.created or self.kept:
+            return
+        with contextlib.suppress(OSError):
+            self.path.unlink()
+        with contextlib.suppress(OSError):
             self.journal.rmdir()
-        except OSError:
-            pass
+
+
+# --- reading -----------------------------------------------------------------------------
+
+
+class UnreadableResultError(ResultFileError):
+    """A result file that is HDF5 but cannot be read (damaged, cut short by a kill)."""
+
+
+def _integrity_message(problems: dict[str, str], scene: str, path: Path) -> str:
+    names = list(problems)
+    if len(names) == 1:
+        tid = names[0]
+        return (
+            f"task {tid} fails the integrity check ({problems[tid]}); rebuild it with "
+            f"floorslide run {scene} -o {path} --resume"
+        )
+    shown = ", ".join(f"{tid} ({problems[tid]})" for tid in names[:3])
+    if len(names) > 3:
+        shown += f" and {len(names) - 3} more"
+    return (
+        f"tasks {shown} fail the integrity check; rebuild them with floorslide run {scene} "
+        f"-o {path} --resume"
+    )
 
 
 class ResultFile:
-    """Read a result file; refuse one that is not a floorslide result or is corrupt."""
+    """Read a result file; refuse one that is not a floorslide result or is corrupt.
 
-    def __init__(self, path: str | Path):
+    Parameters
+    ----------
+    path
+        The result file.
+    repair
+        Open for ``--resume``: task entries that are not readable groups are listed in
+        :attr:`damaged` instead of refusing the file.
+
+    Raises
+    ------
+    ResultFileError
+        Missing, not a floorslide result file, or (:class:`UnreadableResultError`) corrupt.
+    """
+
+    def __init__(self, path: str | Path, *, repair: bool = False):
         self.path = Path(path)
         if not self.path.exists():
             raise ResultFileError("no such result file", str(self.path))
+        self.damaged: list[str] = []
+        """Task entries that are not readable groups (only with `repair`)."""
+        self.partial: list[str] = []
+        """Task groups not marked done (a write cut short)."""
+        self._done: list[str] = []
         try:
-            with h5py.File(self.path, "r") as f:
+            if not _is_hdf5(self.path):
+                raise ValueError("not an HDF5 file")
+            with _open_h5(self.path, "r", wait=READ_LOCK_WAIT) as f:
                 if f.attrs.get("floorslide_format") != FORMAT or "tasks" not in f:
                     raise ResultFileError("not a floorslide result file", str(self.path))
-                self.scene_text = (
-                    f["scene"][()].decode()
-                    if isinstance(f["scene"][()], bytes)
-                    else str(f["scene"][()])
-                )
+                self.verified = DIGESTS_ATTR in f.attrs
+                self.scene_text = _s(f["scene"][()])
                 self.scene_name = str(f.attrs.get("scene_name", ""))
                 self.scene_path = _s(f["scene"].attrs.get("path", ""))
                 plan = f["plan"][()]
                 self.plan = json.loads(plan.decode() if isinstance(plan, bytes) else plan)
                 if not isinstance(self.plan, dict):
                     raise ValueError("the stored plan is not a JSON object")
-                self._done = []
                 tasks = f["tasks"]
                 for k in tasks:
-                    g = tasks.get(k)  # None when a kill left the link but not the group
-                    if not isinstance(g, h5py.Group):
-                        raise ValueError(f"task {k} is damaged")
-                    if g.attrs.get("done") == 1:
-                        self._done.append(k)
+                    try:
+                        g = tasks.get(k)  # None when a kill left the link but not the group
+                        if not isinstance(g, h5py.Group):
+                            raise ValueError(f"task {k} is damaged")
+                        done = g.attrs.get("done") == 1
+                    except H5_ERRORS:
+                        if not repair:
+                            raise
+                        self.damaged.append(k)
+                        continue
+                    (self._done if done else self.partial).append(k)
         except ResultFileError:
             raise
-        except (OSError, KeyError, ValueError, RuntimeError) as exc:
+        except H5_ERRORS as exc:
+            if _is_lock_conflict(exc):
+                raise ResultFileError(
+                    "is open for writing in another process (HDF5 file lock); try again when "
+                    "it is closed",
+                    str(self.path),
+                ) from None
             hint = (
                 " (rebuild it with floorslide run --resume)"
                 if journal_dir(self.path).exists()
                 else ""
             )
-            raise ResultFileError(
+            raise UnreadableResultError(
                 f"corrupt or unreadable result file: {exc}{hint}", str(self.path)
             ) from None
 
@@ -342,24 +761,124 @@ class ResultFile:
         except (tomllib.TOMLDecodeError, AttributeError):
             return 0.0
 
+    def _task(self, tasks: h5py.Group, tid: str) -> tuple[Node | None, str]:
+        """A done task's group, read whole, and ``""`` — or None and why it fails."""
+        try:
+            node = snapshot(tasks[tid])
+        except (SnapshotError, *H5_ERRORS) as exc:
+            return None, f"unreadable: {exc}"
+        stored = node.attrs.get(DIGEST_ATTR)
+        if stored is None:
+            return (None, "no digest") if self.verified else (node, "")
+        try:
+            ok = _s(stored) == digest(node, BOOKKEEPING)
+        except SnapshotError as exc:
+            return None, f"unreadable: {exc}"
+        return (node, "") if ok else (None, "values changed after it was written")
+
+    def verify(self) -> dict[str, str]:
+        """Every done task that fails its integrity check, with why (empty when all pass)."""
+        problems = {}
+        with _open_h5(self.path, "r") as f:
+            tasks = f["tasks"]
+            for tid in self._done:
+                node, problem = self._task(tasks, tid)
+                if node is None:
+                    problems[tid] = problem
+        return problems
+
     def tasks(self) -> Iterator[TaskResult]:
-        """Every finished task, in file order."""
+        """Every finished task, in file order, each checked against its digest.
+
+        Raises
+        ------
+        ResultFileError
+            A task fails its integrity check (every failing task is named) or the file is
+            corrupt.
+        """
         legacy = self._legacy_broadening()
         try:
-            with h5py.File(self.path, "r") as f:
-                for tid in self._done:
-                    yield _read_task(f["tasks"][tid], tid, legacy)
-        except (OSError, KeyError, ValueError) as exc:
+            with _open_h5(self.path, "r", wait=READ_LOCK_WAIT) as f:
+                tasks = f["tasks"]
+                for i, tid in enumerate(self._done):
+                    node, problem = self._task(tasks, tid)
+                    if node is None:
+                        problems = {tid: problem}
+                        for other in self._done[i + 1 :]:
+                            if (found := self._task(tasks, other))[0] is None:
+                                problems[other] = found[1]
+                        scene = self.scene_path or "SCENE.toml"
+                        raise ResultFileError(
+                            _integrity_message(problems, scene, self.path), str(self.path)
+                        )
+                    yield _read_task(node, tid, legacy)
+        except ResultFileError:
+            raise
+        except (*H5_ERRORS, AttributeError) as exc:
             raise ResultFileError(f"corrupt result file: {exc}", str(self.path)) from None
+
+
+def _journal_of(path: Path, scene_sha256: str) -> bool:
+    """Whether a journal entry beside `path` was written for the scene of this digest."""
+    for entry in journal_entries(path):
+        try:
+            journal.decode(entry.read_bytes(), scene_sha256)
+        except (OSError, journal.EntryError):
+            continue
+        return True
+    return False
+
+
+def written_for(path: str | Path, scene_text: str) -> bool:
+    """Whether `path` holds a run of the scene `scene_text`: a floorslide result file of that
+    scene, or the unreadable remains of one (a run killed mid-write) whose journal is of it.
+
+    Parameters
+    ----------
+    path
+        The file (it may be missing: then False).
+    scene_text
+        The scene's text, as stored in ``/scene``.
+    """
+    path = Path(path)
+    if not path.is_file():
+        return False
+    try:
+        return ResultFile(path).scene_text == scene_text
+    except UnreadableResultError:
+        return _journal_of(path, scene_digest(scene_text))
+    except ResultFileError:
+        return False
 
 
 def _s(value) -> str:
     return value.decode() if isinstance(value, bytes) else str(value)
 
 
-def _read_spectrum(k: str, h: h5py.Group, legacy_broadening: float) -> SpectrumResult:
+def _group(node: Node, name: str) -> Node:
+    child = node[name]
+    if not isinstance(child, Node):
+        raise ValueError(f"{name} is not a group")
+    return child
+
+
+def _value(node: Node, name: str):
+    child = node[name]
+    if not isinstance(child, Data):
+        raise ValueError(f"{name} is not a dataset")
+    return child.value
+
+
+def _groups(node: Node) -> Iterator[tuple[str, Node]]:
+    for name, child in node.items():
+        if not isinstance(child, Node):
+            raise ValueError(f"{name} is not a group")
+        yield name, child
+
+
+def _read_spectrum(k: str, h: Node, legacy_broadening: float) -> SpectrumResult:
     floor = int(k.split("_")[1])
-    fields = {n: h[n][()] for n in SPECTRUM_FIELDS}
+    fields = {n: _value(h, n) for n in SPECTRUM_FIELDS}
     if "broadening" not in h.attrs and legacy_broadening > 0:
         # written before the unbroadened spectra were kept: what is stored is broadened
         wide = {f"{n}_broadened": fields[n] for n in ORDINATE_FIELDS}
@@ -367,17 +886,29 @@ def _read_spectrum(k: str, h: h5py.Group, legacy_broadening: float) -> SpectrumR
         return SpectrumResult(floor, **{**fields, **lost}, broadening=legacy_broadening, **wide)
     out = SpectrumResult(floor, **fields, broadening=float(h.attrs.get("broadening", 0.0)))
     if "broadened" in h:
+        b = _group(h, "broadened")
         for n in ORDINATE_FIELDS:
-            setattr(out, f"{n}_broadened", h["broadened"][n][()])
+            setattr(out, f"{n}_broadened", _value(b, n))
     return out
 
 
-def _read_task(g: h5py.Group, tid: str, legacy_broadening: float = 0.0) -> TaskResult:
-    meta = {k: (v.item() if hasattr(v, "item") else v) for k, v in g.attrs.items()}
+def _read_task(g: Node, tid: str, legacy_broadening: float = 0.0) -> TaskResult:
+    """The task stored in the group `g` (read whole with :func:`snapshot`).
+
+    Raises
+    ------
+    KeyError, ValueError
+        `g` is not a task's group.
+    """
+    meta = {
+        k: (v.item() if hasattr(v, "item") else v)
+        for k, v in g.attrs.items()
+        if k not in BOOKKEEPING
+    }
     meta = {k: _s(v) if isinstance(v, bytes | str) else v for k, v in meta.items()}
     contents = []
-    for cname, cg in g["contents"].items():
-        for fname, h in cg.items():
+    for cname, cg in _groups(_group(g, "contents")):
+        for fname, h in _groups(cg):
             contents.append(
                 ContentResult(
                     content=cname,
@@ -386,29 +917,31 @@ def _read_task(g: h5py.Group, tid: str, legacy_broadening: float = 0.0) -> TaskR
                     mode=_s(h.attrs["mode"]),
                     skipped=_s(h.attrs["skipped"]),
                     vertical=bool(h.attrs["vertical"]),
-                    **{name: h[name][()] for name in CONTENT_FIELDS},
-                    peak_deformation=h["peak_deformation"][()] if "peak_deformation" in h else None,
-                    peak_top_accel=h["peak_top_accel"][()] if "peak_top_accel" in h else None,
-                    modes=np.array([_s(m) for m in h["modes"][()]]) if "modes" in h else None,
+                    **{name: _value(h, name) for name in CONTENT_FIELDS},
+                    peak_deformation=_value(h, "peak_deformation")
+                    if "peak_deformation" in h
+                    else None,
+                    peak_top_accel=_value(h, "peak_top_accel") if "peak_top_accel" in h else None,
+                    modes=np.array([_s(m) for m in _value(h, "modes")]) if "modes" in h else None,
                 )
             )
-    spectra = [_read_spectrum(k, h, legacy_broadening) for k, h in g["spectra"].items()]
+    spectra = [_read_spectrum(k, h, legacy_broadening) for k, h in _groups(_group(g, "spectra"))]
     hist = None
     if "histories" in g:
-        hg = g["histories"]
+        hg = _group(g, "histories")
         slides, mus, deform, top = {}, {}, {}, {}
         if "slides" in hg:
-            for cname, cg in hg["slides"].items():
-                for fname, h in cg.items():
+            for cname, cg in _groups(_group(hg, "slides")):
+                for fname, h in _groups(cg):
                     key = f"{cname}/{fname}"
-                    slides[key] = h["u"][()]
-                    mus[key] = h["mu_k"][()]
+                    slides[key] = _value(h, "u")
+                    mus[key] = _value(h, "mu_k")
                     if "z" in h:
-                        deform[key], top[key] = h["z"][()], h["top_accel"][()]
+                        deform[key], top[key] = _value(h, "z"), _value(h, "top_accel")
         hist = Histories(
             float(hg.attrs["dt"]),
-            hg["floors"][()],
-            hg["floor_acceleration"][()],
+            _value(hg, "floors"),
+            _value(hg, "floor_acceleration"),
             slides,
             mus,
             deform,
@@ -417,8 +950,8 @@ def _read_task(g: h5py.Group, tid: str, legacy_broadening: float = 0.0) -> TaskR
     return TaskResult(
         task_id=tid,
         meta=meta,
-        floors=g["floors"][()],
-        pfa=g["pfa"][()],
+        floors=_value(g, "floors"),
+        pfa=_value(g, "pfa"),
         contents=contents,
         spectra=spectra,
         histories=hist,

@@ -296,9 +296,11 @@ def test_help_and_readme_state_the_exit_codes(monkeypatch, capsys):
         assert code == 0 and "--allow-incomplete" in flat
         assert "2 bad usage, or OUT.h5 missing, corrupt or not a floorslide result file" in flat
         assert "4 OUT.h5 is incomplete" in flat
+        assert "a task in it fails its integrity check" in flat  # issue 19 item 4
     readme = " ".join((ROOT / "README.md").read_text().split())
     assert "(exit code 1); a malformed" not in readme
-    assert "or one without a finished task, is one line naming the file (exit code 2)" in readme
+    assert "or one with a task that fails its integrity check (each such task named;" in readme
+    assert "is one line naming the file (exit code 2)" in readme
     assert "exit code 4" in readme
 
 

@@ -14,7 +14,7 @@ import psutil
 
 from floorslide.report import design_tables, write_csv
 from floorslide.run.execute import execute
-from floorslide.run.store import journal_dir
+from floorslide.run.store import journal_entries
 from floorslide.scene.planner import plan
 from floorslide.scene.schema import load_scene
 from tests.conftest import ROOT
@@ -45,7 +45,6 @@ def test_repeated_kills_then_resume_give_identical_tables(tmp_path):
         "2",
     ]
     rng = random.Random(20261122)
-    journal = journal_dir(out)
     targets = sorted(rng.sample(range(1, 150), 3))  # kill once this many tasks are journaled
     seen = []
     for attempt, target in enumerate(targets):
@@ -57,12 +56,12 @@ def test_repeated_kills_then_resume_give_identical_tables(tmp_path):
         )
         deadline = time.time() + 120
         while time.time() < deadline and proc.poll() is None:
-            if journal.exists() and len(list(journal.glob("*.pkl"))) >= target:
+            if len(journal_entries(out)) >= target:
                 break
             time.sleep(0.002)
         proc.send_signal(signal.SIGKILL)
         proc.wait()
-        seen.append(len(list(journal.glob("*.pkl"))))
+        seen.append(len(journal_entries(out)))
     assert all(0 < n < 162 for n in seen) and seen == sorted(seen), seen
     time.sleep(0.5)
     assert not [

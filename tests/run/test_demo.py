@@ -1,4 +1,5 @@
-"""The demo runs on the bundled data and writes results, tables and figures."""
+"""The demo runs on the bundled data and writes results, tables and figures; run again, it
+replaces its own output and nothing else."""
 
 from __future__ import annotations
 
@@ -6,28 +7,26 @@ import os
 import subprocess
 import sys
 
+import h5py
+
 from floorslide.run.store import ResultFile
 from tests.conftest import ROOT
 
 
-def test_demo(tmp_path):
+def demo(out, *args: str) -> subprocess.CompletedProcess:
+    """``floorslide demo -o OUT ARGS`` in a fresh process."""
     env = dict(os.environ, PYTHONPATH=str(ROOT))
-    out = subprocess.run(
-        [
-            sys.executable,
-            "-m",
-            "floorslide.cli",
-            "demo",
-            "-o",
-            str(tmp_path / "d"),
-            "--workers",
-            "2",
-        ],
+    return subprocess.run(
+        [sys.executable, "-m", "floorslide.cli", "demo", "-o", str(out), *args],
         capture_output=True,
         text=True,
         env=env,
-        cwd=tmp_path,
+        cwd=out.parent,
     )
+
+
+def test_demo(tmp_path):
+    out = demo(tmp_path / "d", "--workers", "2")
     assert out.returncode == 0, out.stderr
     rf = ResultFile(tmp_path / "d" / "results.h5")
     assert len(rf.done_tasks()) == 36 * 7
@@ -41,3 +40,25 @@ def test_demo(tmp_path):
     assert "tables.md" in tables and "slides.csv" in tables
     figures = list((tmp_path / "d" / "figures").glob("*.png"))
     assert len(figures) >= 6
+    # issue 19 item 2: the README's quick start run a second time replaces its own results
+    again = demo(tmp_path / "d", "--workers", "2")
+    assert again.returncode == 0, again.stderr
+    assert again.stdout.split("tasks in")[0] == out.stdout.split("tasks in")[0]
+    assert len(ResultFile(tmp_path / "d" / "results.h5").done_tasks()) == 36 * 7
+
+
+def test_demo_leaves_other_files_alone(tmp_path):
+    """Issue 19 item 2: a results.h5 that is not the demo's is refused in one line, exit 2."""
+    folder = tmp_path / "d"
+    folder.mkdir()
+    mine = folder / "results.h5"
+    with h5py.File(mine, "w") as f:
+        f["mine"] = [1.0, 2.0]
+    before = mine.read_bytes()
+    out = demo(folder)
+    assert out.returncode == 2, out.stderr
+    assert out.stderr.strip() == (
+        f"floorslide: error: {mine}: exists and is not a floorslide result of the demo scene; "
+        "not replaced (choose another folder with -o, or move the file away)"
+    )
+    assert mine.read_bytes() == before and not out.stdout

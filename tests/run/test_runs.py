@@ -14,7 +14,7 @@ import pytest
 from floorslide.building.motions import peak_floor_acceleration
 from floorslide.contents.sliding import slide
 from floorslide.run.execute import execute
-from floorslide.run.store import ResultFile, journal_dir
+from floorslide.run.store import ResultFile, journal_dir, journal_entries
 from floorslide.scene.planner import plan
 from floorslide.scene.schema import load_scene
 from tests.conftest import ROOT
@@ -170,15 +170,14 @@ def test_killed_run_resumes_to_identical_results(scene_file, tmp_path):
         stdout=subprocess.DEVNULL,
         stderr=subprocess.DEVNULL,
     )
-    journal = journal_dir(out)
     deadline = time.time() + 120
     while time.time() < deadline:
-        if journal.exists() and len(list(journal.glob("*.pkl"))) >= 3:
+        if len(journal_entries(out)) >= 3:
             break
         time.sleep(0.01)
     proc.send_signal(signal.SIGKILL)
     proc.wait()
-    finished = len(list(journal.glob("*.pkl")))
+    finished = len(journal_entries(out))
     assert 3 <= finished < 9, finished
     # the killed file is readable (or, if the kill hit a write, rebuilt by --resume)
     done = subprocess.run(
