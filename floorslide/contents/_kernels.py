@@ -17,12 +17,17 @@ import numpy as np
 
 from floorslide._jit import njit
 from floorslide.building._instep import (
-    extreme_values,
-    first_rise,
     foh_step,
     poly_val,
     substep_inputs,
     taylor_coefficients,
+)
+from floorslide.numerics.polynomial import (
+    curvature_bound,
+    extreme_values,
+    first_rise,
+    max_abs_above,
+    scratch,
 )
 
 STICK = 0
@@ -35,6 +40,20 @@ def _dot_state(row, x):
     for j in range(x.size):
         s += row[j] * x[j]
     return s
+
+
+@njit(cache=True, inline="always")
+def _tighten(level, R, beta, x_prev, aa, slope, c, K, h, A0, A1, rw):
+    """A tighter enclosure ``(amin, amax, level)`` of the floor acceleration on a sub-step than
+    the one of ``level``: from 0, the curvature bound of its Taylor coefficients (computed into
+    ``c``); from 1, its exact extremes (level 2)."""
+    if level == 0:
+        taylor_coefficients(R, beta, x_prev, aa, slope, c)
+        dev = 0.125 * h * h * curvature_bound(c, K, h)
+        if dev > 0.0:
+            return min(A0, A1) - dev, max(A0, A1) + dev, 1
+    amin, _, amax, _ = extreme_values(c, K, 0.0, h, rw)
+    return min(amin, A0, A1), max(amax, A0, A1), 2
 
 
 @njit(cache=True)
@@ -53,13 +72,17 @@ def _general(
     t0,
     state,
     work,
+    rw,
+    max_events,
 ):
     """Advance one object through a sub-step by events, exactly.
 
     ``c`` holds the Taylor coefficients (degree ``K``) of the floor's absolute acceleration in
     the sub-step; the normal acceleration is ``n0 + sn·τ`` (``g`` without vertical motion).
-    ``state`` = [mode, v, u, peak_u, t_peak, slide_time, n_slips, peak_abs].
-    ``work`` is scratch of length ≥ 2K + 8.
+    ``state`` = [mode, v, u, peak_u, t_peak, slide_time, n_slips, peak_abs, first sub-step
+    start where more than ``max_events`` events were needed (−1 if none)].
+    ``work`` is scratch of length ≥ 4K + 16, ``rw`` that of the root isolation
+    (:func:`floorslide.numerics.polynomial.scratch`).
     """
     mode = int(state[0])
     v = state[1]
@@ -74,7 +97,11 @@ def _general(
     pv = work[K + 1 : K + 3 + K]
     pu = work[2 * K + 3 : 3 * K + 6]
     guard = 0
-    while tau < h and guard < 10000:
+    while tau < h:
+        if guard >= max_events:
+            if state[8] < 0.0:
+                state[8] = t0
+            break
         guard += 1
         # normal-force interval [tau, tau_end]
         tau_end = h
@@ -95,7 +122,14 @@ def _general(
                 pu[j] = 0.0
             for j in range(deg_v + 1):
                 pu[j + 1] = pv[j] / (j + 1)
-            u = u + poly_val(pu, deg_u, tau_end) - poly_val(pu, deg_u, tau)
+            # u(τ) = u + pu(τ) − pu(tau): the velocity may reverse in flight, so |u| can peak
+            # inside it (every critical point, rigorous)
+            pu[0] = u - poly_val(pu, deg_u, tau)
+            m, tm = max_abs_above(pu, deg_u, tau, tau_end, state[3], rw)
+            if m > state[3]:
+                state[3] = m
+                state[4] = t0 + (tm if tm >= 0.0 else tau_end)
+            u = poly_val(pu, deg_u, tau_end)
             v = poly_val(pv, deg_v, tau_end)
             mode = FLIGHT
             tau = tau_end
@@ -136,14 +170,14 @@ def _general(
                 pa[0] -= mub * n0
                 if K >= 1:
                     pa[1] -= mub * sn
-                t_up = first_rise(pa, K, tau, tau_end, 0.0)
+                t_up = first_rise(pa, K, tau, tau_end, 0.0, rw)
             if allow_pos:
                 for j in range(K + 1):
                     pa[j] = -c[j]
                 pa[0] -= mub * n0
                 if K >= 1:
                     pa[1] -= mub * sn
-                t_lo = first_rise(pa, K, tau, tau_end, 0.0)
+                t_lo = first_rise(pa, K, tau, tau_end, 0.0, rw)
             t_ev = -1.0
             new_mode = STICK
             if t_up >= 0.0 and (t_lo < 0.0 or t_up <= t_lo):
@@ -154,10 +188,10 @@ def _general(
                 new_mode = 1
             t_stop = tau_end if t_ev < 0.0 else t_ev
             # the object moves with its floor on [tau, t_stop]
-            amin, _, amax, _ = extreme_values(c, K, tau, t_stop)
+            a_abs, _ = max_abs_above(c, K, tau, t_stop, state[7], rw)
             # friction transmits at most mub·N (this only trims the rounding-level overshoot at
             # a breakaway and a floor already beyond breakaway at t = 0)
-            a_abs = min(max(amax, -amin), mub * max(n0 + sn * tau, n0 + sn * t_stop))
+            a_abs = min(a_abs, mub * max(n0 + sn * tau, n0 + sn * t_stop))
             if a_abs > state[7]:
                 state[7] = a_abs
             if t_ev < 0.0:
@@ -182,7 +216,7 @@ def _general(
             pa_j = -s * pv[j]
             work[3 * K + 6 + j] = pa_j
         pstop = work[3 * K + 6 : 3 * K + 7 + deg_v]
-        t_s = first_rise(pstop, deg_v, tau, tau_end, 0.0)
+        t_s = first_rise(pstop, deg_v, tau, tau_end, 0.0, rw)
         t_stop = tau_end if t_s < 0.0 else t_s
         for j in range(deg_u + 1):
             pu[j] = 0.0
@@ -244,6 +278,7 @@ def slide_kernel(
     hist_a,
     want_hist,
     liftoff,
+    max_events,
 ):
     """Rigid blocks on one floor, exact for the piecewise-linear ground record.
 
@@ -269,12 +304,15 @@ def slide_kernel(
     allow_pos, allow_neg
         Whether slip with positive / negative relative velocity is allowed.
     states
-        ``(n_obj, 8)`` in/out: mode, v, u, peak |u|, time of peak, slide time, slip phases,
-        peak object absolute acceleration.
+        ``(n_obj, 9)`` in/out: mode, v, u, peak |u|, time of peak, slide time, slip phases,
+        peak object absolute acceleration, start of the first sub-step where more than
+        ``max_events`` events were needed (−1 if none: the caller reports it).
     hist_u, hist_v, hist_a
         ``(n_obj, npts)`` histories at the samples when ``want_hist``.
     liftoff
         ``[lift-off time, number of lift-off intervals]`` out.
+    max_events
+        Most events per object and sub-step (:mod:`floorslide.contents.events`).
     """
     n = phi.shape[0]
     K = R.shape[0] - 1
@@ -285,7 +323,21 @@ def slide_kernel(
     y = np.empty(n)
     c = np.empty(K + 1)
     work = np.empty(4 * K + 16)
-    st = np.empty(8)
+    rw = scratch(K + 3)
+    st = np.empty(9)
+    # weights of the curvature bound max|a_f''| ≤ Σ_i WX_i|x_i| + WA|a| + WS|slope| on a sub-step
+    # (Σ_j j(j−1)h^{j−2}|c_j| with the Taylor coefficients c_j = R_j·x + β_j a + β_{j−1}/j·slope)
+    WX = np.zeros(n)
+    WA = 0.0
+    WS = 0.0
+    hj = 1.0
+    for j in range(2, K + 1):
+        wj = j * (j - 1) * hj
+        for i in range(n):
+            WX[i] += wj * abs(R[j, i])
+        WA += wj * abs(beta[j])
+        WS += wj * abs(beta[j - 1]) / j
+        hj *= h
     in_lift = False
     # floor values at the very start
     a_start = beta[0] * acc[0]
@@ -318,19 +370,20 @@ def slide_kernel(
             foh_step(phi, p, q, x_prev, aa, ab, y)
             for i in range(n):
                 x[i] = y[i]
-            # shared floor quantities of this sub-step
+            # shared floor quantities of this sub-step: end values, and a rigorous enclosure
+            # [amin, amax] of the floor acceleration on it, tightened only when a decision
+            # needs it (level 0: curvature bound from the state, O(n); 1: from the Taylor
+            # coefficients; 2: the exact extremes, every critical point)
             A0 = _dot_state(R[0], x_prev) + beta[0] * aa
-            J0 = _dot_state(R[1], x_prev) + beta[1] * aa + beta[0] * slope
             A1 = _dot_state(R[0], x) + beta[0] * ab
-            J1 = _dot_state(R[1], x) + beta[1] * ab + beta[0] * slope
+            m2 = WA * abs(aa) + WS * abs(slope)
+            for i in range(n):
+                m2 += WX[i] * abs(x_prev[i])
+            dev = 0.125 * h * h * m2
+            amin = min(A0, A1) - dev
+            amax = max(A0, A1) + dev
+            level = 0 if dev > 0.0 else 2
             have_c = False
-            if (J0 > 0.0 and J1 < 0.0) or (J0 < 0.0 and J1 > 0.0):
-                taylor_coefficients(R, beta, x_prev, aa, slope, c)
-                have_c = True
-                amin, _, amax, _ = extreme_values(c, K, 0.0, h)
-            else:
-                amin = min(A0, A1)
-                amax = max(A0, A1)
             vr0 = _dot_state(rv, x_prev)
             dV = _dot_state(rv, x) - vr0 + 0.5 * h * (aa + ab)
             dD = _dot_state(rd, x) - _dot_state(rd, x_prev) - vr0 * h
@@ -363,7 +416,20 @@ def slide_kernel(
                 mode = states[i, 0]
                 if mode == 0.0 and nmin > 0.0:
                     fb = mub[i] * nmin
-                    if (amax <= fb or not allow_neg) and (amin >= -fb or not allow_pos):
+                    while True:
+                        ok = (amax <= fb or not allow_neg) and (amin >= -fb or not allow_pos)
+                        if ok or level == 2:
+                            break
+                        amin, amax, level = _tighten(
+                            level, R, beta, x_prev, aa, slope, c, K, h, A0, A1, rw
+                        )
+                        have_c = True
+                    if ok:
+                        while max(amax, -amin) > states[i, 7] and level < 2:
+                            amin, amax, level = _tighten(
+                                level, R, beta, x_prev, aa, slope, c, K, h, A0, A1, rw
+                            )
+                            have_c = True
                         ab_abs = max(amax, -amin)
                         if ab_abs > states[i, 7]:
                             states[i, 7] = ab_abs
@@ -373,27 +439,50 @@ def slide_kernel(
                     v = states[i, 1]
                     v_end = v - dV - sgn * muk[i] * nint
                     fk = muk[i] * nmin
-                    monotone = (amin > -fk) if sgn > 0.0 else (amax < fk)
-                    if monotone and sgn * v_end > 0.0:
-                        u = states[i, 2] + v * h - dD - sgn * muk[i] * nint2
-                        states[i, 1] = v_end
-                        states[i, 2] = u
-                        states[i, 5] += h
-                        if abs(u) > states[i, 3]:
-                            states[i, 3] = abs(u)
-                            states[i, 4] = t0 + h
-                        if muk[i] * nmax > states[i, 7]:
-                            states[i, 7] = muk[i] * nmax
-                        continue
+                    if sgn * v_end > 0.0:
+                        while True:
+                            monotone = (amin > -fk) if sgn > 0.0 else (amax < fk)
+                            if monotone or level == 2:
+                                break
+                            amin, amax, level = _tighten(
+                                level, R, beta, x_prev, aa, slope, c, K, h, A0, A1, rw
+                            )
+                            have_c = True
+                        if monotone:
+                            u = states[i, 2] + v * h - dD - sgn * muk[i] * nint2
+                            states[i, 1] = v_end
+                            states[i, 2] = u
+                            states[i, 5] += h
+                            if abs(u) > states[i, 3]:
+                                states[i, 3] = abs(u)
+                                states[i, 4] = t0 + h
+                            if muk[i] * nmax > states[i, 7]:
+                                states[i, 7] = muk[i] * nmax
+                            continue
                 if not have_c:
                     taylor_coefficients(R, beta, x_prev, aa, slope, c)
                     have_c = True
-                for j in range(8):
+                for j in range(9):
                     st[j] = states[i, j]
                 _general(
-                    c, K, h, n0, sn, has_vert, g, mub[i], muk[i], allow_pos, allow_neg, t0, st, work
+                    c,
+                    K,
+                    h,
+                    n0,
+                    sn,
+                    has_vert,
+                    g,
+                    mub[i],
+                    muk[i],
+                    allow_pos,
+                    allow_neg,
+                    t0,
+                    st,
+                    work,
+                    rw,
+                    max_events,
                 )
-                for j in range(8):
+                for j in range(9):
                     states[i, j] = st[j]
             if want_hist and r == substeps - 1:
                 for i in range(nobj):

@@ -22,13 +22,12 @@ import numpy as np
 
 from floorslide._jit import njit
 from floorslide.building._instep import (
-    extreme_values,
-    first_rise,
     foh_step,
     poly_val,
     substep_inputs,
     taylor_coefficients,
 )
+from floorslide.numerics.polynomial import first_rise, max_abs_above, scratch
 
 
 @njit(cache=True)
@@ -76,21 +75,41 @@ def _phase_series(y, mode, cs, K, w, xi, r, fk, start, Y):
 
 
 @njit(cache=True)
-def _update_peak(poly, K, lo, hi, peaks, idx):
-    vmin, _, vmax, _ = extreme_values(poly, K, lo, hi)
-    m = max(vmax, -vmin)
+def _update_peak(poly, K, lo, hi, peaks, idx, work):
+    """``peaks[idx] = max(peaks[idx], max |poly| on [lo, hi])`` (rigorous, every critical
+    point)."""
+    m, _ = max_abs_above(poly, K, lo, hi, peaks[idx], work)
     if m > peaks[idx]:
         peaks[idx] = m
 
 
 @njit(cache=True)
 def oscillator_kernel(
-    phi, p, q, R, beta, acc, substeps, h, K, w, xi, r, g, mub, muk, states, hist, want_hist
+    phi,
+    p,
+    q,
+    R,
+    beta,
+    acc,
+    substeps,
+    h,
+    K,
+    w,
+    xi,
+    r,
+    g,
+    mub,
+    muk,
+    states,
+    hist,
+    want_hist,
+    max_events,
 ):
     """Advance 2-DOF sliding oscillators (one per friction pair) through the record.
 
     ``states[i]`` = [mode, u, v, z, zd, peak|u|, peak|z|, peak|a_top|, peak|a_base|, slide time,
-    slip phases]; ``hist[i, k]`` = [u, z, a_top, a_base] at the samples when ``want_hist``.
+    slip phases, time of the first sub-step that needed more than ``max_events`` events (−1 if
+    none)]; ``hist[i, k]`` = [u, z, a_top, a_base] at the samples when ``want_hist``.
     """
     n = phi.shape[0]
     nobj = muk.size
@@ -104,6 +123,7 @@ def oscillator_kernel(
     poly = np.zeros(K + 1)
     y = np.zeros(4)
     pk = np.zeros(4)
+    work = scratch(K + 1)
     c2 = 2.0 * xi * w
     w2 = w * w
     kr = R.shape[0] - 1
@@ -132,7 +152,11 @@ def oscillator_kernel(
                 tau = 0.0
                 guard = 0
                 start = False
-                while tau < h and guard < 1000:
+                while tau < h:
+                    if guard >= max_events:
+                        if states[o, 11] < 0.0:
+                            states[o, 11] = (k * substeps + sub) * h
+                        break
                     guard += 1
                     _shift(c, K, tau, cs)
                     _phase_series(y, mode, cs, K, w, xi, r, fk * g, start, Y)
@@ -154,11 +178,11 @@ def oscillator_kernel(
                             for j in range(K + 1):
                                 poly[j] = r * cs[j] - c2 * Y[3, j] - w2 * Y[2, j]
                             poly[0] -= fb
-                            t_up = first_rise(poly, K, 0.0, span, 0.0)
+                            t_up = first_rise(poly, K, 0.0, span, 0.0, work)
                             for j in range(K + 1):
                                 poly[j] = -(r * cs[j] - c2 * Y[3, j] - w2 * Y[2, j])
                             poly[0] -= fb
-                            t_lo = first_rise(poly, K, 0.0, span, 0.0)
+                            t_lo = first_rise(poly, K, 0.0, span, 0.0, work)
                         if t_up >= 0.0 and (t_lo < 0.0 or t_up <= t_lo):
                             t_ev, new_mode = t_up, -1
                         elif t_lo >= 0.0:
@@ -167,31 +191,28 @@ def oscillator_kernel(
                         sgn = float(mode)
                         for j in range(K + 1):
                             poly[j] = -sgn * Y[1, j]
-                        t_ev = first_rise(poly, K, 0.0, span, 0.0)
+                        t_ev = first_rise(poly, K, 0.0, span, 0.0, work)
                     t_end = span if t_ev < 0.0 else t_ev
                     # peaks on [0, t_end]
                     for j in range(K + 1):
                         poly[j] = Y[0, j]
-                    _update_peak(poly, K, 0.0, t_end, pk, 0)
+                    _update_peak(poly, K, 0.0, t_end, pk, 0, work)
                     for j in range(K + 1):
                         poly[j] = Y[2, j]
-                    _update_peak(poly, K, 0.0, t_end, pk, 1)
+                    _update_peak(poly, K, 0.0, t_end, pk, 1, work)
                     for j in range(K + 1):
                         poly[j] = -(c2 * Y[3, j] + w2 * Y[2, j])
-                    _update_peak(poly, K, 0.0, t_end, pk, 2)
+                    _update_peak(poly, K, 0.0, t_end, pk, 2, work)
                     if mode == 0 and t_end > 0.0:
                         for j in range(K + 1):
                             poly[j] = cs[j]
-                        vmin, _, vmax, _ = extreme_values(poly, K, 0.0, t_end)
-                        m = max(vmax, -vmin)
-                        if m > pk[3]:
-                            pk[3] = m
+                        _update_peak(poly, K, 0.0, t_end, pk, 3, work)
                     elif mode != 0:
                         sgn = float(mode)
                         for j in range(K + 1):
                             poly[j] = (c2 * Y[3, j] + w2 * Y[2, j]) / r
                         poly[0] -= sgn * fk * g * (1.0 + r) / r
-                        _update_peak(poly, K, 0.0, t_end, pk, 3)
+                        _update_peak(poly, K, 0.0, t_end, pk, 3, work)
                         states[o, 9] += t_end
                     for i in range(4):
                         y[i] = poly_val(Y[i], K, t_end)

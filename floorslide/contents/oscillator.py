@@ -20,9 +20,22 @@ from floorslide.building.exact import ExactStepper, spectral_radius, substeps_fo
 from floorslide.building.model import LinearBuilding
 from floorslide.constants import G
 from floorslide.contents._oscillator_kernel import oscillator_kernel
+from floorslide.contents.events import OSCILLATOR_MAX_EVENTS, check_event_limit
 from floorslide.contents.sliding import friction_pairs
 from floorslide.errors import ModelError
 from floorslide.inputs import RecordLike, as_record
+
+
+def phase_radius(w: float, xi: float, r: float) -> float:
+    """Largest spectral radius of the oscillator's two phase matrices: stick
+    ``[[0, 1], [−w², −2ξw]]`` and slip ``[[0, 1], [−w²k, −2ξwk]]`` with ``k = 1 + 1/r`` (the
+    relative motion of the free–free pair). Sub-step lengths come from it: for an overdamped
+    slip phase (``ξ√k > 1``) it is close to ``2ξwk``, far above the slip frequency ``w√k``.
+    """
+    k = 1.0 + 1.0 / r
+    stick = np.array([[0.0, 1.0], [-w * w, -2.0 * xi * w]])
+    slip = np.array([[0.0, 1.0], [-w * w * k, -2.0 * xi * w * k]])
+    return max(spectral_radius(stick), spectral_radius(slip))
 
 
 @dataclass(frozen=True)
@@ -144,7 +157,7 @@ def slide_oscillator(
     if not (np.isfinite(r) and r > 0):
         raise ModelError(f"mass_ratio must be > 0, got {mass_ratio}", "mass_ratio")
     w = 2 * math.pi * f
-    rho_obj = w * math.sqrt(1 + 1 / r)
+    rho_obj = phase_radius(w, xi, r)
     if building is not None and floor is None:
         raise ModelError("floor is required with building=", "floor")
     on_floor = building is not None and building.dof_of(floor) is not None
@@ -174,7 +187,8 @@ def slide_oscillator(
         phi, p, q = np.zeros((0, 0)), np.zeros(0), np.zeros(0)
         R = np.zeros((2, 0))
         beta = np.array([1.0, 0.0])
-    states = np.zeros((mk.size, 11))
+    states = np.zeros((mk.size, 12))
+    states[:, 11] = -1.0
     hist = np.zeros((mk.size, a.size, 4) if histories else (0, 0, 4))
     if histories:
         hist[:, 0, 3] = beta[0] * a[0]
@@ -197,7 +211,9 @@ def slide_oscillator(
         states,
         hist,
         histories,
+        OSCILLATOR_MAX_EVENTS,
     )
+    check_event_limit(states[:, 11], mk, OSCILLATOR_MAX_EVENTS, "slide_oscillator")
     duration = (a.size - 1) * dt
     return OscillatorResult(
         mu_k=mk,

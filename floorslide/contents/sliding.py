@@ -17,6 +17,7 @@ from floorslide.building.model import LinearBuilding
 from floorslide.building.motions import stepper
 from floorslide.constants import G
 from floorslide.contents._kernels import slide_kernel
+from floorslide.contents.events import SLIDE_MAX_EVENTS, check_event_limit
 from floorslide.errors import ModelError
 from floorslide.inputs import DT_RTOL, RecordLike, as_record, is_stream, is_trace
 
@@ -283,7 +284,8 @@ def _slide_exact(a, dt, mk, ms, building, floor, vert, direction, histories) -> 
     allow_pos, allow_neg = _allowed(direction)
     phi, p, q, R, beta, rv, rd, substeps, h = floor_model(building, floor, dt)
     nobj = mk.size
-    states = np.zeros((nobj, 8))
+    states = np.zeros((nobj, 9))
+    states[:, 8] = -1.0
     npts = a.size
     shape = (nobj, npts) if histories else (0, 0)
     hu, hv, ha = np.zeros(shape), np.zeros(shape), np.zeros(shape)
@@ -312,7 +314,9 @@ def _slide_exact(a, dt, mk, ms, building, floor, vert, direction, histories) -> 
         ha,
         histories,
         lift,
+        SLIDE_MAX_EVENTS,
     )
+    check_event_limit(states[:, 8], mk, SLIDE_MAX_EVENTS, "slide")
     duration = (npts - 1) * dt
     return SlideResult(
         mu_k=mk,

@@ -255,10 +255,42 @@ def _isolate(c, deg, lo, hi, roots, work):
     return m
 
 
-def scratch(deg: int = MAX_DEGREE) -> np.ndarray:
+@njit(cache=True)
+def scratch(deg=MAX_DEGREE):
     """Scratch array for :func:`real_roots` and the functions built on it (polynomials of degree
-    up to ``deg``)."""
+    up to ``deg``); callable from compiled code."""
     return np.zeros((MAX_DEPTH + 7, max(deg + 2, MAX_DEPTH + 3)))
+
+
+@njit(cache=True, inline="always")
+def curvature_bound(c, deg, hi):
+    """Upper bound of ``|p''|`` on ``[0, hi]``: ``Σ_{j≥2} j(j−1)|c_j| hi^{j−2}``."""
+    s = 0.0
+    for j in range(deg, 1, -1):
+        s = s * hi + j * (j - 1) * abs(c[j])
+    return s
+
+
+@njit(cache=True)
+def max_abs_above(c, deg, lo, hi, level, work):
+    """``max |p|`` on ``[lo, hi]`` (``0 ≤ lo ≤ hi``) when it exceeds ``level``; otherwise some
+    value ``≤ level`` (the larger end value).
+
+    A rigorous filter first: ``p`` deviates from its chord by at most ``(hi − lo)²/8·max|p''|``
+    (bounded by :func:`curvature_bound`), so when the ends plus that deviation stay at or below
+    ``level`` no search is needed; otherwise every critical point is found
+    (:func:`extreme_values`). Returns the value and where it is (``-1.0`` for "not searched").
+    """
+    v0 = abs(poly_val(c, deg, lo))
+    v1 = abs(poly_val(c, deg, hi))
+    ends = max(v0, v1)
+    w = hi - lo
+    if ends + 0.125 * w * w * curvature_bound(c, deg, hi) <= level:
+        return ends, -1.0
+    vmin, tmin, vmax, tmax = extreme_values(c, deg, lo, hi, work)
+    if vmax >= -vmin:
+        return vmax, tmax
+    return -vmin, tmin
 
 
 @njit(cache=True)
