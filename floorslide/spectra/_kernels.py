@@ -17,14 +17,19 @@ floor's deviation ``δ`` from that line (``|q_δ| ≤ max|δ|·∫|h|``). A quan
 
 - its bound ``max|particular| + |C|ω^k (+ max|δ|·∫|h^(k)|)`` exceeds its peak so far;
 - on the ground, also its end values plus the linear interpolation error ``h²/8·max|f''|``;
-- for oscillators with ``ω·h ≤ 0.5`` (at most one critical point per step), also the sign of
-  its derivative changes between the step ends.
+- on the ground, for oscillators with ``ω·h ≤ 0.5``, also the sign of its first or second
+  derivative changes between the step ends (every derivative of the free vibration has at
+  most one zero in such a step, so a quantity whose second derivative keeps its sign has at
+  most one critical point, found by the sign of its derivative). On a floor there is no such
+  rule (the floor is a sum of modes): the bound alone decides.
 
 Only flagged steps are searched, on sub-steps short enough (``max(ρ_building, ω)·h ≤ 0.5``) for
 the Taylor polynomial of the exact response to equal it to rounding: on the ground after a
 second filter (the cubic Hermite interpolant of the ends plus its error bound
-``h⁴/384·max|f⁗|``), by Newton from the Hermite peak. A test checks that searching every step
-gives the same spectra.
+``h⁴/384·max|f⁗|``), by Newton from the Hermite peak where the response provably has one
+critical point in the sub-step, else by rigorous root isolation
+(:mod:`floorslide.numerics.polynomial`); on a floor by the chord bound and rigorous root
+isolation. A test checks that searching every step gives the same spectra.
 """
 
 from __future__ import annotations
@@ -35,13 +40,14 @@ import numpy as np
 
 from floorslide._jit import njit
 from floorslide.building._instep import (
-    extreme_values,
     foh_step,
     poly_der,
+    poly_der2,
     poly_val,
     substep_inputs,
     taylor_coefficients,
 )
+from floorslide.numerics.polynomial import extreme_values, max_abs_above, scratch
 
 
 @njit(cache=True)
@@ -112,15 +118,23 @@ def _hermite_max(f0, d0, f1, d1, h):
 
 
 @njit(cache=True)
-def _interior_peak(c, K, h, t0):
-    """``|p|`` at the critical point of ``p = Σ_{j≤K} c_j τ^j`` inside ``(0, h)``, where ``p'``
-    changes sign: Newton on ``p'`` from the estimate ``t0``, safeguarded by bisection (``p'`` and
-    ``p''`` evaluated together, two independent Horner chains). Falls back to
-    :func:`extreme_values` when rounding leaves ``p'`` without a sign change."""
+def _interior_peak(c, K, h, t0, work):
+    """``max |p|`` over the critical points of ``p = Σ_{j≤K} c_j τ^j`` inside ``(0, h)``, for the
+    response of one oscillator on the ground (``p`` is a linear function plus a damped sinusoid
+    with ``ω·h ≤ 0.5``, so ``p''`` has at most one zero in the sub-step).
+
+    When ``p'`` changes sign between the ends and ``p''`` does not, ``p'`` is monotone and has
+    exactly one root: Newton on ``p'`` from the estimate ``t0``, safeguarded by bisection. In
+    every other case (``p''`` changes sign: ``p'`` may have two roots or none; rounding at an
+    end) every critical point is isolated rigorously (:func:`extreme_values`).
+    """
     d_lo = poly_der(c, K, 0.0)
     d_hi = poly_der(c, K, h)
-    if (d_lo > 0.0) == (d_hi > 0.0) or d_lo == 0.0 or d_hi == 0.0:
-        vmin, _, vmax, _ = extreme_values(c, K, 0.0, h)
+    e_lo = poly_der2(c, K, 0.0)
+    e_hi = poly_der2(c, K, h)
+    single = (d_lo > 0.0) != (d_hi > 0.0) and d_lo != 0.0 and d_hi != 0.0
+    if not single or (e_lo > 0.0) != (e_hi > 0.0) or e_lo == 0.0 or e_hi == 0.0:
+        vmin, _, vmax, _ = extreme_values(c, K, 0.0, h, work)
         return max(vmax, -vmin)
     lo = 0.0
     hi = h
@@ -172,13 +186,17 @@ def _search_step(
     c,
     Q,
     poly,
+    work,
 ):
     """Peaks of oscillator `o` on a floor inside one record step, on its sub-steps.
 
-    On every sub-step (``max(rho_building, w)·h <= 0.5``: at most one critical point) a
-    quantity is searched only if its derivative changes sign there; then the extremum of its
-    Taylor polynomial (from the floor's Taylor coefficients ``CG`` on that sub-step) is found.
-    ``n`` is the number of building states; the ground has its own :func:`_ground_search`.
+    On every sub-step (``max(rho_building, w)·h <= 0.5``) the response of the oscillator is its
+    Taylor polynomial, from the floor's Taylor coefficients ``CG`` on that sub-step. The floor
+    motion is a sum of the building's modes, with no bound on the critical points a quantity
+    may have in a sub-step; each needed quantity is therefore first filtered by a rigorous
+    bound (its end values plus the chord deviation ``h²/8·max|p''|``) and, when that can exceed
+    its peak, searched over every critical point (:func:`max_abs_above`). ``n`` is the number
+    of building states; the ground has its own :func:`_ground_search`.
     """
     m = gm
     K = gK
@@ -191,46 +209,31 @@ def _search_step(
         aa, ab = substep_inputs(a, a1, r, m)
         for j in range(K + 1):
             c[j] = CG[r, j]
-        f0 = c[0]
-        f1 = c[K]
-        for j in range(K - 1, -1, -1):
-            f1 = f1 * h + c[j]
         # sub-step end state
         qn = S_Pqq[0, 0] * q + S_Pqq[0, 1] * v + S_pq[0] * aa + S_qq[0] * ab
         vn = S_Pqq[1, 0] * q + S_Pqq[1, 1] * v + S_pq[1] * aa + S_qq[1] * ab
         for j in range(n):
             qn += S_Pqx[0, j] * XG[r, j]
             vn += S_Pqx[1, j] * XG[r, j]
-        dd0 = -(f0 + c2 * v + w2 * q)  # q'' at both ends
-        dd1 = -(f1 + c2 * vn + w2 * qn)
-        Ad0 = w2 * v + c2 * dd0
-        Ad1 = w2 * vn + c2 * dd1
-        nd = need[0] and ((v > 0.0) != (vn > 0.0))
-        nv = need[1] and ((dd0 > 0.0) != (dd1 > 0.0))
-        na = need[2] and ((Ad0 > 0.0) != (Ad1 > 0.0))
-        if nd or nv or na:
-            Q[0] = q
-            Q[1] = v
-            for j in range(K - 1):
-                Q[j + 2] = (-c2 * (j + 1) * Q[j + 1] - w2 * Q[j] - c[j]) / ((j + 1) * (j + 2))
-            # Newton starts where the cubic Hermite interpolant of the ends peaks
-            if nd:
-                t = _hermite_max(q, v, qn, vn, h)[1]
-                out[o, 0] = max(out[o, 0], abs(q), abs(qn), _interior_peak(Q, K, h, t))
-            if nv:
-                for j in range(K):
-                    poly[j] = (j + 1) * Q[j + 1]
-                poly[K] = 0.0
-                t = _hermite_max(v, dd0, vn, dd1, h)[1]
-                out[o, 1] = max(out[o, 1], abs(v), abs(vn), _interior_peak(poly, K, h, t))
-            if na:
-                for j in range(K):
-                    poly[j] = w2 * Q[j] + c2 * (j + 1) * Q[j + 1]
-                poly[K] = w2 * Q[K]
-                A0 = w2 * q + c2 * v
-                A1 = w2 * qn + c2 * vn
-                t = _hermite_max(A0, Ad0, A1, Ad1, h)[1]
-                out[o, 2] = max(out[o, 2], abs(A0), abs(A1), _interior_peak(poly, K, h, t))
+        Q[0] = q
+        Q[1] = v
+        for j in range(K - 1):
+            Q[j + 2] = (-c2 * (j + 1) * Q[j + 1] - w2 * Q[j] - c[j]) / ((j + 1) * (j + 2))
+        if need[0]:
+            pk, _ = max_abs_above(Q, K, 0.0, h, out[o, 0], work)
+            out[o, 0] = max(out[o, 0], abs(qn), pk)
+        if need[1]:
+            for j in range(K):
+                poly[j] = (j + 1) * Q[j + 1]
+            poly[K] = 0.0
+            pk, _ = max_abs_above(poly, K, 0.0, h, out[o, 1], work)
+            out[o, 1] = max(out[o, 1], abs(vn), pk)
+        if need[2]:
+            for j in range(K):
+                poly[j] = w2 * Q[j] + c2 * (j + 1) * Q[j + 1]
+            poly[K] = w2 * Q[K]
+            pk, _ = max_abs_above(poly, K, 0.0, h, out[o, 2], work)
+            out[o, 2] = max(out[o, 2], abs(w2 * qn + c2 * vn), pk)
         q = qn
         v = vn
 
@@ -248,19 +251,21 @@ def _sample(acc, k, up):
 
 @njit(cache=True)
 def _ground_search(
-    f, a, a1, dt, m, K, q0, v0, w, xi, s00, s01, s10, s11, sp0, sp1, sq0, sq1, pk, Q, poly
+    f, a, a1, dt, m, K, q0, v0, w, xi, s00, s01, s10, s11, sp0, sp1, sq0, sq1, pk, Q, poly, work
 ):
     """Peaks of one oscillator on the ground inside one record step, on its ``m`` sub-steps.
 
     ``f`` says which quantities to search (bit 0: ``|q|``, 1: ``|q'|``, 2: ``|ω²q + 2ξωq'|``);
     ``s..`` is the oscillator's exact sub-step recurrence ``q⁺ = s00 q + s01 q' + sp0 a + sq0 a⁺``,
     ``q'⁺ = s10 q + s11 q' + sp1 a + sq1 a⁺``; ``pk`` holds the three peaks so far and is
-    updated. On a sub-step a quantity is searched only if its derivative changes sign there and
+    updated. On a sub-step a quantity is searched only if its first or second derivative changes
+    sign there (with neither, it is monotone or has one critical point found by the sign of its
+    derivative: every derivative of the free vibration has at most one zero when ``ω·h ≤ 0.5``) and
     the cubic Hermite interpolant of its end values and slopes plus the interpolation error bound
     ``h⁴/384·max|f⁗|`` can exceed its peak (the response is the exact particular solution
     ``α + βτ`` plus a free vibration ``Re(C e^{λτ})`` whose k-th derivative is at most
     ``|C|ω^k``); then the extremum of its Taylor polynomial of degree ``K`` (equal to the
-    response to rounding on the sub-step) is found.
+    response to rounding on the sub-step) are found (:func:`_interior_peak`).
     """
     h = dt / m
     slope = (a1 - a) / dt
@@ -279,9 +284,16 @@ def _ground_search(
         A1 = w2 * qn + c2 * vn
         Ad0 = w2 * v + c2 * dd0
         Ad1 = w2 * vn + c2 * dd1
-        nd = (f & 1) != 0 and ((v > 0.0) != (vn > 0.0))
+        # third derivative of q and second of w²q + 2ξwq' at both ends: a quantity whose
+        # derivative keeps its sign may still have two critical points when its second
+        # derivative changes sign
+        ddd0 = -slope - c2 * dd0 - w2 * v
+        ddd1 = -slope - c2 * dd1 - w2 * vn
+        Add0 = w2 * dd0 + c2 * ddd0
+        Add1 = w2 * dd1 + c2 * ddd1
+        nd = (f & 1) != 0 and ((v > 0.0) != (vn > 0.0) or (dd0 > 0.0) != (dd1 > 0.0))
         nv = (f & 2) != 0 and ((dd0 > 0.0) != (dd1 > 0.0))
-        na = (f & 4) != 0 and ((Ad0 > 0.0) != (Ad1 > 0.0))
+        na = (f & 4) != 0 and ((Ad0 > 0.0) != (Ad1 > 0.0) or (Add0 > 0.0) != (Add1 > 0.0))
         td = tv = ta = -1.0
         if nd or nv or na:
             bet = -slope / w2
@@ -309,17 +321,17 @@ def _ground_search(
             for j in range(2, K - 1):
                 Q[j + 2] = (-c2 * (j + 1) * Q[j + 1] - w2 * Q[j]) / ((j + 1) * (j + 2))
             if nd:
-                pk[0] = max(pk[0], abs(q), abs(qn), _interior_peak(Q, K, h, td))
+                pk[0] = max(pk[0], abs(q), abs(qn), _interior_peak(Q, K, h, td, work))
             if nv:
                 for j in range(K):
                     poly[j] = (j + 1) * Q[j + 1]
                 poly[K] = 0.0
-                pk[1] = max(pk[1], abs(v), abs(vn), _interior_peak(poly, K, h, tv))
+                pk[1] = max(pk[1], abs(v), abs(vn), _interior_peak(poly, K, h, tv, work))
             if na:
                 for j in range(K):
                     poly[j] = w2 * Q[j] + c2 * (j + 1) * Q[j + 1]
                 poly[K] = w2 * Q[K]
-                pk[2] = max(pk[2], abs(A0), abs(A1), _interior_peak(poly, K, h, ta))
+                pk[2] = max(pk[2], abs(A0), abs(A1), _interior_peak(poly, K, h, ta, work))
         q = qn
         v = vn
 
@@ -395,13 +407,21 @@ def _stage_ground(C, S, flag, nb, a, a1, dt):
         sa = pa - max(abs(A0), abs(A1))
         ad0 = w2 * v0 + c2 * d0
         ad1 = w2 * v1 + c2 * d1
+        # third derivative of q and second of w²q + 2ξwq' at the ends
+        j0 = -slope - c2 * d0 - w2 * v0
+        j1 = -slope - c2 * d1 - w2 * v1
+        add0 = w2 * d0 + c2 * j0
+        add1 = w2 * d1 + c2 * j1
         ld = C[KD2 * NB + o] * cm2 > sd * sd
         lv = C[KV2 * NB + o] * cm2 > sv * sv
         la = C[KA2 * NB + o] * cm2 > sa * sa
         many = C[ONE * NB + o] == 0.0
-        fd = bd & ld & (many | (v0 * v1 <= 0.0))
+        # with w·dt ≤ 0.5 every derivative of the damped free vibration has at most one zero in
+        # the step, so a quantity (linear + free vibration) has at most one critical point
+        # unless its second derivative changes sign: both signs are checked
+        fd = bd & ld & (many | (v0 * v1 <= 0.0) | (d0 * d1 <= 0.0))
         fv = bv & lv & (many | (d0 * d1 <= 0.0))
-        fa = ba & la & (many | (ad0 * ad1 <= 0.0))
+        fa = ba & la & (many | (ad0 * ad1 <= 0.0) | (add0 * add1 <= 0.0))
         f = fd + 2 * fv + 4 * fa
         flag[o] = f
         nf += f
@@ -430,7 +450,6 @@ def _stage_floor(C, S, flag, nb, a, a1, dt, f0, f1, fdev, abound):
     for o in range(nb):
         q0 = S[_Q * NB + o]
         v0 = S[_V * NB + o]
-        d0 = S[_D * NB + o]
         w2 = C[W2 * NB + o]
         c2 = C[C2 * NB + o]
         q1 = (
@@ -448,7 +467,6 @@ def _stage_floor(C, S, flag, nb, a, a1, dt, f0, f1, fdev, abound):
             + S[_CP1 * NB + o]
         )
         A1 = w2 * q1 + c2 * v1
-        d1 = -(f1 + A1)
         pd = max(S[_PD * NB + o], abs(q1))
         pv = max(S[_PV * NB + o], abs(v1))
         pa = max(S[_PA * NB + o], abs(A1))
@@ -464,12 +482,11 @@ def _stage_floor(C, S, flag, nb, a, a1, dt, f0, f1, fdev, abound):
         bd = max(abs(alp), abs(alp + bet * dt)) + cm + fdev * C[IH0 * NB + o]
         bv = abs(bet) + C[W * NB + o] * cm + fdev * C[IH1 * NB + o]
         ba = abound + C[SA * NB + o] * cm + fdev * C[IH2 * NB + o]
-        ad0 = w2 * v0 + c2 * d0
-        ad1 = w2 * v1 + c2 * d1
-        many = C[ONE * NB + o] == 0.0
-        fd = ((v0 * v1 <= 0.0) | many) & (bd > pd)
-        fv = ((d0 * d1 <= 0.0) | many) & (bv > pv)
-        fa = ((ad0 * ad1 <= 0.0) | many) & (ba > pa)
+        # no sign rule on a floor: the floor motion is a sum of modes, and a quantity may have
+        # several critical points in a step whatever its derivatives do at the ends
+        fd = bd > pd
+        fv = bv > pv
+        fa = ba > pa
         f = fd + 2 * fv + 4 * fa
         flag[o] = f
         nf += f
@@ -477,7 +494,6 @@ def _stage_floor(C, S, flag, nb, a, a1, dt, f0, f1, fdev, abound):
         S[_VS * NB + o] = v0
         S[_Q * NB + o] = q1
         S[_V * NB + o] = v1
-        S[_D * NB + o] = d1
     return nf
 
 
@@ -572,6 +588,7 @@ def spectrum_kernel(
     c = np.zeros(Kmax + 2)
     Q = np.zeros(Kmax + 2)
     poly = np.zeros(Kmax + 2)
+    work = scratch(Kmax + 2)
     S = np.zeros((nblk, NSTATE * NB))
     for blk in range(nblk):
         for o in range(NB):
@@ -680,6 +697,7 @@ def spectrum_kernel(
                             pk,
                             Q,
                             poly,
+                            work,
                         )
                         Sb[_PD * NB + o] = pk[0]
                         Sb[_PV * NB + o] = pk[1]
@@ -733,6 +751,7 @@ def spectrum_kernel(
                         c,
                         Q,
                         poly,
+                        work,
                     )
                     Sb[_PD * NB + o] = out[og, 0]
                     Sb[_PV * NB + o] = out[og, 1]
