@@ -25,21 +25,12 @@ __all__ = ["Peaks", "check_record", "floor_motions", "peak_floor_acceleration", 
 METHODS = ("exact", "zoh", "newmark", "forced_response")
 
 
-_STEPPERS: dict = {}
-
-
 def stepper(building: LinearBuilding, dt: float, substeps: int | None = None) -> ExactStepper:
-    """The exact stepper of `building` for record step `dt` (memoised per building object)."""
-    key = (id(building), float(dt), substeps)
-    hit = _STEPPERS.get(key)
-    if hit is not None and hit[0] is building:
-        return hit[1]
+    """The exact stepper of `building` for record step `dt` (built on each call: a matrix
+    exponential of the building's small state matrix, microseconds; no module-level memo whose
+    entries could outlive or mismatch the building)."""
     A, B = building.state_matrices()
-    st = ExactStepper.build(A, B[:, 0], dt, substeps)
-    if len(_STEPPERS) > 64:
-        _STEPPERS.clear()
-    _STEPPERS[key] = (building, st)
-    return st
+    return ExactStepper.build(A, B[:, 0], dt, substeps)
 
 
 def floor_motions(

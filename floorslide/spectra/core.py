@@ -40,7 +40,6 @@ from floorslide.spectra._kernels import NB, NCOEF, spectrum_kernel
 
 # running totals of the kernel's work (diagnostics for benchmarks): oscillator-steps searched
 # inside, floor sub-step data computed
-SEARCHED = np.zeros(2, dtype=np.int64)
 METHODS = ("exact", "samples", "newmark", "fft", "reinterpolated")
 
 
@@ -277,7 +276,7 @@ def _kernel_data(dt: float, T_bytes: bytes, Z_bytes: bytes, n: int, system: byte
     damping ratios ``Z`` on a floor whose state-space data (``n`` states; ``A``, ``b``, ``Ca``,
     ``da`` packed in ``system``) is given, or on the ground (``n = 0``). Cached: a study asks for
     the same periods, damping ratios, dt and building record after record. The arrays returned
-    are shared between calls and must not be written."""
+    are shared between calls: they are returned read-only."""
     T = np.frombuffer(T_bytes)
     Z = np.frombuffer(Z_bytes)
     on_floor = n > 0
@@ -345,7 +344,7 @@ def _kernel_data(dt: float, T_bytes: bytes, Z_bytes: bytes, n: int, system: byte
             G_beta[g, : R.shape[1]] = beta[0]
     Ih = _impulse_integrals(w, xi, dt) if on_floor else np.zeros((3, nosc))
     C, PX = _blocks(w, xi, dt, Pqq, Pqx, pq, qq, one_crit, Ih)
-    return (
+    return _read_only(
         phi,
         p,
         q,
@@ -376,8 +375,21 @@ def _kernel_data(dt: float, T_bytes: bytes, Z_bytes: bytes, n: int, system: byte
     )
 
 
-def _exact(a, dt, T, Z, building, floor, search_all=False):
-    """Exact spectra on the ground or a floor; returns sd, sv, sa of shape (len(Z), len(T))."""
+def _read_only(*items) -> tuple:
+    """``items`` with every array made read-only (they are cached and shared)."""
+    for x in items:
+        if isinstance(x, np.ndarray):
+            x.setflags(write=False)
+    return items
+
+
+def _exact(a, dt, T, Z, building, floor, search_all=False, counts=None):
+    """Exact spectra on the ground or a floor; returns sd, sv, sa of shape (len(Z), len(T)).
+
+    ``counts`` (``int64[2]``, optional) is incremented by the oscillator·steps searched inside
+    the step and the floor sub-step data computed (benchmarks report the search fraction)."""
+    if counts is None:
+        counts = np.zeros(2, dtype=np.int64)
     on_floor = building is not None and building.dof_of(floor) is not None
     if on_floor:
         A, B = building.state_matrices()
@@ -396,7 +408,7 @@ def _exact(a, dt, T, Z, building, floor, search_all=False):
     )
     nosc = args[5].size
     out = np.zeros((nosc, 3))
-    spectrum_kernel(args[0], args[1], args[2], a, up, h, *args[3:], search_all, out, SEARCHED)
+    spectrum_kernel(args[0], args[1], args[2], a, up, h, *args[3:], search_all, out, counts)
     sd = np.zeros((Z.size, T.size))
     sv = np.zeros((Z.size, T.size))
     sa = np.zeros((Z.size, T.size))
