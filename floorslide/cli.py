@@ -529,7 +529,9 @@ def run(scene, out, dry_run, resume, workers, scheduler, force):
     from floorslide.scene.schema import load_scene
 
     sc = load_scene(scene)
-    plan = make_plan(sc, force=force)
+    # the per-object rules need each task's true PFA: the dry run evaluates them to count them;
+    # a real run leaves them to the tasks, so each building is integrated once per record
+    plan = make_plan(sc, force=force, evaluate=dry_run)
     if dry_run:
         click.echo(plan.describe())
         sys.exit(EXIT_RECORD if plan.failures else EXIT_OK)
