@@ -33,6 +33,13 @@ from floorslide.numerics.polynomial import (
 STICK = 0
 FLIGHT = 2
 
+# columns of an object's state, shared by the kernel and its wrapper (``contents.sliding``)
+MODE, VEL, DISP, PEAK_DISP, T_PEAK, SLIDE_TIME, SLIPS, PEAK_ACC, LIMIT_AT = range(9)
+"""Mode (0 stick, ±1 slip, 2 flight; a float), relative velocity and slide, peak |slide| and
+its time, time spent sliding, slip phases, peak absolute acceleration of the object, start of
+the first sub-step where the event limit was reached (−1: never)."""
+NCOL = 9
+
 
 @njit(cache=True, inline="always")
 def _dot_state(row, x):
@@ -79,14 +86,13 @@ def _general(
 
     ``c`` holds the Taylor coefficients (degree ``K``) of the floor's absolute acceleration in
     the sub-step; the normal acceleration is ``n0 + sn·τ`` (``g`` without vertical motion).
-    ``state`` = [mode, v, u, peak_u, t_peak, slide_time, n_slips, peak_abs, first sub-step
-    start where more than ``max_events`` events were needed (−1 if none)].
+    ``state``: one object's row (columns :data:`MODE` … :data:`LIMIT_AT`).
     ``work`` is scratch of length ≥ 4K + 16, ``rw`` that of the root isolation
     (:func:`floorslide.numerics.polynomial.scratch`).
     """
-    mode = int(state[0])
-    v = state[1]
-    u = state[2]
+    mode = int(state[MODE])
+    v = state[VEL]
+    u = state[DISP]
     tau = 0.0
     if not has_vert:
         n0 = g
@@ -99,8 +105,8 @@ def _general(
     guard = 0
     while tau < h:
         if guard >= max_events:
-            if state[8] < 0.0:
-                state[8] = t0
+            if state[LIMIT_AT] < 0.0:
+                state[LIMIT_AT] = t0
             break
         guard += 1
         # normal-force interval [tau, tau_end]
@@ -125,25 +131,25 @@ def _general(
             # u(τ) = u + pu(τ) − pu(tau): the velocity may reverse in flight, so |u| can peak
             # inside it (every critical point, rigorous)
             pu[0] = u - poly_val(pu, deg_u, tau)
-            m, tm = max_abs_above(pu, deg_u, tau, tau_end, state[3], rw)
-            if m > state[3]:
-                state[3] = m
-                state[4] = t0 + (tm if tm >= 0.0 else tau_end)
+            m, tm = max_abs_above(pu, deg_u, tau, tau_end, state[PEAK_DISP], rw)
+            if m > state[PEAK_DISP]:
+                state[PEAK_DISP] = m
+                state[T_PEAK] = t0 + (tm if tm >= 0.0 else tau_end)
             u = poly_val(pu, deg_u, tau_end)
             v = poly_val(pv, deg_v, tau_end)
             mode = FLIGHT
             tau = tau_end
-            if abs(u) > state[3]:
-                state[3] = abs(u)
-                state[4] = t0 + tau
+            if abs(u) > state[PEAK_DISP]:
+                state[PEAK_DISP] = abs(u)
+                state[T_PEAK] = t0 + tau
             continue
         if mode == FLIGHT:
             if v > 0.0:
                 mode = 1
-                state[6] += 1
+                state[SLIPS] += 1
             elif v < 0.0:
                 mode = -1
-                state[6] += 1
+                state[SLIPS] += 1
             else:
                 mode = STICK
         if mode == STICK:
@@ -154,12 +160,12 @@ def _general(
             if a_now > fb_now and allow_neg:
                 mode = -1
                 v = 0.0
-                state[6] += 1
+                state[SLIPS] += 1
                 continue
             if a_now < -fb_now and allow_pos:
                 mode = 1
                 v = 0.0
-                state[6] += 1
+                state[SLIPS] += 1
                 continue
             # first instant the floor acceleration leaves [-mub N, mub N] in an allowed way
             t_up = -1.0
@@ -188,19 +194,19 @@ def _general(
                 new_mode = 1
             t_stop = tau_end if t_ev < 0.0 else t_ev
             # the object moves with its floor on [tau, t_stop]
-            a_abs, _ = max_abs_above(c, K, tau, t_stop, state[7], rw)
+            a_abs, _ = max_abs_above(c, K, tau, t_stop, state[PEAK_ACC], rw)
             # friction transmits at most mub·N (this only trims the rounding-level overshoot at
             # a breakaway and a floor already beyond breakaway at t = 0)
             a_abs = min(a_abs, mub * max(n0 + sn * tau, n0 + sn * t_stop))
-            if a_abs > state[7]:
-                state[7] = a_abs
+            if a_abs > state[PEAK_ACC]:
+                state[PEAK_ACC] = a_abs
             if t_ev < 0.0:
                 tau = tau_end
             else:
                 tau = t_ev
                 mode = new_mode
                 v = 0.0
-                state[6] += 1
+                state[SLIPS] += 1
             continue
         # slipping in direction s
         s = float(mode)
@@ -224,12 +230,12 @@ def _general(
             pu[j + 1] = pv[j] / (j + 1)
         u = u + poly_val(pu, deg_u, t_stop) - poly_val(pu, deg_u, tau)
         fk = muk * max(n0 + sn * tau, n0 + sn * t_stop)
-        if fk > state[7]:
-            state[7] = fk
-        state[5] += t_stop - tau
-        if abs(u) > state[3]:
-            state[3] = abs(u)
-            state[4] = t0 + t_stop
+        if fk > state[PEAK_ACC]:
+            state[PEAK_ACC] = fk
+        state[SLIDE_TIME] += t_stop - tau
+        if abs(u) > state[PEAK_DISP]:
+            state[PEAK_DISP] = abs(u)
+            state[T_PEAK] = t0 + t_stop
         if t_s < 0.0:
             v = poly_val(pv, deg_v, tau_end)
             tau = tau_end
@@ -242,15 +248,15 @@ def _general(
         fb = mub * (n0 + sn * tau)
         if a_now > fb and allow_neg:
             mode = -1
-            state[6] += 1
+            state[SLIPS] += 1
         elif a_now < -fb and allow_pos:
             mode = 1
-            state[6] += 1
+            state[SLIPS] += 1
         else:
             mode = STICK
-    state[0] = mode
-    state[1] = v
-    state[2] = u
+    state[MODE] = mode
+    state[VEL] = v
+    state[DISP] = u
 
 
 @njit(cache=True)
@@ -304,9 +310,8 @@ def slide_kernel(
     allow_pos, allow_neg
         Whether slip with positive / negative relative velocity is allowed.
     states
-        ``(n_obj, 9)`` in/out: mode, v, u, peak |u|, time of peak, slide time, slip phases,
-        peak object absolute acceleration, start of the first sub-step where more than
-        ``max_events`` events were needed (−1 if none: the caller reports it).
+        ``(n_obj, NCOL)`` in/out, columns :data:`MODE` … :data:`LIMIT_AT` (a reached event
+        limit is reported by the caller).
     hist_u, hist_v, hist_a
         ``(n_obj, npts)`` histories at the samples when ``want_hist``.
     liftoff
@@ -324,7 +329,7 @@ def slide_kernel(
     c = np.empty(K + 1)
     work = np.empty(4 * K + 16)
     rw = scratch(K + 3)
-    st = np.empty(9)
+    st = np.empty(NCOL)
     # weights of the curvature bound max|a_f''| ≤ Σ_i WX_i|x_i| + WA|a| + WS|slope| on a sub-step
     # (Σ_j j(j−1)h^{j−2}|c_j| with the Taylor coefficients c_j = R_j·x + β_j a + β_{j−1}/j·slope)
     WX = np.zeros(n)
@@ -346,11 +351,11 @@ def slide_kernel(
         # friction transmits at most mub·N: a block on a floor already beyond it at t = 0
         # slides from the start
         a_obj = min(abs(a_start), mub[i] * max(n_start, 0.0))
-        if a_obj > states[i, 7]:
-            states[i, 7] = a_obj
+        if a_obj > states[i, PEAK_ACC]:
+            states[i, PEAK_ACC] = a_obj
         if want_hist:
-            hist_u[i, 0] = states[i, 2]
-            hist_v[i, 0] = states[i, 1]
+            hist_u[i, 0] = states[i, DISP]
+            hist_v[i, 0] = states[i, VEL]
             hist_a[i, 0] = a_start
     for k in range(npts - 1):
         a = acc[k]
@@ -413,7 +418,7 @@ def slide_kernel(
                 nint = g * h
                 nint2 = g * h * h / 2.0
             for i in range(nobj):
-                mode = states[i, 0]
+                mode = states[i, MODE]
                 if mode == 0.0 and nmin > 0.0:
                     fb = mub[i] * nmin
                     while True:
@@ -425,18 +430,18 @@ def slide_kernel(
                         )
                         have_c = True
                     if ok:
-                        while max(amax, -amin) > states[i, 7] and level < 2:
+                        while max(amax, -amin) > states[i, PEAK_ACC] and level < 2:
                             amin, amax, level = _tighten(
                                 level, R, beta, x_prev, aa, slope, c, K, h, A0, A1, rw
                             )
                             have_c = True
                         ab_abs = max(amax, -amin)
-                        if ab_abs > states[i, 7]:
-                            states[i, 7] = ab_abs
+                        if ab_abs > states[i, PEAK_ACC]:
+                            states[i, PEAK_ACC] = ab_abs
                         continue
                 elif (mode == 1.0 or mode == -1.0) and nmin > 0.0:
                     sgn = mode
-                    v = states[i, 1]
+                    v = states[i, VEL]
                     v_end = v - dV - sgn * muk[i] * nint
                     fk = muk[i] * nmin
                     if sgn * v_end > 0.0:
@@ -449,20 +454,20 @@ def slide_kernel(
                             )
                             have_c = True
                         if monotone:
-                            u = states[i, 2] + v * h - dD - sgn * muk[i] * nint2
-                            states[i, 1] = v_end
-                            states[i, 2] = u
-                            states[i, 5] += h
-                            if abs(u) > states[i, 3]:
-                                states[i, 3] = abs(u)
-                                states[i, 4] = t0 + h
-                            if muk[i] * nmax > states[i, 7]:
-                                states[i, 7] = muk[i] * nmax
+                            u = states[i, DISP] + v * h - dD - sgn * muk[i] * nint2
+                            states[i, VEL] = v_end
+                            states[i, DISP] = u
+                            states[i, SLIDE_TIME] += h
+                            if abs(u) > states[i, PEAK_DISP]:
+                                states[i, PEAK_DISP] = abs(u)
+                                states[i, T_PEAK] = t0 + h
+                            if muk[i] * nmax > states[i, PEAK_ACC]:
+                                states[i, PEAK_ACC] = muk[i] * nmax
                             continue
                 if not have_c:
                     taylor_coefficients(R, beta, x_prev, aa, slope, c)
                     have_c = True
-                for j in range(9):
+                for j in range(NCOL):
                     st[j] = states[i, j]
                 _general(
                     c,
@@ -482,13 +487,13 @@ def slide_kernel(
                     rw,
                     max_events,
                 )
-                for j in range(9):
+                for j in range(NCOL):
                     states[i, j] = st[j]
             if want_hist and r == substeps - 1:
                 for i in range(nobj):
-                    hist_u[i, k + 1] = states[i, 2]
-                    hist_v[i, k + 1] = states[i, 1]
-                    m = states[i, 0]
+                    hist_u[i, k + 1] = states[i, DISP]
+                    hist_v[i, k + 1] = states[i, VEL]
+                    m = states[i, MODE]
                     if m == 0.0:
                         hist_a[i, k + 1] = A1
                     elif m == FLIGHT:

@@ -29,6 +29,18 @@ from floorslide.building._instep import (
 )
 from floorslide.numerics.polynomial import first_rise, max_abs_above, scratch
 
+# columns of an oscillator's state, shared by the kernel and its wrapper (``contents.oscillator``)
+O_MODE = 0
+"""Phase: 0 stick, ±1 slip with that sign of the base's relative velocity (a float)."""
+O_U, O_V, O_Z, O_ZD = 1, 2, 3, 4
+"""Base slide and its velocity, spring deformation and its rate."""
+O_PEAK_U, O_PEAK_Z, O_PEAK_TOP, O_PEAK_BASE = 5, 6, 7, 8
+"""Peaks of |u|, |z|, and of the top and base absolute accelerations."""
+O_SLIDE_TIME, O_SLIPS, O_LIMIT_AT = 9, 10, 11
+"""Time spent sliding, slip phases, start of the first sub-step where the event limit was
+reached (−1: never)."""
+O_NCOL = 12
+
 
 @njit(cache=True)
 def _shift(c, K, tau, out):
@@ -107,9 +119,8 @@ def oscillator_kernel(
 ):
     """Advance 2-DOF sliding oscillators (one per friction pair) through the record.
 
-    ``states[i]`` = [mode, u, v, z, zd, peak|u|, peak|z|, peak|a_top|, peak|a_base|, slide time,
-    slip phases, time of the first sub-step that needed more than ``max_events`` events (−1 if
-    none)]; ``hist[i, k]`` = [u, z, a_top, a_base] at the samples when ``want_hist``.
+    ``states[i]``: columns :data:`O_MODE` … :data:`O_LIMIT_AT`; ``hist[i, k]`` = [u, z, a_top,
+    a_base] at the samples when ``want_hist``.
     """
     n = phi.shape[0]
     nobj = muk.size
@@ -142,11 +153,11 @@ def oscillator_kernel(
                 c[j] = 0.0
             taylor_coefficients(R, beta, x_prev, aa, slope, c[: kr + 1])
             for o in range(nobj):
-                mode = int(states[o, 0])
+                mode = int(states[o, O_MODE])
                 for i in range(4):
-                    y[i] = states[o, 1 + i]
+                    y[i] = states[o, O_U + i]
                 for i in range(4):
-                    pk[i] = states[o, 5 + i]
+                    pk[i] = states[o, O_PEAK_U + i]
                 fb = mub[o] * (1.0 + r) * g
                 fk = muk[o]
                 tau = 0.0
@@ -154,8 +165,8 @@ def oscillator_kernel(
                 start = False
                 while tau < h:
                     if guard >= max_events:
-                        if states[o, 11] < 0.0:
-                            states[o, 11] = (k * substeps + sub) * h
+                        if states[o, O_LIMIT_AT] < 0.0:
+                            states[o, O_LIMIT_AT] = (k * substeps + sub) * h
                         break
                     guard += 1
                     _shift(c, K, tau, cs)
@@ -213,7 +224,7 @@ def oscillator_kernel(
                             poly[j] = (c2 * Y[3, j] + w2 * Y[2, j]) / r
                         poly[0] -= sgn * fk * g * (1.0 + r) / r
                         _update_peak(poly, K, 0.0, t_end, pk, 3, work)
-                        states[o, 9] += t_end
+                        states[o, O_SLIDE_TIME] += t_end
                     for i in range(4):
                         y[i] = poly_val(Y[i], K, t_end)
                     tau += t_end
@@ -232,14 +243,14 @@ def oscillator_kernel(
                     else:
                         y[1] = 0.0
                     if new_mode != 0:
-                        states[o, 10] += 1
+                        states[o, O_SLIPS] += 1
                         start = True
                     mode = new_mode
-                states[o, 0] = mode
+                states[o, O_MODE] = mode
                 for i in range(4):
-                    states[o, 1 + i] = y[i]
+                    states[o, O_U + i] = y[i]
                 for i in range(4):
-                    states[o, 5 + i] = pk[i]
+                    states[o, O_PEAK_U + i] = pk[i]
                 if want_hist and sub == substeps - 1:
                     af_end = poly_val(c, K, h)
                     q_ = c2 * y[3] + w2 * y[2]

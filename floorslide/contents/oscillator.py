@@ -19,6 +19,7 @@ import numpy as np
 from floorslide.building.exact import ExactStepper, spectral_radius, substeps_for, taylor_degree
 from floorslide.building.model import LinearBuilding
 from floorslide.constants import G
+from floorslide.contents import _oscillator_kernel as cols
 from floorslide.contents._oscillator_kernel import oscillator_kernel
 from floorslide.contents.events import OSCILLATOR_MAX_EVENTS, check_event_limit
 from floorslide.contents.sliding import friction_pairs
@@ -187,8 +188,8 @@ def slide_oscillator(
         phi, p, q = np.zeros((0, 0)), np.zeros(0), np.zeros(0)
         R = np.zeros((2, 0))
         beta = np.array([1.0, 0.0])
-    states = np.zeros((mk.size, 12))
-    states[:, 11] = -1.0
+    states = np.zeros((mk.size, cols.O_NCOL))
+    states[:, cols.O_LIMIT_AT] = -1.0
     hist = np.zeros((mk.size, a.size, 4) if histories else (0, 0, 4))
     if histories:
         hist[:, 0, 3] = beta[0] * a[0]
@@ -213,18 +214,20 @@ def slide_oscillator(
         histories,
         OSCILLATOR_MAX_EVENTS,
     )
-    check_event_limit(states[:, 11], mk, OSCILLATOR_MAX_EVENTS, "slide_oscillator")
+    check_event_limit(states[:, cols.O_LIMIT_AT], mk, OSCILLATOR_MAX_EVENTS, "slide_oscillator")
     duration = (a.size - 1) * dt
     return OscillatorResult(
         mu_k=mk,
         mu_s=ms,
-        peak_slide=states[:, 5].copy(),
-        residual_slide=states[:, 1].copy(),
-        peak_deformation=states[:, 6].copy(),
-        peak_top_accel=states[:, 7].copy(),
-        peak_base_accel=states[:, 8].copy(),
-        slide_fraction=states[:, 9] / duration if duration > 0 else np.zeros(mk.size),
-        slip_phases=states[:, 10].astype(int),
+        peak_slide=states[:, cols.O_PEAK_U].copy(),
+        residual_slide=states[:, cols.O_U].copy(),
+        peak_deformation=states[:, cols.O_PEAK_Z].copy(),
+        peak_top_accel=states[:, cols.O_PEAK_TOP].copy(),
+        peak_base_accel=states[:, cols.O_PEAK_BASE].copy(),
+        slide_fraction=states[:, cols.O_SLIDE_TIME] / duration
+        if duration > 0
+        else np.zeros(mk.size),
+        slip_phases=states[:, cols.O_SLIPS].astype(int),
         u=hist[:, :, 0].copy() if histories else None,
         z=hist[:, :, 1].copy() if histories else None,
         top_accel=hist[:, :, 2].copy() if histories else None,

@@ -35,6 +35,7 @@ isolation. A test checks that searching every step gives the same spectra.
 from __future__ import annotations
 
 import math
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -497,42 +498,42 @@ def _stage_floor(C, S, flag, nb, a, a1, dt, f0, f1, fdev, abound):
     return nf
 
 
+class SpectrumSetup(NamedTuple):
+    """Everything the spectrum kernel needs but the record, for one grid of periods and damping
+    ratios on one floor (or the ground) and one step; built by ``core._kernel_data``. The field
+    descriptions are those of :func:`spectrum_kernel`'s parameters."""
+
+    phi: Any
+    p: Any
+    q: Any
+    C: Any
+    PX: Any
+    w: Any
+    xi: Any
+    b_phi: Any
+    b_p: Any
+    b_q: Any
+    b_R: Any
+    b_beta: Any
+    b_K: Any
+    b_m: Any
+    grp: Any
+    G_m: Any
+    G_K: Any
+    K_osc: Any
+    G_phi: Any
+    G_p: Any
+    G_q: Any
+    G_R: Any
+    G_beta: Any
+    S_Pqq: Any
+    S_Pqx: Any
+    S_pq: Any
+    S_qq: Any
+
+
 @njit(cache=True)
-def spectrum_kernel(
-    phi,
-    p,
-    q,
-    acc,
-    up,
-    dt,
-    C,
-    PX,
-    w,
-    xi,
-    b_phi,
-    b_p,
-    b_q,
-    b_R,
-    b_beta,
-    b_K,
-    b_m,
-    grp,
-    G_m,
-    G_K,
-    K_osc,
-    G_phi,
-    G_p,
-    G_q,
-    G_R,
-    G_beta,
-    S_Pqq,
-    S_Pqx,
-    S_pq,
-    S_qq,
-    search_all,
-    out,
-    counts,
-):
+def spectrum_kernel(setup, acc, up, dt, search_all, out, counts):
     """Peaks of a bank of oscillators on one floor.
 
     Every oscillator is advanced at the record step by its exact recurrence (coupled to the
@@ -541,6 +542,8 @@ def spectrum_kernel(
 
     Parameters
     ----------
+    setup
+        :class:`SpectrumSetup`; its fields:
     phi, p, q
         Exact record-step recurrence of the building (empty on the ground).
     acc, up, dt
@@ -571,6 +574,33 @@ def spectrum_kernel(
     counts
         ``int64[2]``, incremented: oscillator-steps searched, floor sub-step data computed.
     """
+    phi = setup.phi
+    p = setup.p
+    q = setup.q
+    C = setup.C
+    PX = setup.PX
+    w = setup.w
+    xi = setup.xi
+    b_phi = setup.b_phi
+    b_p = setup.b_p
+    b_q = setup.b_q
+    b_R = setup.b_R
+    b_beta = setup.b_beta
+    b_K = setup.b_K
+    b_m = setup.b_m
+    grp = setup.grp
+    G_m = setup.G_m
+    G_K = setup.G_K
+    K_osc = setup.K_osc
+    G_phi = setup.G_phi
+    G_p = setup.G_p
+    G_q = setup.G_q
+    G_R = setup.G_R
+    G_beta = setup.G_beta
+    S_Pqq = setup.S_Pqq
+    S_Pqx = setup.S_Pqx
+    S_pq = setup.S_pq
+    S_qq = setup.S_qq
     n = phi.shape[0]
     nblk = C.shape[0]
     nosc = w.size
