@@ -48,7 +48,7 @@ from floorslide.building._instep import (
     substep_inputs,
     taylor_coefficients,
 )
-from floorslide.numerics.polynomial import extreme_values, max_abs_above, scratch
+from floorslide.numerics.polynomial import extreme_values, scratch
 
 
 @njit(cache=True)
@@ -57,12 +57,14 @@ def _floor_bound(phi_s, p_s, q_s, R, beta, K, x, a, a1, ms, hs, c, xs, xn, f0, f
     sub-steps of ``hs``): its largest deviation from the straight line between its step-end
     values ``f0, f1``, ``δ ≤ (ms·hs)²/8·max|a_f''|``, and ``max|a_f| ≤ max(|f0|, |f1|) + δ``.
     On each sub-step ``a_f`` is its Taylor polynomial ``Σ c_j τ^j`` (equal to it to rounding),
-    so ``|a_f''| ≤ Σ j(j−1)|c_j| hs^{j−2}``."""
+    so ``|a_f''| ≤ Σ j(j−1)|c_j| hs^{j−2}``; likewise ``|a_f'| ≤ Σ j|c_j| hs^{j−1}``, the third
+    value returned."""
     n = x.size
     slope = (a1 - a) / (ms * hs)
     for i in range(n):
         xs[i] = x[i]
     m2 = 0.0
+    m1 = 0.0
     for r in range(ms):
         aa, ab = substep_inputs(a, a1, r, ms)
         for j in range(K + 1):
@@ -72,12 +74,16 @@ def _floor_bound(phi_s, p_s, q_s, R, beta, K, x, a, a1, ms, hs, c, xs, xn, f0, f
         for j in range(K, 1, -1):
             s2 = s2 * hs + j * (j - 1) * abs(c[j])
         m2 = max(m2, s2)
+        s1 = 0.0
+        for j in range(K, 0, -1):
+            s1 = s1 * hs + j * abs(c[j])
+        m1 = max(m1, s1)
         if r + 1 < ms:
             foh_step(phi_s, p_s, q_s, xs, aa, ab, xn)
             for i in range(n):
                 xs[i] = xn[i]
     dev = (ms * hs) ** 2 / 8.0 * m2
-    return max(abs(f0), abs(f1)) + dev, dev
+    return max(abs(f0), abs(f1)) + dev, dev, m1
 
 
 @njit(cache=True, inline="always")
@@ -119,24 +125,10 @@ def _hermite_max(f0, d0, f1, d1, h):
 
 
 @njit(cache=True)
-def _interior_peak(c, K, h, t0, work):
-    """``max |p|`` over the critical points of ``p = Σ_{j≤K} c_j τ^j`` inside ``(0, h)``, for the
-    response of one oscillator on the ground (``p`` is a linear function plus a damped sinusoid
-    with ``ω·h ≤ 0.5``, so ``p''`` has at most one zero in the sub-step).
-
-    When ``p'`` changes sign between the ends and ``p''`` does not, ``p'`` is monotone and has
-    exactly one root: Newton on ``p'`` from the estimate ``t0``, safeguarded by bisection. In
-    every other case (``p''`` changes sign: ``p'`` may have two roots or none; rounding at an
-    end) every critical point is isolated rigorously (:func:`extreme_values`).
-    """
-    d_lo = poly_der(c, K, 0.0)
-    d_hi = poly_der(c, K, h)
-    e_lo = poly_der2(c, K, 0.0)
-    e_hi = poly_der2(c, K, h)
-    single = (d_lo > 0.0) != (d_hi > 0.0) and d_lo != 0.0 and d_hi != 0.0
-    if not single or (e_lo > 0.0) != (e_hi > 0.0) or e_lo == 0.0 or e_hi == 0.0:
-        vmin, _, vmax, _ = extreme_values(c, K, 0.0, h, work)
-        return max(vmax, -vmin)
+def _newton_peak(c, K, h, t0, d_lo):
+    """``|p|`` at the single root of ``p'`` in ``(0, h)``, given that ``p'`` is monotone there
+    and changes sign (``d_lo = p'(0)``): Newton from ``t0``, safeguarded by bisection (``p'`` and
+    ``p''`` evaluated together, two independent Horner chains)."""
     lo = 0.0
     hi = h
     x = t0 if 0.0 < t0 < h else 0.5 * h
@@ -161,6 +153,63 @@ def _interior_peak(c, K, h, t0, work):
             break
         x = xn
     return abs(poly_val(c, K, x))
+
+
+@njit(cache=True)
+def _floor_peak(c, K, h, level, work):
+    """``max |p|`` on ``[0, h]`` when it can exceed ``level`` (else a value ``≤ level``), for a
+    response on a floor, with no assumption on its number of critical points.
+
+    Rigorous filters first, cheapest first, with ``M_k`` the bound ``Σ_j j!/(j−k)!·|c_j|h^{j−k}``
+    of ``|p^(k)|`` on the sub-step: the chord (ends ``+ h²/8·M_2 ≤ level``: nothing to find);
+    ``p'`` of one sign at both ends and farther from zero than ``h²/8·M_3`` (``p`` monotone);
+    ``|p''(0)| > h·M_3`` (``p'`` monotone: at most one critical point, found by Newton).
+    Otherwise every critical point is isolated (:func:`extreme_values`).
+    """
+    v0 = abs(c[0])
+    v1 = abs(poly_val(c, K, h))
+    ends = max(v0, v1)
+    m2 = 0.0
+    m3 = 0.0
+    for j in range(K, 1, -1):
+        m2 = m2 * h + j * (j - 1) * abs(c[j])
+        if j >= 3:
+            m3 = m3 * h + j * (j - 1) * (j - 2) * abs(c[j])
+    k8 = 0.125 * h * h
+    if ends + k8 * m2 <= level:
+        return ends
+    d0 = c[1]
+    d1 = poly_der(c, K, h)
+    if d0 * d1 > 0.0 and min(abs(d0), abs(d1)) > k8 * m3:
+        return ends
+    if abs(2.0 * c[2]) > h * m3:
+        if d0 * d1 < 0.0:
+            return max(ends, _newton_peak(c, K, h, 0.5 * h, d0))
+        return ends
+    vmin, _, vmax, _ = extreme_values(c, K, 0.0, h, work)
+    return max(vmax, -vmin)
+
+
+@njit(cache=True)
+def _interior_peak(c, K, h, t0, work):
+    """``max |p|`` over the critical points of ``p = Σ_{j≤K} c_j τ^j`` inside ``(0, h)``, for the
+    response of one oscillator on the ground (``p`` is a linear function plus a damped sinusoid
+    with ``ω·h ≤ 0.5``, so ``p''`` has at most one zero in the sub-step).
+
+    When ``p'`` changes sign between the ends and ``p''`` does not, ``p'`` is monotone and has
+    exactly one root: Newton on ``p'`` from the estimate ``t0``, safeguarded by bisection. In
+    every other case (``p''`` changes sign: ``p'`` may have two roots or none; rounding at an
+    end) every critical point is isolated rigorously (:func:`extreme_values`).
+    """
+    d_lo = poly_der(c, K, 0.0)
+    d_hi = poly_der(c, K, h)
+    e_lo = poly_der2(c, K, 0.0)
+    e_hi = poly_der2(c, K, h)
+    single = (d_lo > 0.0) != (d_hi > 0.0) and d_lo != 0.0 and d_hi != 0.0
+    if not single or (e_lo > 0.0) != (e_hi > 0.0) or e_lo == 0.0 or e_hi == 0.0:
+        vmin, _, vmax, _ = extreme_values(c, K, 0.0, h, work)
+        return max(vmax, -vmin)
+    return _newton_peak(c, K, h, t0, d_lo)
 
 
 @njit(cache=True)
@@ -196,7 +245,7 @@ def _search_step(
     motion is a sum of the building's modes, with no bound on the critical points a quantity
     may have in a sub-step; each needed quantity is therefore first filtered by a rigorous
     bound (its end values plus the chord deviation ``h²/8·max|p''|``) and, when that can exceed
-    its peak, searched over every critical point (:func:`max_abs_above`). ``n`` is the number
+    its peak, searched over every critical point (:func:`_floor_peak`). ``n`` is the number
     of building states; the ground has its own :func:`_ground_search`.
     """
     m = gm
@@ -221,19 +270,19 @@ def _search_step(
         for j in range(K - 1):
             Q[j + 2] = (-c2 * (j + 1) * Q[j + 1] - w2 * Q[j] - c[j]) / ((j + 1) * (j + 2))
         if need[0]:
-            pk, _ = max_abs_above(Q, K, 0.0, h, out[o, 0], work)
+            pk = _floor_peak(Q, K, h, out[o, 0], work)
             out[o, 0] = max(out[o, 0], abs(qn), pk)
         if need[1]:
             for j in range(K):
                 poly[j] = (j + 1) * Q[j + 1]
             poly[K] = 0.0
-            pk, _ = max_abs_above(poly, K, 0.0, h, out[o, 1], work)
+            pk = _floor_peak(poly, K, h, out[o, 1], work)
             out[o, 1] = max(out[o, 1], abs(vn), pk)
         if need[2]:
             for j in range(K):
                 poly[j] = w2 * Q[j] + c2 * (j + 1) * Q[j + 1]
             poly[K] = w2 * Q[K]
-            pk, _ = max_abs_above(poly, K, 0.0, h, out[o, 2], work)
+            pk = _floor_peak(poly, K, h, out[o, 2], work)
             out[o, 2] = max(out[o, 2], abs(w2 * qn + c2 * vn), pk)
         q = qn
         v = vn
@@ -434,20 +483,28 @@ def _stage_ground(C, S, flag, nb, a, a1, dt):
 
 
 @njit(cache=True)
-def _stage_floor(C, S, flag, nb, a, a1, dt, f0, f1, fdev, abound):
+def _stage_floor(C, S, flag, nb, a, a1, dt, f0, f1, fdev, abound, jbound):
     """Advance the first ``nb`` oscillators of a block by one record step on a floor (coupled to
     the building state through rows ``_CP0, _CP1``) and flag those whose peaks may grow inside
     it; returns the number of flags set.
 
     The ground values ``a, a1`` drive the update; the floor acceleration is ``f0, f1`` at the
-    step ends, deviates from the line through them by at most ``fdev`` and is at most ``abound``
-    in magnitude. A quantity is flagged when its bound (particular solution for that line + free
-    vibration + response to the deviation, ``fdev·∫|h|``, see the module notes) exceeds its peak
-    so far and, for oscillators with at most one critical point per step (row ``ONE``), its
-    derivative changes sign. Branch-free on purpose: the compiler vectorises it.
+    step ends, deviates from the line through them by at most ``fdev``, is at most ``abound``
+    in magnitude and changes at a rate of at most ``jbound``. A quantity is flagged when both
+    its bound (particular solution for that line + free vibration + response to the deviation,
+    ``fdev·∫|h|``, see the module notes) and its end values plus its chord deviation
+    (``dt²/8`` times a bound of its second derivative from the equation of motion) exceed its
+    peak so far, and its derivative may vanish in the step: it changes sign between the ends, or
+    one end value is within the chord deviation of the derivative (``dt²/8`` times a bound of
+    the quantity's third derivative), so that a pair of close zeros cannot be excluded. (No
+    plain sign rule: on a floor a quantity may have several critical points in a step.)
+    Branch-free on purpose: the compiler vectorises it.
     """
     nf = 0
     fslope = (f1 - f0) / dt
+    # loop invariants hoisted by hand: a division inside the loop stops the vectoriser
+    k8 = 0.125 * dt * dt
+    m2f = 8.0 * fdev / (dt * dt)  # bound of |a_f''| on the step
     for o in range(nb):
         q0 = S[_Q * NB + o]
         v0 = S[_V * NB + o]
@@ -483,11 +540,32 @@ def _stage_floor(C, S, flag, nb, a, a1, dt, f0, f1, fdev, abound):
         bd = max(abs(alp), abs(alp + bet * dt)) + cm + fdev * C[IH0 * NB + o]
         bv = abs(bet) + C[W * NB + o] * cm + fdev * C[IH1 * NB + o]
         ba = abound + C[SA * NB + o] * cm + fdev * C[IH2 * NB + o]
-        # no sign rule on a floor: the floor motion is a sum of modes, and a quantity may have
-        # several critical points in a step whatever its derivatives do at the ends
-        fd = bd > pd
-        fv = bv > pv
-        fa = ba > pa
+        # no sign rule on a floor (the floor motion is a sum of modes: a quantity may have
+        # several critical points in a step whatever its derivatives do at the ends); instead
+        # its end values plus the chord deviation dt²/8·max|f''|, with max|f''| bounded from the
+        # equation of motion: |q''| ≤ max|a_f| + 2ξω·max|q'| + ω²·max|q|, |q(3)| ≤ max|a_f'| +
+        # 2ξω·max|q''| + ω²·max|q'|, |(ω²q + 2ξωq')''| ≤ ω²·max|q''| + 2ξω·max|q(3)|
+        m2q = abound + c2 * bv + w2 * bd
+        m2v = jbound + c2 * m2q + w2 * bv
+        m2a = w2 * m2q + c2 * m2v
+        A0 = w2 * q0 + c2 * v0
+        # and its derivative may vanish in the step: it changes sign, or is within the chord
+        # deviation of its own derivative's bound (q(4) ≤ max|a_f''| + 2ξω·max|q(3)| + ω²·max|q''|)
+        m4q = m2f + c2 * m2v + w2 * m2q
+        m3a = w2 * m2v + c2 * m4q
+        d0 = -(f0 + A0)
+        d1 = -(f1 + A1)
+        ad0 = w2 * v0 + c2 * d0
+        ad1 = w2 * v1 + c2 * d1
+        zd = (v0 * v1 <= 0.0) | (abs(v0) <= k8 * m2v) | (abs(v1) <= k8 * m2v)
+        zv = (d0 * d1 <= 0.0) | (abs(d0) <= k8 * m4q) | (abs(d1) <= k8 * m4q)
+        za = (ad0 * ad1 <= 0.0) | (abs(ad0) <= k8 * m3a) | (abs(ad1) <= k8 * m3a)
+        ld = (abs(q0) + k8 * m2q > pd) | (abs(q1) + k8 * m2q > pd)
+        lv = (abs(v0) + k8 * m2v > pv) | (abs(v1) + k8 * m2v > pv)
+        la = (abs(A0) + k8 * m2a > pa) | (abs(A1) + k8 * m2a > pa)
+        fd = (bd > pd) & ld & zd
+        fv = (bv > pv) & lv & zv
+        fa = (ba > pa) & la & za
         f = fd + 2 * fv + 4 * fa
         flag[o] = f
         nf += f
@@ -632,7 +710,7 @@ def spectrum_kernel(setup, acc, up, dt, search_all, out, counts):
     XG = np.zeros((ngroups, G_m.max(), n))
     L = CHUNK
     XK = np.zeros((L, n))  # building state at the step starts of a chunk
-    FK = np.zeros((L, 4))  # floor: f0, f1, max|a_f|, deviation from the line
+    FK = np.zeros((L, 5))  # floor: f0, f1, max|a_f|, deviation from the line, max|a_f'|
     for k0 in range(0, npts - 1, L):
         k1 = min(k0 + L, npts - 1)
         # the building through this chunk, once for every block
@@ -647,13 +725,14 @@ def spectrum_kernel(setup, acc, up, dt, search_all, out, counts):
             f1 = b_beta[0] * a1  # floor acceleration at the step end
             for j in range(n):
                 f1 += b_R[0, j] * xe[j]
-            abound, fdev = _floor_bound(
+            abound, fdev, jbound = _floor_bound(
                 b_phi, b_p, b_q, b_R, b_beta, b_K, x, a, a1, b_m, dt / b_m, c, xs, xn, f0, f1
             )
             FK[k - k0, 0] = f0
             FK[k - k0, 1] = f1
             FK[k - k0, 2] = abound
             FK[k - k0, 3] = fdev
+            FK[k - k0, 4] = jbound
             for i in range(n):
                 x[i] = xe[i]
             f0 = f1
@@ -687,6 +766,7 @@ def spectrum_kernel(setup, acc, up, dt, search_all, out, counts):
                         FK[k - k0, 1],
                         FK[k - k0, 3],
                         FK[k - k0, 2],
+                        FK[k - k0, 4],
                     )
                     for g in range(ngroups):
                         ready[g] = False
