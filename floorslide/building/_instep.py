@@ -65,3 +65,51 @@ def taylor_coefficients(R, beta, x, a0, slope, out):
         if j >= 1:
             s += beta[j - 1] / j * slope
         out[j] = s
+
+
+@njit(cache=True)
+def curvature_tail_weights(R, beta, h, WX):
+    """Weights of the tail ``j ≥ 4`` of the bound ``max|y''| ≤ Σ_j j(j−1)h^{j−2}|c_j|`` on a
+    sub-step of length ``h`` for an output with Taylor rows ``R, beta`` (see
+    :func:`taylor_coefficients`): ``|c_j| ≤ Σ_i |R_ji||x_i| + |β_j||a| + |β_{j−1}|/j·|slope|``.
+    ``WX`` receives the per-state weights; returns ``(WA, WS)``, those of ``|a|`` and
+    ``|slope|``. The terms ``j = 2, 3`` are formed exactly by :func:`curvature_bound_at` (the
+    states of a building cancel in them: bounding them by absolute values would be loose)."""
+    n = WX.size
+    K = R.shape[0] - 1
+    for i in range(n):
+        WX[i] = 0.0
+    WA = 0.0
+    WS = 0.0
+    hj = h * h
+    for j in range(4, K + 1):
+        wj = j * (j - 1) * hj
+        for i in range(n):
+            WX[i] += wj * abs(R[j, i])
+        WA += wj * abs(beta[j])
+        WS += wj * abs(beta[j - 1]) / j
+        hj *= h
+    return WA, WS
+
+
+@njit(cache=True, inline="always")
+def curvature_bound_at(R, beta, x, a, slope, h, WX, WA, WS):
+    """Upper bound of ``|y''|`` on a sub-step from its start state ``x``, ground value ``a`` and
+    slope: ``2|c_2| + 6h|c_3|`` exactly, plus the tail weighted by
+    :func:`curvature_tail_weights`; O(n)."""
+    K = R.shape[0] - 1
+    n = x.size
+    tail = WA * abs(a) + WS * abs(slope)
+    c2 = 0.0
+    c3 = 0.0
+    if K >= 2:
+        c2 = beta[2] * a + beta[1] / 2.0 * slope
+        for i in range(n):
+            c2 += R[2, i] * x[i]
+    if K >= 3:
+        c3 = beta[3] * a + beta[2] / 3.0 * slope
+        for i in range(n):
+            c3 += R[3, i] * x[i]
+    for i in range(n):
+        tail += WX[i] * abs(x[i])
+    return 2.0 * abs(c2) + 6.0 * h * abs(c3) + tail

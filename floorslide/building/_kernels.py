@@ -9,6 +9,8 @@ import numpy as np
 
 from floorslide._jit import njit
 from floorslide.building._instep import (
+    curvature_bound_at,
+    curvature_tail_weights,
     foh_step,
     substep_inputs,
     taylor_coefficients,
@@ -52,10 +54,10 @@ def foh_peaks(phi, p, q, R, beta, acc, substeps, h, x0, peak, t_peak):
     ``peak[i]`` and ``t_peak[i]`` receive the peak of output ``i`` and its time. On each
     sub-step an output is searched only when its end values plus a rigorous bound of its
     deviation from the chord, ``h²/8·max|y''|`` with ``max|y''| ≤ Σ_j j(j−1)h^{j−2}|c_j|``
-    bounded from the state (``|c_j| ≤ Σ_i |R_ji||x_i| + |β_j||a| + |β_{j−1}|/j·|slope|``), can
-    exceed its peak so far; then every critical point of its Taylor polynomial is found
-    (:func:`floorslide.numerics.polynomial.max_abs_above`) — no assumption on how many there
-    are.
+    (:func:`~floorslide.building._instep.curvature_bound_at`: ``c_2``, ``c_3`` exact, the
+    tail bounded from the state), can exceed its peak so far; then every critical point of its
+    Taylor polynomial is found (:func:`floorslide.numerics.polynomial.max_abs_above`) — no
+    assumption on how many there are.
     """
     n = x0.size
     m = R.shape[0]
@@ -70,14 +72,7 @@ def foh_peaks(phi, p, q, R, beta, acc, substeps, h, x0, peak, t_peak):
     WA = np.zeros(m)
     WS = np.zeros(m)
     for i in range(m):
-        hj = 1.0
-        for j in range(2, K + 1):
-            wj = j * (j - 1) * hj
-            for s in range(n):
-                WX[i, s] += wj * abs(R[i, j, s])
-            WA[i] += wj * abs(beta[i, j])
-            WS[i] += wj * abs(beta[i, j - 1]) / j
-            hj *= h
+        WA[i], WS[i] = curvature_tail_weights(R[i], beta[i], h, WX[i])
     y0 = np.empty(m)
     for i in range(m):
         v = beta[i, 0] * acc[0]
@@ -100,14 +95,14 @@ def foh_peaks(phi, p, q, R, beta, acc, substeps, h, x0, peak, t_peak):
                 x[i] = y[i]
             for i in range(m):
                 y1 = beta[i, 0] * ab
-                m2 = WA[i] * abs(aa) + WS[i] * abs(slope)
                 for j in range(n):
                     y1 += R[i, 0, j] * x[j]
-                    m2 += WX[i, j] * abs(x_prev[j])
                 if abs(y1) > peak[i]:
                     peak[i] = abs(y1)
                     t_peak[i] = t0 + h
-                if max(abs(y0[i]), abs(y1)) + 0.125 * h * h * m2 > peak[i]:
+                if max(abs(y0[i]), abs(y1)) > peak[i] - 0.125 * h * h * curvature_bound_at(
+                    R[i], beta[i], x_prev, aa, slope, h, WX[i], WA[i], WS[i]
+                ):
                     taylor_coefficients(R[i], beta[i], x_prev, aa, slope, c)
                     v, tv = max_abs_above(c, K, 0.0, h, peak[i], work)
                     if v > peak[i] and tv >= 0.0:

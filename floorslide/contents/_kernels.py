@@ -17,6 +17,8 @@ import numpy as np
 
 from floorslide._jit import njit
 from floorslide.building._instep import (
+    curvature_bound_at,
+    curvature_tail_weights,
     foh_step,
     poly_val,
     substep_inputs,
@@ -330,19 +332,9 @@ def slide_kernel(
     work = np.empty(4 * K + 16)
     rw = scratch(K + 3)
     st = np.empty(NCOL)
-    # weights of the curvature bound max|a_f''| ≤ Σ_i WX_i|x_i| + WA|a| + WS|slope| on a sub-step
-    # (Σ_j j(j−1)h^{j−2}|c_j| with the Taylor coefficients c_j = R_j·x + β_j a + β_{j−1}/j·slope)
+    # weights of the tail of the curvature bound of the floor acceleration on a sub-step
     WX = np.zeros(n)
-    WA = 0.0
-    WS = 0.0
-    hj = 1.0
-    for j in range(2, K + 1):
-        wj = j * (j - 1) * hj
-        for i in range(n):
-            WX[i] += wj * abs(R[j, i])
-        WA += wj * abs(beta[j])
-        WS += wj * abs(beta[j - 1]) / j
-        hj *= h
+    WA, WS = curvature_tail_weights(R, beta, h, WX)
     in_lift = False
     # floor values at the very start
     a_start = beta[0] * acc[0]
@@ -381,10 +373,7 @@ def slide_kernel(
             # coefficients; 2: the exact extremes, every critical point)
             A0 = _dot_state(R[0], x_prev) + beta[0] * aa
             A1 = _dot_state(R[0], x) + beta[0] * ab
-            m2 = WA * abs(aa) + WS * abs(slope)
-            for i in range(n):
-                m2 += WX[i] * abs(x_prev[i])
-            dev = 0.125 * h * h * m2
+            dev = 0.125 * h * h * curvature_bound_at(R, beta, x_prev, aa, slope, h, WX, WA, WS)
             amin = min(A0, A1) - dev
             amax = max(A0, A1) + dev
             level = 0 if dev > 0.0 else 2

@@ -279,8 +279,11 @@ def max_abs_above(c, deg, lo, hi, level, work):
     A rigorous filter first: ``p`` deviates from its chord by at most ``(hi − lo)²/8·max|p''|``
     (bounded by :func:`curvature_bound`), so when the ends plus that deviation stay at or below
     ``level`` no search is needed; otherwise every critical point is found
-    (:func:`extreme_values`). Returns the value and where it is (``-1.0`` for "not searched").
+    (:func:`extreme_values`); from ``lo = 0`` the filters of :func:`max_abs_on` apply. Returns
+    the value and where it is (``-1.0`` for "not searched").
     """
+    if lo == 0.0:
+        return max_abs_on(c, deg, hi, level, work)
     v0 = abs(poly_val(c, deg, lo))
     v1 = abs(poly_val(c, deg, hi))
     ends = max(v0, v1)
@@ -403,3 +406,75 @@ def _first_positive(q, deg, a, b):
         else:
             lo = m
     return hi
+
+
+@njit(cache=True)
+def newton_peak(c, K, h, t0, d_lo):
+    """``|p|`` at the single root of ``p'`` in ``(0, h)`` and that root, given that ``p'`` is
+    monotone there and changes sign (``d_lo = p'(0)``): Newton from ``t0``, safeguarded by
+    bisection (``p'`` and ``p''`` evaluated together, two independent Horner chains)."""
+    lo = 0.0
+    hi = h
+    x = t0 if 0.0 < t0 < h else 0.5 * h
+    for _ in range(100):
+        d = K * c[K]
+        d2 = K * (K - 1) * c[K]
+        for j in range(K - 1, 1, -1):
+            d = d * x + j * c[j]
+            d2 = d2 * x + j * (j - 1) * c[j]
+        d = d * x + c[1]
+        if d == 0.0:
+            break
+        if (d > 0.0) == (d_lo > 0.0):
+            lo = x
+        else:
+            hi = x
+        xn = x - d / d2 if d2 != 0.0 else 0.5 * (lo + hi)
+        if not (lo < xn < hi):
+            xn = 0.5 * (lo + hi)
+        if abs(xn - x) <= 4e-16 * max(abs(xn), h) or hi - lo <= 4e-16 * h:
+            x = xn
+            break
+        x = xn
+    return abs(poly_val(c, K, x)), x
+
+
+@njit(cache=True)
+def max_abs_on(c, K, h, level, work):
+    """``max |p|`` on ``[0, h]`` and where it is when it can exceed ``level`` (else a value
+    ``≤ level``), with no assumption on the number of critical points.
+
+    Rigorous filters first, cheapest first, with ``M_k`` the bound ``Σ_j j!/(j−k)!·|c_j|h^{j−k}``
+    of ``|p^(k)|`` on the sub-step: the chord (ends ``+ h²/8·M_2 ≤ level``: nothing to find);
+    ``p'`` of one sign at both ends and farther from zero than ``h²/8·M_3`` (``p`` monotone);
+    ``|p''(0)| > h·M_3`` (``p'`` monotone: at most one critical point, found by Newton).
+    Otherwise every critical point is isolated (:func:`extreme_values`).
+    """
+    v0 = abs(c[0])
+    v1 = abs(poly_val(c, K, h))
+    ends, t_end = (v0, 0.0) if v0 >= v1 else (v1, h)
+    if K < 2:
+        return ends, t_end
+    m2 = 0.0
+    m3 = 0.0
+    for j in range(K, 1, -1):
+        m2 = m2 * h + j * (j - 1) * abs(c[j])
+        if j >= 3:
+            m3 = m3 * h + j * (j - 1) * (j - 2) * abs(c[j])
+    k8 = 0.125 * h * h
+    if ends + k8 * m2 <= level:
+        return ends, t_end
+    d0 = c[1]
+    d1 = poly_der(c, K, h)
+    if d0 * d1 > 0.0 and min(abs(d0), abs(d1)) > k8 * m3:
+        return ends, t_end
+    if abs(2.0 * c[2]) > h * m3:
+        if d0 * d1 < 0.0:
+            v, x = newton_peak(c, K, h, 0.5 * h, d0)
+            if v > ends:
+                return v, x
+        return ends, t_end
+    vmin, tmin, vmax, tmax = extreme_values(c, K, 0.0, h, work)
+    if vmax >= -vmin:
+        return vmax, tmax
+    return -vmin, tmin

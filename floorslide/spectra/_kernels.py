@@ -44,11 +44,10 @@ from floorslide.building._instep import (
     foh_step,
     poly_der,
     poly_der2,
-    poly_val,
     substep_inputs,
     taylor_coefficients,
 )
-from floorslide.numerics.polynomial import extreme_values, scratch
+from floorslide.numerics.polynomial import extreme_values, max_abs_on, newton_peak, scratch
 
 
 @njit(cache=True)
@@ -125,72 +124,6 @@ def _hermite_max(f0, d0, f1, d1, h):
 
 
 @njit(cache=True)
-def _newton_peak(c, K, h, t0, d_lo):
-    """``|p|`` at the single root of ``p'`` in ``(0, h)``, given that ``p'`` is monotone there
-    and changes sign (``d_lo = p'(0)``): Newton from ``t0``, safeguarded by bisection (``p'`` and
-    ``p''`` evaluated together, two independent Horner chains)."""
-    lo = 0.0
-    hi = h
-    x = t0 if 0.0 < t0 < h else 0.5 * h
-    for _ in range(100):
-        d = K * c[K]
-        d2 = K * (K - 1) * c[K]
-        for j in range(K - 1, 1, -1):
-            d = d * x + j * c[j]
-            d2 = d2 * x + j * (j - 1) * c[j]
-        d = d * x + c[1]
-        if d == 0.0:
-            break
-        if (d > 0.0) == (d_lo > 0.0):
-            lo = x
-        else:
-            hi = x
-        xn = x - d / d2 if d2 != 0.0 else 0.5 * (lo + hi)
-        if not (lo < xn < hi):
-            xn = 0.5 * (lo + hi)
-        if abs(xn - x) <= 4e-16 * max(abs(xn), h) or hi - lo <= 4e-16 * h:
-            x = xn
-            break
-        x = xn
-    return abs(poly_val(c, K, x))
-
-
-@njit(cache=True)
-def _floor_peak(c, K, h, level, work):
-    """``max |p|`` on ``[0, h]`` when it can exceed ``level`` (else a value ``≤ level``), for a
-    response on a floor, with no assumption on its number of critical points.
-
-    Rigorous filters first, cheapest first, with ``M_k`` the bound ``Σ_j j!/(j−k)!·|c_j|h^{j−k}``
-    of ``|p^(k)|`` on the sub-step: the chord (ends ``+ h²/8·M_2 ≤ level``: nothing to find);
-    ``p'`` of one sign at both ends and farther from zero than ``h²/8·M_3`` (``p`` monotone);
-    ``|p''(0)| > h·M_3`` (``p'`` monotone: at most one critical point, found by Newton).
-    Otherwise every critical point is isolated (:func:`extreme_values`).
-    """
-    v0 = abs(c[0])
-    v1 = abs(poly_val(c, K, h))
-    ends = max(v0, v1)
-    m2 = 0.0
-    m3 = 0.0
-    for j in range(K, 1, -1):
-        m2 = m2 * h + j * (j - 1) * abs(c[j])
-        if j >= 3:
-            m3 = m3 * h + j * (j - 1) * (j - 2) * abs(c[j])
-    k8 = 0.125 * h * h
-    if ends + k8 * m2 <= level:
-        return ends
-    d0 = c[1]
-    d1 = poly_der(c, K, h)
-    if d0 * d1 > 0.0 and min(abs(d0), abs(d1)) > k8 * m3:
-        return ends
-    if abs(2.0 * c[2]) > h * m3:
-        if d0 * d1 < 0.0:
-            return max(ends, _newton_peak(c, K, h, 0.5 * h, d0))
-        return ends
-    vmin, _, vmax, _ = extreme_values(c, K, 0.0, h, work)
-    return max(vmax, -vmin)
-
-
-@njit(cache=True)
 def _interior_peak(c, K, h, t0, work):
     """``max |p|`` over the critical points of ``p = Σ_{j≤K} c_j τ^j`` inside ``(0, h)``, for the
     response of one oscillator on the ground (``p`` is a linear function plus a damped sinusoid
@@ -209,7 +142,7 @@ def _interior_peak(c, K, h, t0, work):
     if not single or (e_lo > 0.0) != (e_hi > 0.0) or e_lo == 0.0 or e_hi == 0.0:
         vmin, _, vmax, _ = extreme_values(c, K, 0.0, h, work)
         return max(vmax, -vmin)
-    return _newton_peak(c, K, h, t0, d_lo)
+    return newton_peak(c, K, h, t0, d_lo)[0]
 
 
 @njit(cache=True)
@@ -245,7 +178,7 @@ def _search_step(
     motion is a sum of the building's modes, with no bound on the critical points a quantity
     may have in a sub-step; each needed quantity is therefore first filtered by a rigorous
     bound (its end values plus the chord deviation ``h²/8·max|p''|``) and, when that can exceed
-    its peak, searched over every critical point (:func:`_floor_peak`). ``n`` is the number
+    its peak, searched (:func:`~floorslide.numerics.polynomial.max_abs_on`). ``n`` is the number
     of building states; the ground has its own :func:`_ground_search`.
     """
     m = gm
@@ -270,19 +203,19 @@ def _search_step(
         for j in range(K - 1):
             Q[j + 2] = (-c2 * (j + 1) * Q[j + 1] - w2 * Q[j] - c[j]) / ((j + 1) * (j + 2))
         if need[0]:
-            pk = _floor_peak(Q, K, h, out[o, 0], work)
+            pk, _ = max_abs_on(Q, K, h, out[o, 0], work)
             out[o, 0] = max(out[o, 0], abs(qn), pk)
         if need[1]:
             for j in range(K):
                 poly[j] = (j + 1) * Q[j + 1]
             poly[K] = 0.0
-            pk = _floor_peak(poly, K, h, out[o, 1], work)
+            pk, _ = max_abs_on(poly, K, h, out[o, 1], work)
             out[o, 1] = max(out[o, 1], abs(vn), pk)
         if need[2]:
             for j in range(K):
                 poly[j] = w2 * Q[j] + c2 * (j + 1) * Q[j + 1]
             poly[K] = w2 * Q[K]
-            pk = _floor_peak(poly, K, h, out[o, 2], work)
+            pk, _ = max_abs_on(poly, K, h, out[o, 2], work)
             out[o, 2] = max(out[o, 2], abs(w2 * qn + c2 * vn), pk)
         q = qn
         v = vn
