@@ -629,7 +629,9 @@ def run(scene, out, dry_run, resume, overwrite, workers, scheduler, scheduler_ti
     if scheduler_timeout is not None and not scheduler:
         raise click.BadParameter("needs --scheduler", param_hint="--scheduler-timeout")
     sc = load_scene(scene)
-    plan = make_plan(sc, force=force)
+    # the per-object rules need each task's true PFA: the dry run evaluates them to count them;
+    # a real run leaves them to the tasks, so each building is integrated once per record
+    plan = make_plan(sc, force=force, evaluate=dry_run)
     if dry_run:
         click.echo(plan.describe())  # lists the scene's warnings
         sys.exit(EXIT_RECORD if plan.failures else EXIT_OK)

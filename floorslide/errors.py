@@ -90,6 +90,14 @@ class OutputExistsError(FloorslideError):
     exit_code = 2
 
 
+class SolverLimitError(FloorslideError):
+    """An exact solver met more events (breakaways, stops, reversals) inside one sub-step than it
+    handles: stick–slip chatter it cannot resolve. Rather than return a response that silently
+    skipped the rest of that sub-step, it stops (exit code 1)."""
+
+    exit_code = 1
+
+
 class FloorslideWarning(UserWarning):
     """Base class of the warnings floorslide gives: something was done to the input that the
     caller should know of (the same text is kept in the result's ``notes``)."""

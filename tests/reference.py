@@ -340,3 +340,102 @@ def rigid_block_on_system(A, b, ca, da, acc, dt, mu_k, mu_s=None, g=9.80665, rto
             if t >= dt * (1 - 1e-13):
                 break
     return peak, y[n]
+
+
+def rigid_block_vertical(acc, vert, dt, mu, g=9.80665, rtol=1e-12):
+    """Rigid block on the ground with vertical shaking: friction ``mu·N``, ``N = g + a_v(t)``;
+    no friction while ``N ≤ 0`` (lift-off). DOP853 with event location on ``[u, v]``, restarted
+    at every sample and event; the peak of ``|u|`` is searched on the dense output of every
+    segment (in flight the velocity can reverse, so ``u`` has interior extrema).
+    Returns ``(peak |u|, u at the end)``. Written apart from floorslide's kernels."""
+    y = np.zeros(2)
+    mode = 0  # 0 stick, ±1 slip, 2 flight
+    peak = 0.0
+    for k in range(acc.size - 1):
+        a0, s = float(acc[k]), (float(acc[k + 1]) - float(acc[k])) / dt
+        n0, sn = g + float(vert[k]), (float(vert[k + 1]) - float(vert[k])) / dt
+        t = 0.0
+        for _ in range(1000):
+            N = n0 + sn * t
+            af = a0 + s * t
+            flying = N < -1e-12 * g or (abs(N) <= 1e-12 * g and sn < 0.0)
+            if flying:
+                mode = 2
+            elif mode == 2:  # landing
+                mode = 0 if y[1] == 0.0 else (1 if y[1] > 0 else -1)
+            if mode == 0 and abs(af) > mu * N:
+                mode = -1 if af > 0 else 1
+            sg = float(mode)
+
+            def rhs(tt, yy, sg=sg, a0=a0, s=s, n0=n0, sn=sn):
+                if sg == 0.0:
+                    return [0.0, 0.0]
+                if sg == 2.0:
+                    return [yy[1], -(a0 + s * tt)]
+                return [yy[1], -(a0 + s * tt) - sg * mu * max(n0 + sn * tt, 0.0)]
+
+            # the contact force changes sign where N = n0 + sn·t = 0 (N is linear in a step)
+            t_end = dt
+            if sn != 0.0 and t * (1 + 1e-12) < -n0 / sn < dt:
+                t_end = -n0 / sn
+            events = []
+            if mode == 0:
+
+                def up(tt, yy, a0=a0, s=s, n0=n0, sn=sn):
+                    return (a0 + s * tt) - mu * (n0 + sn * tt)
+
+                def lo(tt, yy, a0=a0, s=s, n0=n0, sn=sn):
+                    return -(a0 + s * tt) - mu * (n0 + sn * tt)
+
+                up.terminal = lo.terminal = True
+                up.direction = lo.direction = 1.0
+                events += [up, lo]
+            elif mode in (1, -1):
+
+                def stop(tt, yy, sg=sg):
+                    return sg * yy[1]
+
+                stop.terminal = True
+                stop.direction = -1.0
+                events.append(stop)
+            sol = solve_ivp(
+                rhs,
+                (t, t_end),
+                y,
+                method="DOP853",
+                rtol=rtol,
+                atol=1e-15,
+                events=events or None,
+                max_step=dt / 64,
+                dense_output=True,
+            )
+            ts = np.linspace(t, sol.t[-1], 65)
+            u = sol.sol(ts)[0]
+            i = int(np.argmax(np.abs(u)))
+            peak = max(peak, abs(u[i]))
+            if 0 < i < ts.size - 1:
+                best = minimize_scalar(
+                    lambda tt, sol=sol: -abs(sol.sol(tt)[0]),
+                    bounds=(ts[i - 1], ts[i + 1]),
+                    method="bounded",
+                    options={"xatol": 1e-14},
+                )
+                peak = max(peak, -best.fun)
+            y = sol.y[:, -1].copy()
+            t_new = sol.t[-1]
+            if sol.status != 1:
+                t = t_new
+                if t >= dt * (1 - 1e-13):
+                    break
+                continue  # N crossed zero: into or out of flight, decided at the top
+            if mode == 0:
+                mode = -1 if sol.t_events[0].size else 1
+            elif mode in (1, -1):
+                y[1] = 0.0
+                N = n0 + sn * t_new
+                af = a0 + s * t_new
+                mode = -1 if af > mu * N else (1 if af < -mu * N else 0)
+            t = t_new
+            if t >= dt * (1 - 1e-13):
+                break
+    return peak, y[0]

@@ -4,53 +4,25 @@ Inside a step of a piecewise-linear ground record, every response of a linear sy
 entire function of the time ``τ`` since the step began. The exact stepper (``exact.py``)
 represents it near the step start by its Taylor polynomial ``p(τ) = Σ_j c_j τ^j`` whose
 coefficients come from the exact state, on sub-steps short enough (``ρ(A)·h ≤ 0.5``) that the
-truncated series equals the function to rounding. These helpers evaluate such polynomials,
-find their extrema and the first instant they cross a level — the events and peaks inside
-steps that sliding, spectra and floor motions need.
-
-All functions assume at most one critical point of ``p`` inside the interval searched, which the
-sub-step length guarantees for the responses met here (each sub-step is a small fraction of the
-shortest period of the system).
+truncated series equals the function to rounding. These helpers step the state and form those
+coefficients; the roots, extrema and first crossings of the polynomials (events and peaks
+inside steps) are found rigorously by :mod:`floorslide.numerics.polynomial`, which also holds
+the polynomial evaluation re-exported here.
 """
 
 from __future__ import annotations
 
-import numpy as np
-
 from floorslide._jit import njit
+from floorslide.numerics.polynomial import poly_der, poly_der2, poly_val
 
-_MAX_ITER = 200
-
-
-@njit(cache=True, inline="always")
-def poly_val(c, deg, x):
-    """Value of ``Σ_{j≤deg} c[j] x^j`` (Horner)."""
-    r = c[deg]
-    for j in range(deg - 1, -1, -1):
-        r = r * x + c[j]
-    return r
-
-
-@njit(cache=True, inline="always")
-def poly_der(c, deg, x):
-    """Derivative of ``Σ_{j≤deg} c[j] x^j`` at ``x``."""
-    if deg == 0:
-        return 0.0
-    r = deg * c[deg]
-    for j in range(deg - 1, 0, -1):
-        r = r * x + j * c[j]
-    return r
-
-
-@njit(cache=True, inline="always")
-def poly_der2(c, deg, x):
-    """Second derivative of ``Σ_{j≤deg} c[j] x^j`` at ``x``."""
-    if deg < 2:
-        return 0.0
-    r = deg * (deg - 1) * c[deg]
-    for j in range(deg - 1, 1, -1):
-        r = r * x + j * (j - 1) * c[j]
-    return r
+__all__ = [
+    "foh_step",
+    "poly_der",
+    "poly_der2",
+    "poly_val",
+    "substep_inputs",
+    "taylor_coefficients",
+]
 
 
 @njit(cache=True, inline="always")
@@ -75,93 +47,6 @@ def foh_step(phi, p, q, x, aa, ab, out):
 
 
 @njit(cache=True)
-def critical_point(c, deg, lo, hi):
-    """The root of ``p'`` in ``[lo, hi]`` given that ``p'`` changes sign there (safeguarded
-    Newton on ``p'`` with bisection fallback)."""
-    dlo = poly_der(c, deg, lo)
-    a, b = lo, hi
-    x = 0.5 * (a + b)
-    for _ in range(_MAX_ITER):
-        d = poly_der(c, deg, x)
-        if d == 0.0:
-            return x
-        if (d > 0.0) == (dlo > 0.0):
-            a = x
-        else:
-            b = x
-        d2 = poly_der2(c, deg, x)
-        xn = x - d / d2 if d2 != 0.0 else 0.5 * (a + b)
-        if not (a < xn < b):
-            xn = 0.5 * (a + b)
-        if abs(xn - x) <= 4e-16 * max(abs(xn), abs(hi)) or b - a <= 4e-16 * max(abs(b), 1e-300):
-            return xn
-        x = xn
-    return x
-
-
-@njit(cache=True)
-def first_rise(c, deg, lo, hi, level):
-    """First ``x`` in ``(lo, hi]`` where ``p(x) > level``, or ``-1.0`` if there is none.
-
-    ``p(x) ≤ level`` is assumed just after ``lo``. The instant returned is the smallest machine
-    number found with ``p(x) > level`` (to within a few ulps of the true crossing).
-    """
-    f_hi = poly_val(c, deg, hi) - level
-    if f_hi > 0.0:
-        a, b = lo, hi
-    else:
-        d_lo = poly_der(c, deg, lo)
-        d_hi = poly_der(c, deg, hi)
-        if not (d_lo > 0.0 and d_hi < 0.0):
-            return -1.0
-        xc = critical_point(c, deg, lo, hi)
-        if not (poly_val(c, deg, xc) - level > 0.0):
-            return -1.0
-        a, b = lo, xc
-    # invariant: p(a) <= level (or a == lo), p(b) > level
-    x = b
-    for _ in range(_MAX_ITER):
-        if b - a <= 2e-16 * max(abs(a), abs(b)) + 1e-300:
-            break
-        f = poly_val(c, deg, x) - level
-        d = poly_der(c, deg, x)
-        xn = x - f / d if d != 0.0 else 0.5 * (a + b)
-        if not (a < xn < b) or abs(xn - x) > 0.5 * (b - a):
-            xn = 0.5 * (a + b)
-        fn = poly_val(c, deg, xn) - level
-        if fn > 0.0:
-            b = xn
-        else:
-            a = xn
-        if xn == x:
-            break
-        x = xn
-    return b
-
-
-@njit(cache=True)
-def extreme_values(c, deg, lo, hi):
-    """Minimum and maximum of ``p`` on ``[lo, hi]`` and where they are (ends or the interior
-    critical point)."""
-    v_lo = poly_val(c, deg, lo)
-    v_hi = poly_val(c, deg, hi)
-    if v_lo <= v_hi:
-        vmin, tmin, vmax, tmax = v_lo, lo, v_hi, hi
-    else:
-        vmin, tmin, vmax, tmax = v_hi, hi, v_lo, lo
-    d_lo = poly_der(c, deg, lo)
-    d_hi = poly_der(c, deg, hi)
-    if (d_lo > 0.0 and d_hi < 0.0) or (d_lo < 0.0 and d_hi > 0.0):
-        xc = critical_point(c, deg, lo, hi)
-        vc = poly_val(c, deg, xc)
-        if vc > vmax:
-            vmax, tmax = vc, xc
-        if vc < vmin:
-            vmin, tmin = vc, xc
-    return vmin, tmin, vmax, tmax
-
-
-@njit(cache=True)
 def taylor_coefficients(R, beta, x, a0, slope, out):
     """Taylor coefficients at a step start of an output ``y = r·x + d·a_g`` of
     ``x' = A x + b a_g`` with ``a_g(τ) = a0 + slope·τ``.
@@ -182,7 +67,49 @@ def taylor_coefficients(R, beta, x, a0, slope, out):
         out[j] = s
 
 
-def np_poly_extrema(c: np.ndarray, lo: float, hi: float) -> tuple[float, float, float, float]:
-    """Python wrapper of :func:`extreme_values` for tests."""
-    c = np.ascontiguousarray(c, dtype=float)
-    return extreme_values(c, c.size - 1, lo, hi)
+@njit(cache=True)
+def curvature_tail_weights(R, beta, h, WX):
+    """Weights of the tail ``j ≥ 4`` of the bound ``max|y''| ≤ Σ_j j(j−1)h^{j−2}|c_j|`` on a
+    sub-step of length ``h`` for an output with Taylor rows ``R, beta`` (see
+    :func:`taylor_coefficients`): ``|c_j| ≤ Σ_i |R_ji||x_i| + |β_j||a| + |β_{j−1}|/j·|slope|``.
+    ``WX`` receives the per-state weights; returns ``(WA, WS)``, those of ``|a|`` and
+    ``|slope|``. The terms ``j = 2, 3`` are formed exactly by :func:`curvature_bound_at` (the
+    states of a building cancel in them: bounding them by absolute values would be loose)."""
+    n = WX.size
+    K = R.shape[0] - 1
+    for i in range(n):
+        WX[i] = 0.0
+    WA = 0.0
+    WS = 0.0
+    hj = h * h
+    for j in range(4, K + 1):
+        wj = j * (j - 1) * hj
+        for i in range(n):
+            WX[i] += wj * abs(R[j, i])
+        WA += wj * abs(beta[j])
+        WS += wj * abs(beta[j - 1]) / j
+        hj *= h
+    return WA, WS
+
+
+@njit(cache=True, inline="always")
+def curvature_bound_at(R, beta, x, a, slope, h, WX, WA, WS):
+    """Upper bound of ``|y''|`` on a sub-step from its start state ``x``, ground value ``a`` and
+    slope: ``2|c_2| + 6h|c_3|`` exactly, plus the tail weighted by
+    :func:`curvature_tail_weights`; O(n)."""
+    K = R.shape[0] - 1
+    n = x.size
+    tail = WA * abs(a) + WS * abs(slope)
+    c2 = 0.0
+    c3 = 0.0
+    if K >= 2:
+        c2 = beta[2] * a + beta[1] / 2.0 * slope
+        for i in range(n):
+            c2 += R[2, i] * x[i]
+    if K >= 3:
+        c3 = beta[3] * a + beta[2] / 3.0 * slope
+        for i in range(n):
+            c3 += R[3, i] * x[i]
+    for i in range(n):
+        tail += WX[i] * abs(x[i])
+    return 2.0 * abs(c2) + 6.0 * h * abs(c3) + tail

@@ -9,11 +9,13 @@ import numpy as np
 
 from floorslide._jit import njit
 from floorslide.building._instep import (
-    extreme_values,
+    curvature_bound_at,
+    curvature_tail_weights,
     foh_step,
     substep_inputs,
     taylor_coefficients,
 )
+from floorslide.numerics.polynomial import max_abs_above, scratch
 
 
 @njit(cache=True)
@@ -44,25 +46,18 @@ def foh_outputs(phi, p, q, C, D, acc, substeps, x0, out):
     return x
 
 
-@njit(cache=True, inline="always")
-def _value_and_slope(R, beta, i, x, a, slope):
-    """``y`` and ``y'`` of output ``i`` at a (sub-)step boundary from its Taylor rows."""
-    y = beta[i, 0] * a
-    d = beta[i, 1] * a + beta[i, 0] * slope
-    for j in range(x.size):
-        y += R[i, 0, j] * x[j]
-        d += R[i, 1, j] * x[j]
-    return y, d
-
-
 @njit(cache=True)
 def foh_peaks(phi, p, q, R, beta, acc, substeps, h, x0, peak, t_peak):
     """True peaks ``max |y(t)|`` over the whole record, including inside steps, for outputs
     whose Taylor rows are ``R, beta`` (see :meth:`ExactStepper.taylor_rows`).
 
-    ``peak[i]`` and ``t_peak[i]`` receive the peak of output ``i`` and its time. Values and
-    slopes are evaluated at the sub-step boundaries; where the slope changes sign inside a
-    sub-step, the full Taylor polynomial locates the extremum.
+    ``peak[i]`` and ``t_peak[i]`` receive the peak of output ``i`` and its time. On each
+    sub-step an output is searched only when its end values plus a rigorous bound of its
+    deviation from the chord, ``h²/8·max|y''|`` with ``max|y''| ≤ Σ_j j(j−1)h^{j−2}|c_j|``
+    (:func:`~floorslide.building._instep.curvature_bound_at`: ``c_2``, ``c_3`` exact, the
+    tail bounded from the state), can exceed its peak so far; then every critical point of its
+    Taylor polynomial is found (:func:`floorslide.numerics.polynomial.max_abs_above`) — no
+    assumption on how many there are.
     """
     n = x0.size
     m = R.shape[0]
@@ -72,12 +67,19 @@ def foh_peaks(phi, p, q, R, beta, acc, substeps, h, x0, peak, t_peak):
     x_prev = x0.copy()
     y = np.empty(n)
     c = np.empty(K + 1)
-    y0 = np.empty(m)
-    d0 = np.empty(m)
-    slope = (acc[1] - acc[0]) / (substeps * h) if npts > 1 else 0.0
+    work = scratch(K + 1)
+    WX = np.zeros((m, n))
+    WA = np.zeros(m)
+    WS = np.zeros(m)
     for i in range(m):
-        y0[i], d0[i] = _value_and_slope(R, beta, i, x, acc[0], slope)
-        peak[i] = abs(y0[i])
+        WA[i], WS[i] = curvature_tail_weights(R[i], beta[i], h, WX[i])
+    y0 = np.empty(m)
+    for i in range(m):
+        v = beta[i, 0] * acc[0]
+        for j in range(n):
+            v += R[i, 0, j] * x[j]
+        y0[i] = v
+        peak[i] = abs(v)
         t_peak[i] = 0.0
     for k in range(npts - 1):
         a = acc[k]
@@ -92,20 +94,18 @@ def foh_peaks(phi, p, q, R, beta, acc, substeps, h, x0, peak, t_peak):
             for i in range(n):
                 x[i] = y[i]
             for i in range(m):
-                if r == 0:  # the slope of the record changes at samples: recompute y'(0)
-                    y0[i], d0[i] = _value_and_slope(R, beta, i, x_prev, aa, slope)
-                y1, d1 = _value_and_slope(R, beta, i, x, ab, slope)
+                y1 = beta[i, 0] * ab
+                for j in range(n):
+                    y1 += R[i, 0, j] * x[j]
                 if abs(y1) > peak[i]:
                     peak[i] = abs(y1)
                     t_peak[i] = t0 + h
-                if (d0[i] > 0.0 and d1 < 0.0) or (d0[i] < 0.0 and d1 > 0.0):
+                if max(abs(y0[i]), abs(y1)) > peak[i] - 0.125 * h * h * curvature_bound_at(
+                    R[i], beta[i], x_prev, aa, slope, h, WX[i], WA[i], WS[i]
+                ):
                     taylor_coefficients(R[i], beta[i], x_prev, aa, slope, c)
-                    vmin, tmin, vmax, tmax = extreme_values(c, K, 0.0, h)
-                    if -vmin > peak[i]:
-                        peak[i] = -vmin
-                        t_peak[i] = t0 + tmin
-                    if vmax > peak[i]:
-                        peak[i] = vmax
-                        t_peak[i] = t0 + tmax
+                    v, tv = max_abs_above(c, K, 0.0, h, peak[i], work)
+                    if v > peak[i] and tv >= 0.0:
+                        peak[i] = v
+                        t_peak[i] = t0 + tv
                 y0[i] = y1
-                d0[i] = d1

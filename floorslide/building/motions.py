@@ -7,6 +7,8 @@ are kept for the accuracy-versus-cost study (docs/design.md §6).
 
 from __future__ import annotations
 
+import dataclasses
+import functools
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -25,21 +27,34 @@ __all__ = ["Peaks", "check_record", "floor_motions", "peak_floor_acceleration", 
 METHODS = ("exact", "zoh", "newmark", "forced_response")
 
 
-_STEPPERS: dict = {}
-
-
 def stepper(building: LinearBuilding, dt: float, substeps: int | None = None) -> ExactStepper:
-    """The exact stepper of `building` for record step `dt` (memoised per building object)."""
-    key = (id(building), float(dt), substeps)
-    hit = _STEPPERS.get(key)
-    if hit is not None and hit[0] is building:
-        return hit[1]
+    """The exact stepper of `building` for record step `dt`.
+
+    Discretising is a matrix exponential and an eigenvalue problem (about a millisecond), done
+    once per record and content otherwise; a small cache keyed by the *values* of the state
+    matrices (never by object identity, so it cannot go stale) keeps it, and each call gets its
+    own copies of the arrays (nothing shared can be written)."""
     A, B = building.state_matrices()
-    st = ExactStepper.build(A, B[:, 0], dt, substeps)
-    if len(_STEPPERS) > 64:
-        _STEPPERS.clear()
-    _STEPPERS[key] = (building, st)
-    return st
+    A = np.ascontiguousarray(A, dtype=float)
+    b = np.ascontiguousarray(B[:, 0], dtype=float)
+    st = _cached_stepper(A.shape[0], A.tobytes(), b.tobytes(), float(dt), substeps)
+    return dataclasses.replace(
+        st,
+        A=st.A.copy(),
+        b=st.b.copy(),
+        phi=st.phi.copy(),
+        gamma0=st.gamma0.copy(),
+        gamma1=st.gamma1.copy(),
+    )
+
+
+@functools.lru_cache(maxsize=32)
+def _cached_stepper(
+    n: int, A_bytes: bytes, b_bytes: bytes, dt: float, substeps: int | None
+) -> ExactStepper:
+    A = np.frombuffer(A_bytes).reshape(n, n).copy()
+    b = np.frombuffer(b_bytes).copy()
+    return ExactStepper.build(A, b, dt, substeps)
 
 
 def floor_motions(

@@ -17,16 +17,30 @@ import numpy as np
 
 from floorslide._jit import njit
 from floorslide.building._instep import (
-    extreme_values,
-    first_rise,
+    curvature_bound_at,
+    curvature_tail_weights,
     foh_step,
     poly_val,
     substep_inputs,
     taylor_coefficients,
 )
+from floorslide.numerics.polynomial import (
+    curvature_bound,
+    extreme_values,
+    first_rise,
+    max_abs_above,
+    scratch,
+)
 
 STICK = 0
 FLIGHT = 2
+
+# columns of an object's state, shared by the kernel and its wrapper (``contents.sliding``)
+MODE, VEL, DISP, PEAK_DISP, T_PEAK, SLIDE_TIME, SLIPS, PEAK_ACC, LIMIT_AT = range(9)
+"""Mode (0 stick, ±1 slip, 2 flight; a float), relative velocity and slide, peak |slide| and
+its time, time spent sliding, slip phases, peak absolute acceleration of the object, start of
+the first sub-step where the event limit was reached (−1: never)."""
+NCOL = 9
 
 
 @njit(cache=True, inline="always")
@@ -35,6 +49,20 @@ def _dot_state(row, x):
     for j in range(x.size):
         s += row[j] * x[j]
     return s
+
+
+@njit(cache=True, inline="always")
+def _tighten(level, R, beta, x_prev, aa, slope, c, K, h, A0, A1, rw):
+    """A tighter enclosure ``(amin, amax, level)`` of the floor acceleration on a sub-step than
+    the one of ``level``: from 0, the curvature bound of its Taylor coefficients (computed into
+    ``c``); from 1, its exact extremes (level 2)."""
+    if level == 0:
+        taylor_coefficients(R, beta, x_prev, aa, slope, c)
+        dev = 0.125 * h * h * curvature_bound(c, K, h)
+        if dev > 0.0:
+            return min(A0, A1) - dev, max(A0, A1) + dev, 1
+    amin, _, amax, _ = extreme_values(c, K, 0.0, h, rw)
+    return min(amin, A0, A1), max(amax, A0, A1), 2
 
 
 @njit(cache=True)
@@ -53,17 +81,20 @@ def _general(
     t0,
     state,
     work,
+    rw,
+    max_events,
 ):
     """Advance one object through a sub-step by events, exactly.
 
     ``c`` holds the Taylor coefficients (degree ``K``) of the floor's absolute acceleration in
     the sub-step; the normal acceleration is ``n0 + sn·τ`` (``g`` without vertical motion).
-    ``state`` = [mode, v, u, peak_u, t_peak, slide_time, n_slips, peak_abs].
-    ``work`` is scratch of length ≥ 2K + 8.
+    ``state``: one object's row (columns :data:`MODE` … :data:`LIMIT_AT`).
+    ``work`` is scratch of length ≥ 4K + 16, ``rw`` that of the root isolation
+    (:func:`floorslide.numerics.polynomial.scratch`).
     """
-    mode = int(state[0])
-    v = state[1]
-    u = state[2]
+    mode = int(state[MODE])
+    v = state[VEL]
+    u = state[DISP]
     tau = 0.0
     if not has_vert:
         n0 = g
@@ -74,7 +105,11 @@ def _general(
     pv = work[K + 1 : K + 3 + K]
     pu = work[2 * K + 3 : 3 * K + 6]
     guard = 0
-    while tau < h and guard < 10000:
+    while tau < h:
+        if guard >= max_events:
+            if state[LIMIT_AT] < 0.0:
+                state[LIMIT_AT] = t0
+            break
         guard += 1
         # normal-force interval [tau, tau_end]
         tau_end = h
@@ -95,21 +130,28 @@ def _general(
                 pu[j] = 0.0
             for j in range(deg_v + 1):
                 pu[j + 1] = pv[j] / (j + 1)
-            u = u + poly_val(pu, deg_u, tau_end) - poly_val(pu, deg_u, tau)
+            # u(τ) = u + pu(τ) − pu(tau): the velocity may reverse in flight, so |u| can peak
+            # inside it (every critical point, rigorous)
+            pu[0] = u - poly_val(pu, deg_u, tau)
+            m, tm = max_abs_above(pu, deg_u, tau, tau_end, state[PEAK_DISP], rw)
+            if m > state[PEAK_DISP]:
+                state[PEAK_DISP] = m
+                state[T_PEAK] = t0 + (tm if tm >= 0.0 else tau_end)
+            u = poly_val(pu, deg_u, tau_end)
             v = poly_val(pv, deg_v, tau_end)
             mode = FLIGHT
             tau = tau_end
-            if abs(u) > state[3]:
-                state[3] = abs(u)
-                state[4] = t0 + tau
+            if abs(u) > state[PEAK_DISP]:
+                state[PEAK_DISP] = abs(u)
+                state[T_PEAK] = t0 + tau
             continue
         if mode == FLIGHT:
             if v > 0.0:
                 mode = 1
-                state[6] += 1
+                state[SLIPS] += 1
             elif v < 0.0:
                 mode = -1
-                state[6] += 1
+                state[SLIPS] += 1
             else:
                 mode = STICK
         if mode == STICK:
@@ -120,12 +162,12 @@ def _general(
             if a_now > fb_now and allow_neg:
                 mode = -1
                 v = 0.0
-                state[6] += 1
+                state[SLIPS] += 1
                 continue
             if a_now < -fb_now and allow_pos:
                 mode = 1
                 v = 0.0
-                state[6] += 1
+                state[SLIPS] += 1
                 continue
             # first instant the floor acceleration leaves [-mub N, mub N] in an allowed way
             t_up = -1.0
@@ -136,14 +178,14 @@ def _general(
                 pa[0] -= mub * n0
                 if K >= 1:
                     pa[1] -= mub * sn
-                t_up = first_rise(pa, K, tau, tau_end, 0.0)
+                t_up = first_rise(pa, K, tau, tau_end, 0.0, rw)
             if allow_pos:
                 for j in range(K + 1):
                     pa[j] = -c[j]
                 pa[0] -= mub * n0
                 if K >= 1:
                     pa[1] -= mub * sn
-                t_lo = first_rise(pa, K, tau, tau_end, 0.0)
+                t_lo = first_rise(pa, K, tau, tau_end, 0.0, rw)
             t_ev = -1.0
             new_mode = STICK
             if t_up >= 0.0 and (t_lo < 0.0 or t_up <= t_lo):
@@ -154,19 +196,19 @@ def _general(
                 new_mode = 1
             t_stop = tau_end if t_ev < 0.0 else t_ev
             # the object moves with its floor on [tau, t_stop]
-            amin, _, amax, _ = extreme_values(c, K, tau, t_stop)
+            a_abs, _ = max_abs_above(c, K, tau, t_stop, state[PEAK_ACC], rw)
             # friction transmits at most mub·N (this only trims the rounding-level overshoot at
             # a breakaway and a floor already beyond breakaway at t = 0)
-            a_abs = min(max(amax, -amin), mub * max(n0 + sn * tau, n0 + sn * t_stop))
-            if a_abs > state[7]:
-                state[7] = a_abs
+            a_abs = min(a_abs, mub * max(n0 + sn * tau, n0 + sn * t_stop))
+            if a_abs > state[PEAK_ACC]:
+                state[PEAK_ACC] = a_abs
             if t_ev < 0.0:
                 tau = tau_end
             else:
                 tau = t_ev
                 mode = new_mode
                 v = 0.0
-                state[6] += 1
+                state[SLIPS] += 1
             continue
         # slipping in direction s
         s = float(mode)
@@ -182,7 +224,7 @@ def _general(
             pa_j = -s * pv[j]
             work[3 * K + 6 + j] = pa_j
         pstop = work[3 * K + 6 : 3 * K + 7 + deg_v]
-        t_s = first_rise(pstop, deg_v, tau, tau_end, 0.0)
+        t_s = first_rise(pstop, deg_v, tau, tau_end, 0.0, rw)
         t_stop = tau_end if t_s < 0.0 else t_s
         for j in range(deg_u + 1):
             pu[j] = 0.0
@@ -190,12 +232,12 @@ def _general(
             pu[j + 1] = pv[j] / (j + 1)
         u = u + poly_val(pu, deg_u, t_stop) - poly_val(pu, deg_u, tau)
         fk = muk * max(n0 + sn * tau, n0 + sn * t_stop)
-        if fk > state[7]:
-            state[7] = fk
-        state[5] += t_stop - tau
-        if abs(u) > state[3]:
-            state[3] = abs(u)
-            state[4] = t0 + t_stop
+        if fk > state[PEAK_ACC]:
+            state[PEAK_ACC] = fk
+        state[SLIDE_TIME] += t_stop - tau
+        if abs(u) > state[PEAK_DISP]:
+            state[PEAK_DISP] = abs(u)
+            state[T_PEAK] = t0 + t_stop
         if t_s < 0.0:
             v = poly_val(pv, deg_v, tau_end)
             tau = tau_end
@@ -208,15 +250,15 @@ def _general(
         fb = mub * (n0 + sn * tau)
         if a_now > fb and allow_neg:
             mode = -1
-            state[6] += 1
+            state[SLIPS] += 1
         elif a_now < -fb and allow_pos:
             mode = 1
-            state[6] += 1
+            state[SLIPS] += 1
         else:
             mode = STICK
-    state[0] = mode
-    state[1] = v
-    state[2] = u
+    state[MODE] = mode
+    state[VEL] = v
+    state[DISP] = u
 
 
 @njit(cache=True)
@@ -244,6 +286,7 @@ def slide_kernel(
     hist_a,
     want_hist,
     liftoff,
+    max_events,
 ):
     """Rigid blocks on one floor, exact for the piecewise-linear ground record.
 
@@ -269,12 +312,14 @@ def slide_kernel(
     allow_pos, allow_neg
         Whether slip with positive / negative relative velocity is allowed.
     states
-        ``(n_obj, 8)`` in/out: mode, v, u, peak |u|, time of peak, slide time, slip phases,
-        peak object absolute acceleration.
+        ``(n_obj, NCOL)`` in/out, columns :data:`MODE` … :data:`LIMIT_AT` (a reached event
+        limit is reported by the caller).
     hist_u, hist_v, hist_a
         ``(n_obj, npts)`` histories at the samples when ``want_hist``.
     liftoff
         ``[lift-off time, number of lift-off intervals]`` out.
+    max_events
+        Most events per object and sub-step (:mod:`floorslide.contents.events`).
     """
     n = phi.shape[0]
     K = R.shape[0] - 1
@@ -285,7 +330,11 @@ def slide_kernel(
     y = np.empty(n)
     c = np.empty(K + 1)
     work = np.empty(4 * K + 16)
-    st = np.empty(8)
+    rw = scratch(K + 3)
+    st = np.empty(NCOL)
+    # weights of the tail of the curvature bound of the floor acceleration on a sub-step
+    WX = np.zeros(n)
+    WA, WS = curvature_tail_weights(R, beta, h, WX)
     in_lift = False
     # floor values at the very start
     a_start = beta[0] * acc[0]
@@ -294,11 +343,11 @@ def slide_kernel(
         # friction transmits at most mub·N: a block on a floor already beyond it at t = 0
         # slides from the start
         a_obj = min(abs(a_start), mub[i] * max(n_start, 0.0))
-        if a_obj > states[i, 7]:
-            states[i, 7] = a_obj
+        if a_obj > states[i, PEAK_ACC]:
+            states[i, PEAK_ACC] = a_obj
         if want_hist:
-            hist_u[i, 0] = states[i, 2]
-            hist_v[i, 0] = states[i, 1]
+            hist_u[i, 0] = states[i, DISP]
+            hist_v[i, 0] = states[i, VEL]
             hist_a[i, 0] = a_start
     for k in range(npts - 1):
         a = acc[k]
@@ -318,19 +367,17 @@ def slide_kernel(
             foh_step(phi, p, q, x_prev, aa, ab, y)
             for i in range(n):
                 x[i] = y[i]
-            # shared floor quantities of this sub-step
+            # shared floor quantities of this sub-step: end values, and a rigorous enclosure
+            # [amin, amax] of the floor acceleration on it, tightened only when a decision
+            # needs it (level 0: curvature bound from the state, O(n); 1: from the Taylor
+            # coefficients; 2: the exact extremes, every critical point)
             A0 = _dot_state(R[0], x_prev) + beta[0] * aa
-            J0 = _dot_state(R[1], x_prev) + beta[1] * aa + beta[0] * slope
             A1 = _dot_state(R[0], x) + beta[0] * ab
-            J1 = _dot_state(R[1], x) + beta[1] * ab + beta[0] * slope
+            dev = 0.125 * h * h * curvature_bound_at(R, beta, x_prev, aa, slope, h, WX, WA, WS)
+            amin = min(A0, A1) - dev
+            amax = max(A0, A1) + dev
+            level = 0 if dev > 0.0 else 2
             have_c = False
-            if (J0 > 0.0 and J1 < 0.0) or (J0 < 0.0 and J1 > 0.0):
-                taylor_coefficients(R, beta, x_prev, aa, slope, c)
-                have_c = True
-                amin, _, amax, _ = extreme_values(c, K, 0.0, h)
-            else:
-                amin = min(A0, A1)
-                amax = max(A0, A1)
             vr0 = _dot_state(rv, x_prev)
             dV = _dot_state(rv, x) - vr0 + 0.5 * h * (aa + ab)
             dD = _dot_state(rd, x) - _dot_state(rd, x_prev) - vr0 * h
@@ -360,46 +407,82 @@ def slide_kernel(
                 nint = g * h
                 nint2 = g * h * h / 2.0
             for i in range(nobj):
-                mode = states[i, 0]
+                mode = states[i, MODE]
                 if mode == 0.0 and nmin > 0.0:
                     fb = mub[i] * nmin
-                    if (amax <= fb or not allow_neg) and (amin >= -fb or not allow_pos):
+                    while True:
+                        ok = (amax <= fb or not allow_neg) and (amin >= -fb or not allow_pos)
+                        if ok or level == 2:
+                            break
+                        amin, amax, level = _tighten(
+                            level, R, beta, x_prev, aa, slope, c, K, h, A0, A1, rw
+                        )
+                        have_c = True
+                    if ok:
+                        while max(amax, -amin) > states[i, PEAK_ACC] and level < 2:
+                            amin, amax, level = _tighten(
+                                level, R, beta, x_prev, aa, slope, c, K, h, A0, A1, rw
+                            )
+                            have_c = True
                         ab_abs = max(amax, -amin)
-                        if ab_abs > states[i, 7]:
-                            states[i, 7] = ab_abs
+                        if ab_abs > states[i, PEAK_ACC]:
+                            states[i, PEAK_ACC] = ab_abs
                         continue
                 elif (mode == 1.0 or mode == -1.0) and nmin > 0.0:
                     sgn = mode
-                    v = states[i, 1]
+                    v = states[i, VEL]
                     v_end = v - dV - sgn * muk[i] * nint
                     fk = muk[i] * nmin
-                    monotone = (amin > -fk) if sgn > 0.0 else (amax < fk)
-                    if monotone and sgn * v_end > 0.0:
-                        u = states[i, 2] + v * h - dD - sgn * muk[i] * nint2
-                        states[i, 1] = v_end
-                        states[i, 2] = u
-                        states[i, 5] += h
-                        if abs(u) > states[i, 3]:
-                            states[i, 3] = abs(u)
-                            states[i, 4] = t0 + h
-                        if muk[i] * nmax > states[i, 7]:
-                            states[i, 7] = muk[i] * nmax
-                        continue
+                    if sgn * v_end > 0.0:
+                        while True:
+                            monotone = (amin > -fk) if sgn > 0.0 else (amax < fk)
+                            if monotone or level == 2:
+                                break
+                            amin, amax, level = _tighten(
+                                level, R, beta, x_prev, aa, slope, c, K, h, A0, A1, rw
+                            )
+                            have_c = True
+                        if monotone:
+                            u = states[i, DISP] + v * h - dD - sgn * muk[i] * nint2
+                            states[i, VEL] = v_end
+                            states[i, DISP] = u
+                            states[i, SLIDE_TIME] += h
+                            if abs(u) > states[i, PEAK_DISP]:
+                                states[i, PEAK_DISP] = abs(u)
+                                states[i, T_PEAK] = t0 + h
+                            if muk[i] * nmax > states[i, PEAK_ACC]:
+                                states[i, PEAK_ACC] = muk[i] * nmax
+                            continue
                 if not have_c:
                     taylor_coefficients(R, beta, x_prev, aa, slope, c)
                     have_c = True
-                for j in range(8):
+                for j in range(NCOL):
                     st[j] = states[i, j]
                 _general(
-                    c, K, h, n0, sn, has_vert, g, mub[i], muk[i], allow_pos, allow_neg, t0, st, work
+                    c,
+                    K,
+                    h,
+                    n0,
+                    sn,
+                    has_vert,
+                    g,
+                    mub[i],
+                    muk[i],
+                    allow_pos,
+                    allow_neg,
+                    t0,
+                    st,
+                    work,
+                    rw,
+                    max_events,
                 )
-                for j in range(8):
+                for j in range(NCOL):
                     states[i, j] = st[j]
             if want_hist and r == substeps - 1:
                 for i in range(nobj):
-                    hist_u[i, k + 1] = states[i, 2]
-                    hist_v[i, k + 1] = states[i, 1]
-                    m = states[i, 0]
+                    hist_u[i, k + 1] = states[i, DISP]
+                    hist_v[i, k + 1] = states[i, VEL]
+                    m = states[i, MODE]
                     if m == 0.0:
                         hist_a[i, k + 1] = A1
                     elif m == FLIGHT:

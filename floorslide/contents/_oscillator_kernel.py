@@ -22,13 +22,24 @@ import numpy as np
 
 from floorslide._jit import njit
 from floorslide.building._instep import (
-    extreme_values,
-    first_rise,
     foh_step,
     poly_val,
     substep_inputs,
     taylor_coefficients,
 )
+from floorslide.numerics.polynomial import first_rise, max_abs_above, scratch
+
+# columns of an oscillator's state, shared by the kernel and its wrapper (``contents.oscillator``)
+O_MODE = 0
+"""Phase: 0 stick, ±1 slip with that sign of the base's relative velocity (a float)."""
+O_U, O_V, O_Z, O_ZD = 1, 2, 3, 4
+"""Base slide and its velocity, spring deformation and its rate."""
+O_PEAK_U, O_PEAK_Z, O_PEAK_TOP, O_PEAK_BASE = 5, 6, 7, 8
+"""Peaks of |u|, |z|, and of the top and base absolute accelerations."""
+O_SLIDE_TIME, O_SLIPS, O_LIMIT_AT = 9, 10, 11
+"""Time spent sliding, slip phases, start of the first sub-step where the event limit was
+reached (−1: never)."""
+O_NCOL = 12
 
 
 @njit(cache=True)
@@ -76,21 +87,40 @@ def _phase_series(y, mode, cs, K, w, xi, r, fk, start, Y):
 
 
 @njit(cache=True)
-def _update_peak(poly, K, lo, hi, peaks, idx):
-    vmin, _, vmax, _ = extreme_values(poly, K, lo, hi)
-    m = max(vmax, -vmin)
+def _update_peak(poly, K, lo, hi, peaks, idx, work):
+    """``peaks[idx] = max(peaks[idx], max |poly| on [lo, hi])`` (rigorous, every critical
+    point)."""
+    m, _ = max_abs_above(poly, K, lo, hi, peaks[idx], work)
     if m > peaks[idx]:
         peaks[idx] = m
 
 
 @njit(cache=True)
 def oscillator_kernel(
-    phi, p, q, R, beta, acc, substeps, h, K, w, xi, r, g, mub, muk, states, hist, want_hist
+    phi,
+    p,
+    q,
+    R,
+    beta,
+    acc,
+    substeps,
+    h,
+    K,
+    w,
+    xi,
+    r,
+    g,
+    mub,
+    muk,
+    states,
+    hist,
+    want_hist,
+    max_events,
 ):
     """Advance 2-DOF sliding oscillators (one per friction pair) through the record.
 
-    ``states[i]`` = [mode, u, v, z, zd, peak|u|, peak|z|, peak|a_top|, peak|a_base|, slide time,
-    slip phases]; ``hist[i, k]`` = [u, z, a_top, a_base] at the samples when ``want_hist``.
+    ``states[i]``: columns :data:`O_MODE` … :data:`O_LIMIT_AT`; ``hist[i, k]`` = [u, z, a_top,
+    a_base] at the samples when ``want_hist``.
     """
     n = phi.shape[0]
     nobj = muk.size
@@ -104,6 +134,7 @@ def oscillator_kernel(
     poly = np.zeros(K + 1)
     y = np.zeros(4)
     pk = np.zeros(4)
+    work = scratch(K + 1)
     c2 = 2.0 * xi * w
     w2 = w * w
     kr = R.shape[0] - 1
@@ -122,17 +153,21 @@ def oscillator_kernel(
                 c[j] = 0.0
             taylor_coefficients(R, beta, x_prev, aa, slope, c[: kr + 1])
             for o in range(nobj):
-                mode = int(states[o, 0])
+                mode = int(states[o, O_MODE])
                 for i in range(4):
-                    y[i] = states[o, 1 + i]
+                    y[i] = states[o, O_U + i]
                 for i in range(4):
-                    pk[i] = states[o, 5 + i]
+                    pk[i] = states[o, O_PEAK_U + i]
                 fb = mub[o] * (1.0 + r) * g
                 fk = muk[o]
                 tau = 0.0
                 guard = 0
                 start = False
-                while tau < h and guard < 1000:
+                while tau < h:
+                    if guard >= max_events:
+                        if states[o, O_LIMIT_AT] < 0.0:
+                            states[o, O_LIMIT_AT] = (k * substeps + sub) * h
+                        break
                     guard += 1
                     _shift(c, K, tau, cs)
                     _phase_series(y, mode, cs, K, w, xi, r, fk * g, start, Y)
@@ -154,11 +189,11 @@ def oscillator_kernel(
                             for j in range(K + 1):
                                 poly[j] = r * cs[j] - c2 * Y[3, j] - w2 * Y[2, j]
                             poly[0] -= fb
-                            t_up = first_rise(poly, K, 0.0, span, 0.0)
+                            t_up = first_rise(poly, K, 0.0, span, 0.0, work)
                             for j in range(K + 1):
                                 poly[j] = -(r * cs[j] - c2 * Y[3, j] - w2 * Y[2, j])
                             poly[0] -= fb
-                            t_lo = first_rise(poly, K, 0.0, span, 0.0)
+                            t_lo = first_rise(poly, K, 0.0, span, 0.0, work)
                         if t_up >= 0.0 and (t_lo < 0.0 or t_up <= t_lo):
                             t_ev, new_mode = t_up, -1
                         elif t_lo >= 0.0:
@@ -167,32 +202,29 @@ def oscillator_kernel(
                         sgn = float(mode)
                         for j in range(K + 1):
                             poly[j] = -sgn * Y[1, j]
-                        t_ev = first_rise(poly, K, 0.0, span, 0.0)
+                        t_ev = first_rise(poly, K, 0.0, span, 0.0, work)
                     t_end = span if t_ev < 0.0 else t_ev
                     # peaks on [0, t_end]
                     for j in range(K + 1):
                         poly[j] = Y[0, j]
-                    _update_peak(poly, K, 0.0, t_end, pk, 0)
+                    _update_peak(poly, K, 0.0, t_end, pk, 0, work)
                     for j in range(K + 1):
                         poly[j] = Y[2, j]
-                    _update_peak(poly, K, 0.0, t_end, pk, 1)
+                    _update_peak(poly, K, 0.0, t_end, pk, 1, work)
                     for j in range(K + 1):
                         poly[j] = -(c2 * Y[3, j] + w2 * Y[2, j])
-                    _update_peak(poly, K, 0.0, t_end, pk, 2)
+                    _update_peak(poly, K, 0.0, t_end, pk, 2, work)
                     if mode == 0 and t_end > 0.0:
                         for j in range(K + 1):
                             poly[j] = cs[j]
-                        vmin, _, vmax, _ = extreme_values(poly, K, 0.0, t_end)
-                        m = max(vmax, -vmin)
-                        if m > pk[3]:
-                            pk[3] = m
+                        _update_peak(poly, K, 0.0, t_end, pk, 3, work)
                     elif mode != 0:
                         sgn = float(mode)
                         for j in range(K + 1):
                             poly[j] = (c2 * Y[3, j] + w2 * Y[2, j]) / r
                         poly[0] -= sgn * fk * g * (1.0 + r) / r
-                        _update_peak(poly, K, 0.0, t_end, pk, 3)
-                        states[o, 9] += t_end
+                        _update_peak(poly, K, 0.0, t_end, pk, 3, work)
+                        states[o, O_SLIDE_TIME] += t_end
                     for i in range(4):
                         y[i] = poly_val(Y[i], K, t_end)
                     tau += t_end
@@ -211,14 +243,14 @@ def oscillator_kernel(
                     else:
                         y[1] = 0.0
                     if new_mode != 0:
-                        states[o, 10] += 1
+                        states[o, O_SLIPS] += 1
                         start = True
                     mode = new_mode
-                states[o, 0] = mode
+                states[o, O_MODE] = mode
                 for i in range(4):
-                    states[o, 1 + i] = y[i]
+                    states[o, O_U + i] = y[i]
                 for i in range(4):
-                    states[o, 5 + i] = pk[i]
+                    states[o, O_PEAK_U + i] = pk[i]
                 if want_hist and sub == substeps - 1:
                     af_end = poly_val(c, K, h)
                     q_ = c2 * y[3] + w2 * y[2]

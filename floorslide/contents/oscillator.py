@@ -19,10 +19,24 @@ import numpy as np
 from floorslide.building.exact import ExactStepper, spectral_radius, substeps_for, taylor_degree
 from floorslide.building.model import LinearBuilding
 from floorslide.constants import G
+from floorslide.contents import _oscillator_kernel as cols
 from floorslide.contents._oscillator_kernel import oscillator_kernel
+from floorslide.contents.events import OSCILLATOR_MAX_EVENTS, check_event_limit
 from floorslide.contents.sliding import friction_pairs
 from floorslide.errors import ModelError
 from floorslide.inputs import RecordLike, as_record
+
+
+def phase_radius(w: float, xi: float, r: float) -> float:
+    """Largest spectral radius of the oscillator's two phase matrices: stick
+    ``[[0, 1], [−w², −2ξw]]`` and slip ``[[0, 1], [−w²k, −2ξwk]]`` with ``k = 1 + 1/r`` (the
+    relative motion of the free–free pair). Sub-step lengths come from it: for an overdamped
+    slip phase (``ξ√k > 1``) it is close to ``2ξwk``, far above the slip frequency ``w√k``.
+    """
+    k = 1.0 + 1.0 / r
+    stick = np.array([[0.0, 1.0], [-w * w, -2.0 * xi * w]])
+    slip = np.array([[0.0, 1.0], [-w * w * k, -2.0 * xi * w * k]])
+    return max(spectral_radius(stick), spectral_radius(slip))
 
 
 @dataclass(frozen=True)
@@ -144,7 +158,7 @@ def slide_oscillator(
     if not (np.isfinite(r) and r > 0):
         raise ModelError(f"mass_ratio must be > 0, got {mass_ratio}", "mass_ratio")
     w = 2 * math.pi * f
-    rho_obj = w * math.sqrt(1 + 1 / r)
+    rho_obj = phase_radius(w, xi, r)
     if building is not None and floor is None:
         raise ModelError("floor is required with building=", "floor")
     on_floor = building is not None and building.dof_of(floor) is not None
@@ -174,7 +188,8 @@ def slide_oscillator(
         phi, p, q = np.zeros((0, 0)), np.zeros(0), np.zeros(0)
         R = np.zeros((2, 0))
         beta = np.array([1.0, 0.0])
-    states = np.zeros((mk.size, 11))
+    states = np.zeros((mk.size, cols.O_NCOL))
+    states[:, cols.O_LIMIT_AT] = -1.0
     hist = np.zeros((mk.size, a.size, 4) if histories else (0, 0, 4))
     if histories:
         hist[:, 0, 3] = beta[0] * a[0]
@@ -197,18 +212,22 @@ def slide_oscillator(
         states,
         hist,
         histories,
+        OSCILLATOR_MAX_EVENTS,
     )
+    check_event_limit(states[:, cols.O_LIMIT_AT], mk, OSCILLATOR_MAX_EVENTS, "slide_oscillator")
     duration = (a.size - 1) * dt
     return OscillatorResult(
         mu_k=mk,
         mu_s=ms,
-        peak_slide=states[:, 5].copy(),
-        residual_slide=states[:, 1].copy(),
-        peak_deformation=states[:, 6].copy(),
-        peak_top_accel=states[:, 7].copy(),
-        peak_base_accel=states[:, 8].copy(),
-        slide_fraction=states[:, 9] / duration if duration > 0 else np.zeros(mk.size),
-        slip_phases=states[:, 10].astype(int),
+        peak_slide=states[:, cols.O_PEAK_U].copy(),
+        residual_slide=states[:, cols.O_U].copy(),
+        peak_deformation=states[:, cols.O_PEAK_Z].copy(),
+        peak_top_accel=states[:, cols.O_PEAK_TOP].copy(),
+        peak_base_accel=states[:, cols.O_PEAK_BASE].copy(),
+        slide_fraction=states[:, cols.O_SLIDE_TIME] / duration
+        if duration > 0
+        else np.zeros(mk.size),
+        slip_phases=states[:, cols.O_SLIPS].astype(int),
         u=hist[:, :, 0].copy() if histories else None,
         z=hist[:, :, 1].copy() if histories else None,
         top_accel=hist[:, :, 2].copy() if histories else None,

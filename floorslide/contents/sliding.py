@@ -16,7 +16,9 @@ import numpy as np
 from floorslide.building.model import LinearBuilding
 from floorslide.building.motions import stepper
 from floorslide.constants import G
+from floorslide.contents import _kernels as cols
 from floorslide.contents._kernels import slide_kernel
+from floorslide.contents.events import SLIDE_MAX_EVENTS, check_event_limit
 from floorslide.errors import ModelError
 from floorslide.inputs import DT_RTOL, RecordLike, as_record, is_stream, is_trace
 
@@ -283,7 +285,8 @@ def _slide_exact(a, dt, mk, ms, building, floor, vert, direction, histories) -> 
     allow_pos, allow_neg = _allowed(direction)
     phi, p, q, R, beta, rv, rd, substeps, h = floor_model(building, floor, dt)
     nobj = mk.size
-    states = np.zeros((nobj, 8))
+    states = np.zeros((nobj, cols.NCOL))
+    states[:, cols.LIMIT_AT] = -1.0
     npts = a.size
     shape = (nobj, npts) if histories else (0, 0)
     hu, hv, ha = np.zeros(shape), np.zeros(shape), np.zeros(shape)
@@ -312,17 +315,19 @@ def _slide_exact(a, dt, mk, ms, building, floor, vert, direction, histories) -> 
         ha,
         histories,
         lift,
+        SLIDE_MAX_EVENTS,
     )
+    check_event_limit(states[:, cols.LIMIT_AT], mk, SLIDE_MAX_EVENTS, "slide")
     duration = (npts - 1) * dt
     return SlideResult(
         mu_k=mk,
         mu_s=ms,
-        peak_slide=states[:, 3].copy(),
-        residual_slide=states[:, 2].copy(),
-        peak_abs_accel=states[:, 7].copy(),
-        slide_fraction=states[:, 5] / duration if duration > 0 else np.zeros(nobj),
-        slip_phases=states[:, 6].astype(int),
-        time_of_peak=states[:, 4].copy(),
+        peak_slide=states[:, cols.PEAK_DISP].copy(),
+        residual_slide=states[:, cols.DISP].copy(),
+        peak_abs_accel=states[:, cols.PEAK_ACC].copy(),
+        slide_fraction=states[:, cols.SLIDE_TIME] / duration if duration > 0 else np.zeros(nobj),
+        slip_phases=states[:, cols.SLIPS].astype(int),
+        time_of_peak=states[:, cols.T_PEAK].copy(),
         liftoff_time=float(lift[0]),
         liftoff_count=int(lift[1]),
         duration=duration,

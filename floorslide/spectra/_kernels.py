@@ -17,31 +17,37 @@ floor's deviation ``δ`` from that line (``|q_δ| ≤ max|δ|·∫|h|``). A quan
 
 - its bound ``max|particular| + |C|ω^k (+ max|δ|·∫|h^(k)|)`` exceeds its peak so far;
 - on the ground, also its end values plus the linear interpolation error ``h²/8·max|f''|``;
-- for oscillators with ``ω·h ≤ 0.5`` (at most one critical point per step), also the sign of
-  its derivative changes between the step ends.
+- on the ground, for oscillators with ``ω·h ≤ 0.5``, also the sign of its first or second
+  derivative changes between the step ends (every derivative of the free vibration has at
+  most one zero in such a step, so a quantity whose second derivative keeps its sign has at
+  most one critical point, found by the sign of its derivative). On a floor there is no such
+  rule (the floor is a sum of modes): the bound alone decides.
 
 Only flagged steps are searched, on sub-steps short enough (``max(ρ_building, ω)·h ≤ 0.5``) for
 the Taylor polynomial of the exact response to equal it to rounding: on the ground after a
 second filter (the cubic Hermite interpolant of the ends plus its error bound
-``h⁴/384·max|f⁗|``), by Newton from the Hermite peak. A test checks that searching every step
-gives the same spectra.
+``h⁴/384·max|f⁗|``), by Newton from the Hermite peak where the response provably has one
+critical point in the sub-step, else by rigorous root isolation
+(:mod:`floorslide.numerics.polynomial`); on a floor by the chord bound and rigorous root
+isolation. A test checks that searching every step gives the same spectra.
 """
 
 from __future__ import annotations
 
 import math
+from typing import Any, NamedTuple
 
 import numpy as np
 
 from floorslide._jit import njit
 from floorslide.building._instep import (
-    extreme_values,
     foh_step,
     poly_der,
-    poly_val,
+    poly_der2,
     substep_inputs,
     taylor_coefficients,
 )
+from floorslide.numerics.polynomial import extreme_values, max_abs_on, newton_peak, scratch
 
 
 @njit(cache=True)
@@ -50,12 +56,14 @@ def _floor_bound(phi_s, p_s, q_s, R, beta, K, x, a, a1, ms, hs, c, xs, xn, f0, f
     sub-steps of ``hs``): its largest deviation from the straight line between its step-end
     values ``f0, f1``, ``δ ≤ (ms·hs)²/8·max|a_f''|``, and ``max|a_f| ≤ max(|f0|, |f1|) + δ``.
     On each sub-step ``a_f`` is its Taylor polynomial ``Σ c_j τ^j`` (equal to it to rounding),
-    so ``|a_f''| ≤ Σ j(j−1)|c_j| hs^{j−2}``."""
+    so ``|a_f''| ≤ Σ j(j−1)|c_j| hs^{j−2}``; likewise ``|a_f'| ≤ Σ j|c_j| hs^{j−1}``, the third
+    value returned."""
     n = x.size
     slope = (a1 - a) / (ms * hs)
     for i in range(n):
         xs[i] = x[i]
     m2 = 0.0
+    m1 = 0.0
     for r in range(ms):
         aa, ab = substep_inputs(a, a1, r, ms)
         for j in range(K + 1):
@@ -65,12 +73,16 @@ def _floor_bound(phi_s, p_s, q_s, R, beta, K, x, a, a1, ms, hs, c, xs, xn, f0, f
         for j in range(K, 1, -1):
             s2 = s2 * hs + j * (j - 1) * abs(c[j])
         m2 = max(m2, s2)
+        s1 = 0.0
+        for j in range(K, 0, -1):
+            s1 = s1 * hs + j * abs(c[j])
+        m1 = max(m1, s1)
         if r + 1 < ms:
             foh_step(phi_s, p_s, q_s, xs, aa, ab, xn)
             for i in range(n):
                 xs[i] = xn[i]
     dev = (ms * hs) ** 2 / 8.0 * m2
-    return max(abs(f0), abs(f1)) + dev, dev
+    return max(abs(f0), abs(f1)) + dev, dev, m1
 
 
 @njit(cache=True, inline="always")
@@ -112,40 +124,25 @@ def _hermite_max(f0, d0, f1, d1, h):
 
 
 @njit(cache=True)
-def _interior_peak(c, K, h, t0):
-    """``|p|`` at the critical point of ``p = Σ_{j≤K} c_j τ^j`` inside ``(0, h)``, where ``p'``
-    changes sign: Newton on ``p'`` from the estimate ``t0``, safeguarded by bisection (``p'`` and
-    ``p''`` evaluated together, two independent Horner chains). Falls back to
-    :func:`extreme_values` when rounding leaves ``p'`` without a sign change."""
+def _interior_peak(c, K, h, t0, work):
+    """``max |p|`` over the critical points of ``p = Σ_{j≤K} c_j τ^j`` inside ``(0, h)``, for the
+    response of one oscillator on the ground (``p`` is a linear function plus a damped sinusoid
+    with ``ω·h ≤ 0.5``, so ``p''`` has at most one zero in the sub-step).
+
+    When ``p'`` changes sign between the ends and ``p''`` does not, ``p'`` is monotone and has
+    exactly one root: Newton on ``p'`` from the estimate ``t0``, safeguarded by bisection. In
+    every other case (``p''`` changes sign: ``p'`` may have two roots or none; rounding at an
+    end) every critical point is isolated rigorously (:func:`extreme_values`).
+    """
     d_lo = poly_der(c, K, 0.0)
     d_hi = poly_der(c, K, h)
-    if (d_lo > 0.0) == (d_hi > 0.0) or d_lo == 0.0 or d_hi == 0.0:
-        vmin, _, vmax, _ = extreme_values(c, K, 0.0, h)
+    e_lo = poly_der2(c, K, 0.0)
+    e_hi = poly_der2(c, K, h)
+    single = (d_lo > 0.0) != (d_hi > 0.0) and d_lo != 0.0 and d_hi != 0.0
+    if not single or (e_lo > 0.0) != (e_hi > 0.0) or e_lo == 0.0 or e_hi == 0.0:
+        vmin, _, vmax, _ = extreme_values(c, K, 0.0, h, work)
         return max(vmax, -vmin)
-    lo = 0.0
-    hi = h
-    x = t0 if 0.0 < t0 < h else 0.5 * h
-    for _ in range(100):
-        d = K * c[K]
-        d2 = K * (K - 1) * c[K]
-        for j in range(K - 1, 1, -1):
-            d = d * x + j * c[j]
-            d2 = d2 * x + j * (j - 1) * c[j]
-        d = d * x + c[1]
-        if d == 0.0:
-            break
-        if (d > 0.0) == (d_lo > 0.0):
-            lo = x
-        else:
-            hi = x
-        xn = x - d / d2 if d2 != 0.0 else 0.5 * (lo + hi)
-        if not (lo < xn < hi):
-            xn = 0.5 * (lo + hi)
-        if abs(xn - x) <= 4e-16 * max(abs(xn), h) or hi - lo <= 4e-16 * h:
-            x = xn
-            break
-        x = xn
-    return abs(poly_val(c, K, x))
+    return newton_peak(c, K, h, t0, d_lo)[0]
 
 
 @njit(cache=True)
@@ -172,13 +169,17 @@ def _search_step(
     c,
     Q,
     poly,
+    work,
 ):
     """Peaks of oscillator `o` on a floor inside one record step, on its sub-steps.
 
-    On every sub-step (``max(rho_building, w)·h <= 0.5``: at most one critical point) a
-    quantity is searched only if its derivative changes sign there; then the extremum of its
-    Taylor polynomial (from the floor's Taylor coefficients ``CG`` on that sub-step) is found.
-    ``n`` is the number of building states; the ground has its own :func:`_ground_search`.
+    On every sub-step (``max(rho_building, w)·h <= 0.5``) the response of the oscillator is its
+    Taylor polynomial, from the floor's Taylor coefficients ``CG`` on that sub-step. The floor
+    motion is a sum of the building's modes, with no bound on the critical points a quantity
+    may have in a sub-step; each needed quantity is therefore first filtered by a rigorous
+    bound (its end values plus the chord deviation ``h²/8·max|p''|``) and, when that can exceed
+    its peak, searched (:func:`~floorslide.numerics.polynomial.max_abs_on`). ``n`` is the number
+    of building states; the ground has its own :func:`_ground_search`.
     """
     m = gm
     K = gK
@@ -191,46 +192,31 @@ def _search_step(
         aa, ab = substep_inputs(a, a1, r, m)
         for j in range(K + 1):
             c[j] = CG[r, j]
-        f0 = c[0]
-        f1 = c[K]
-        for j in range(K - 1, -1, -1):
-            f1 = f1 * h + c[j]
         # sub-step end state
         qn = S_Pqq[0, 0] * q + S_Pqq[0, 1] * v + S_pq[0] * aa + S_qq[0] * ab
         vn = S_Pqq[1, 0] * q + S_Pqq[1, 1] * v + S_pq[1] * aa + S_qq[1] * ab
         for j in range(n):
             qn += S_Pqx[0, j] * XG[r, j]
             vn += S_Pqx[1, j] * XG[r, j]
-        dd0 = -(f0 + c2 * v + w2 * q)  # q'' at both ends
-        dd1 = -(f1 + c2 * vn + w2 * qn)
-        Ad0 = w2 * v + c2 * dd0
-        Ad1 = w2 * vn + c2 * dd1
-        nd = need[0] and ((v > 0.0) != (vn > 0.0))
-        nv = need[1] and ((dd0 > 0.0) != (dd1 > 0.0))
-        na = need[2] and ((Ad0 > 0.0) != (Ad1 > 0.0))
-        if nd or nv or na:
-            Q[0] = q
-            Q[1] = v
-            for j in range(K - 1):
-                Q[j + 2] = (-c2 * (j + 1) * Q[j + 1] - w2 * Q[j] - c[j]) / ((j + 1) * (j + 2))
-            # Newton starts where the cubic Hermite interpolant of the ends peaks
-            if nd:
-                t = _hermite_max(q, v, qn, vn, h)[1]
-                out[o, 0] = max(out[o, 0], abs(q), abs(qn), _interior_peak(Q, K, h, t))
-            if nv:
-                for j in range(K):
-                    poly[j] = (j + 1) * Q[j + 1]
-                poly[K] = 0.0
-                t = _hermite_max(v, dd0, vn, dd1, h)[1]
-                out[o, 1] = max(out[o, 1], abs(v), abs(vn), _interior_peak(poly, K, h, t))
-            if na:
-                for j in range(K):
-                    poly[j] = w2 * Q[j] + c2 * (j + 1) * Q[j + 1]
-                poly[K] = w2 * Q[K]
-                A0 = w2 * q + c2 * v
-                A1 = w2 * qn + c2 * vn
-                t = _hermite_max(A0, Ad0, A1, Ad1, h)[1]
-                out[o, 2] = max(out[o, 2], abs(A0), abs(A1), _interior_peak(poly, K, h, t))
+        Q[0] = q
+        Q[1] = v
+        for j in range(K - 1):
+            Q[j + 2] = (-c2 * (j + 1) * Q[j + 1] - w2 * Q[j] - c[j]) / ((j + 1) * (j + 2))
+        if need[0]:
+            pk, _ = max_abs_on(Q, K, h, out[o, 0], work)
+            out[o, 0] = max(out[o, 0], abs(qn), pk)
+        if need[1]:
+            for j in range(K):
+                poly[j] = (j + 1) * Q[j + 1]
+            poly[K] = 0.0
+            pk, _ = max_abs_on(poly, K, h, out[o, 1], work)
+            out[o, 1] = max(out[o, 1], abs(vn), pk)
+        if need[2]:
+            for j in range(K):
+                poly[j] = w2 * Q[j] + c2 * (j + 1) * Q[j + 1]
+            poly[K] = w2 * Q[K]
+            pk, _ = max_abs_on(poly, K, h, out[o, 2], work)
+            out[o, 2] = max(out[o, 2], abs(w2 * qn + c2 * vn), pk)
         q = qn
         v = vn
 
@@ -248,19 +234,21 @@ def _sample(acc, k, up):
 
 @njit(cache=True)
 def _ground_search(
-    f, a, a1, dt, m, K, q0, v0, w, xi, s00, s01, s10, s11, sp0, sp1, sq0, sq1, pk, Q, poly
+    f, a, a1, dt, m, K, q0, v0, w, xi, s00, s01, s10, s11, sp0, sp1, sq0, sq1, pk, Q, poly, work
 ):
     """Peaks of one oscillator on the ground inside one record step, on its ``m`` sub-steps.
 
     ``f`` says which quantities to search (bit 0: ``|q|``, 1: ``|q'|``, 2: ``|ω²q + 2ξωq'|``);
     ``s..`` is the oscillator's exact sub-step recurrence ``q⁺ = s00 q + s01 q' + sp0 a + sq0 a⁺``,
     ``q'⁺ = s10 q + s11 q' + sp1 a + sq1 a⁺``; ``pk`` holds the three peaks so far and is
-    updated. On a sub-step a quantity is searched only if its derivative changes sign there and
+    updated. On a sub-step a quantity is searched only if its first or second derivative changes
+    sign there (with neither, it is monotone or has one critical point found by the sign of its
+    derivative: every derivative of the free vibration has at most one zero when ``ω·h ≤ 0.5``) and
     the cubic Hermite interpolant of its end values and slopes plus the interpolation error bound
     ``h⁴/384·max|f⁗|`` can exceed its peak (the response is the exact particular solution
     ``α + βτ`` plus a free vibration ``Re(C e^{λτ})`` whose k-th derivative is at most
     ``|C|ω^k``); then the extremum of its Taylor polynomial of degree ``K`` (equal to the
-    response to rounding on the sub-step) is found.
+    response to rounding on the sub-step) are found (:func:`_interior_peak`).
     """
     h = dt / m
     slope = (a1 - a) / dt
@@ -279,9 +267,16 @@ def _ground_search(
         A1 = w2 * qn + c2 * vn
         Ad0 = w2 * v + c2 * dd0
         Ad1 = w2 * vn + c2 * dd1
-        nd = (f & 1) != 0 and ((v > 0.0) != (vn > 0.0))
+        # third derivative of q and second of w²q + 2ξwq' at both ends: a quantity whose
+        # derivative keeps its sign may still have two critical points when its second
+        # derivative changes sign
+        ddd0 = -slope - c2 * dd0 - w2 * v
+        ddd1 = -slope - c2 * dd1 - w2 * vn
+        Add0 = w2 * dd0 + c2 * ddd0
+        Add1 = w2 * dd1 + c2 * ddd1
+        nd = (f & 1) != 0 and ((v > 0.0) != (vn > 0.0) or (dd0 > 0.0) != (dd1 > 0.0))
         nv = (f & 2) != 0 and ((dd0 > 0.0) != (dd1 > 0.0))
-        na = (f & 4) != 0 and ((Ad0 > 0.0) != (Ad1 > 0.0))
+        na = (f & 4) != 0 and ((Ad0 > 0.0) != (Ad1 > 0.0) or (Add0 > 0.0) != (Add1 > 0.0))
         td = tv = ta = -1.0
         if nd or nv or na:
             bet = -slope / w2
@@ -309,17 +304,17 @@ def _ground_search(
             for j in range(2, K - 1):
                 Q[j + 2] = (-c2 * (j + 1) * Q[j + 1] - w2 * Q[j]) / ((j + 1) * (j + 2))
             if nd:
-                pk[0] = max(pk[0], abs(q), abs(qn), _interior_peak(Q, K, h, td))
+                pk[0] = max(pk[0], abs(q), abs(qn), _interior_peak(Q, K, h, td, work))
             if nv:
                 for j in range(K):
                     poly[j] = (j + 1) * Q[j + 1]
                 poly[K] = 0.0
-                pk[1] = max(pk[1], abs(v), abs(vn), _interior_peak(poly, K, h, tv))
+                pk[1] = max(pk[1], abs(v), abs(vn), _interior_peak(poly, K, h, tv, work))
             if na:
                 for j in range(K):
                     poly[j] = w2 * Q[j] + c2 * (j + 1) * Q[j + 1]
                 poly[K] = w2 * Q[K]
-                pk[2] = max(pk[2], abs(A0), abs(A1), _interior_peak(poly, K, h, ta))
+                pk[2] = max(pk[2], abs(A0), abs(A1), _interior_peak(poly, K, h, ta, work))
         q = qn
         v = vn
 
@@ -395,13 +390,21 @@ def _stage_ground(C, S, flag, nb, a, a1, dt):
         sa = pa - max(abs(A0), abs(A1))
         ad0 = w2 * v0 + c2 * d0
         ad1 = w2 * v1 + c2 * d1
+        # third derivative of q and second of w²q + 2ξwq' at the ends
+        j0 = -slope - c2 * d0 - w2 * v0
+        j1 = -slope - c2 * d1 - w2 * v1
+        add0 = w2 * d0 + c2 * j0
+        add1 = w2 * d1 + c2 * j1
         ld = C[KD2 * NB + o] * cm2 > sd * sd
         lv = C[KV2 * NB + o] * cm2 > sv * sv
         la = C[KA2 * NB + o] * cm2 > sa * sa
         many = C[ONE * NB + o] == 0.0
-        fd = bd & ld & (many | (v0 * v1 <= 0.0))
+        # with w·dt ≤ 0.5 every derivative of the damped free vibration has at most one zero in
+        # the step, so a quantity (linear + free vibration) has at most one critical point
+        # unless its second derivative changes sign: both signs are checked
+        fd = bd & ld & (many | (v0 * v1 <= 0.0) | (d0 * d1 <= 0.0))
         fv = bv & lv & (many | (d0 * d1 <= 0.0))
-        fa = ba & la & (many | (ad0 * ad1 <= 0.0))
+        fa = ba & la & (many | (ad0 * ad1 <= 0.0) | (add0 * add1 <= 0.0))
         f = fd + 2 * fv + 4 * fa
         flag[o] = f
         nf += f
@@ -413,24 +416,31 @@ def _stage_ground(C, S, flag, nb, a, a1, dt):
 
 
 @njit(cache=True)
-def _stage_floor(C, S, flag, nb, a, a1, dt, f0, f1, fdev, abound):
+def _stage_floor(C, S, flag, nb, a, a1, dt, f0, f1, fdev, abound, jbound):
     """Advance the first ``nb`` oscillators of a block by one record step on a floor (coupled to
     the building state through rows ``_CP0, _CP1``) and flag those whose peaks may grow inside
     it; returns the number of flags set.
 
     The ground values ``a, a1`` drive the update; the floor acceleration is ``f0, f1`` at the
-    step ends, deviates from the line through them by at most ``fdev`` and is at most ``abound``
-    in magnitude. A quantity is flagged when its bound (particular solution for that line + free
-    vibration + response to the deviation, ``fdev·∫|h|``, see the module notes) exceeds its peak
-    so far and, for oscillators with at most one critical point per step (row ``ONE``), its
-    derivative changes sign. Branch-free on purpose: the compiler vectorises it.
+    step ends, deviates from the line through them by at most ``fdev``, is at most ``abound``
+    in magnitude and changes at a rate of at most ``jbound``. A quantity is flagged when both
+    its bound (particular solution for that line + free vibration + response to the deviation,
+    ``fdev·∫|h|``, see the module notes) and its end values plus its chord deviation
+    (``dt²/8`` times a bound of its second derivative from the equation of motion) exceed its
+    peak so far, and its derivative may vanish in the step: it changes sign between the ends, or
+    one end value is within the chord deviation of the derivative (``dt²/8`` times a bound of
+    the quantity's third derivative), so that a pair of close zeros cannot be excluded. (No
+    plain sign rule: on a floor a quantity may have several critical points in a step.)
+    Branch-free on purpose: the compiler vectorises it.
     """
     nf = 0
     fslope = (f1 - f0) / dt
+    # loop invariants hoisted by hand: a division inside the loop stops the vectoriser
+    k8 = 0.125 * dt * dt
+    m2f = 8.0 * fdev / (dt * dt)  # bound of |a_f''| on the step
     for o in range(nb):
         q0 = S[_Q * NB + o]
         v0 = S[_V * NB + o]
-        d0 = S[_D * NB + o]
         w2 = C[W2 * NB + o]
         c2 = C[C2 * NB + o]
         q1 = (
@@ -448,7 +458,6 @@ def _stage_floor(C, S, flag, nb, a, a1, dt, f0, f1, fdev, abound):
             + S[_CP1 * NB + o]
         )
         A1 = w2 * q1 + c2 * v1
-        d1 = -(f1 + A1)
         pd = max(S[_PD * NB + o], abs(q1))
         pv = max(S[_PV * NB + o], abs(v1))
         pa = max(S[_PA * NB + o], abs(A1))
@@ -464,12 +473,32 @@ def _stage_floor(C, S, flag, nb, a, a1, dt, f0, f1, fdev, abound):
         bd = max(abs(alp), abs(alp + bet * dt)) + cm + fdev * C[IH0 * NB + o]
         bv = abs(bet) + C[W * NB + o] * cm + fdev * C[IH1 * NB + o]
         ba = abound + C[SA * NB + o] * cm + fdev * C[IH2 * NB + o]
+        # no sign rule on a floor (the floor motion is a sum of modes: a quantity may have
+        # several critical points in a step whatever its derivatives do at the ends); instead
+        # its end values plus the chord deviation dt²/8·max|f''|, with max|f''| bounded from the
+        # equation of motion: |q''| ≤ max|a_f| + 2ξω·max|q'| + ω²·max|q|, |q(3)| ≤ max|a_f'| +
+        # 2ξω·max|q''| + ω²·max|q'|, |(ω²q + 2ξωq')''| ≤ ω²·max|q''| + 2ξω·max|q(3)|
+        m2q = abound + c2 * bv + w2 * bd
+        m2v = jbound + c2 * m2q + w2 * bv
+        m2a = w2 * m2q + c2 * m2v
+        A0 = w2 * q0 + c2 * v0
+        # and its derivative may vanish in the step: it changes sign, or is within the chord
+        # deviation of its own derivative's bound (q(4) ≤ max|a_f''| + 2ξω·max|q(3)| + ω²·max|q''|)
+        m4q = m2f + c2 * m2v + w2 * m2q
+        m3a = w2 * m2v + c2 * m4q
+        d0 = -(f0 + A0)
+        d1 = -(f1 + A1)
         ad0 = w2 * v0 + c2 * d0
         ad1 = w2 * v1 + c2 * d1
-        many = C[ONE * NB + o] == 0.0
-        fd = ((v0 * v1 <= 0.0) | many) & (bd > pd)
-        fv = ((d0 * d1 <= 0.0) | many) & (bv > pv)
-        fa = ((ad0 * ad1 <= 0.0) | many) & (ba > pa)
+        zd = (v0 * v1 <= 0.0) | (abs(v0) <= k8 * m2v) | (abs(v1) <= k8 * m2v)
+        zv = (d0 * d1 <= 0.0) | (abs(d0) <= k8 * m4q) | (abs(d1) <= k8 * m4q)
+        za = (ad0 * ad1 <= 0.0) | (abs(ad0) <= k8 * m3a) | (abs(ad1) <= k8 * m3a)
+        ld = (abs(q0) + k8 * m2q > pd) | (abs(q1) + k8 * m2q > pd)
+        lv = (abs(v0) + k8 * m2v > pv) | (abs(v1) + k8 * m2v > pv)
+        la = (abs(A0) + k8 * m2a > pa) | (abs(A1) + k8 * m2a > pa)
+        fd = (bd > pd) & ld & zd
+        fv = (bv > pv) & lv & zv
+        fa = (ba > pa) & la & za
         f = fd + 2 * fv + 4 * fa
         flag[o] = f
         nf += f
@@ -477,46 +506,45 @@ def _stage_floor(C, S, flag, nb, a, a1, dt, f0, f1, fdev, abound):
         S[_VS * NB + o] = v0
         S[_Q * NB + o] = q1
         S[_V * NB + o] = v1
-        S[_D * NB + o] = d1
     return nf
 
 
+class SpectrumSetup(NamedTuple):
+    """Everything the spectrum kernel needs but the record, for one grid of periods and damping
+    ratios on one floor (or the ground) and one step; built by ``core._kernel_data``. The field
+    descriptions are those of :func:`spectrum_kernel`'s parameters."""
+
+    phi: Any
+    p: Any
+    q: Any
+    C: Any
+    PX: Any
+    w: Any
+    xi: Any
+    b_phi: Any
+    b_p: Any
+    b_q: Any
+    b_R: Any
+    b_beta: Any
+    b_K: Any
+    b_m: Any
+    grp: Any
+    G_m: Any
+    G_K: Any
+    K_osc: Any
+    G_phi: Any
+    G_p: Any
+    G_q: Any
+    G_R: Any
+    G_beta: Any
+    S_Pqq: Any
+    S_Pqx: Any
+    S_pq: Any
+    S_qq: Any
+
+
 @njit(cache=True)
-def spectrum_kernel(
-    phi,
-    p,
-    q,
-    acc,
-    up,
-    dt,
-    C,
-    PX,
-    w,
-    xi,
-    b_phi,
-    b_p,
-    b_q,
-    b_R,
-    b_beta,
-    b_K,
-    b_m,
-    grp,
-    G_m,
-    G_K,
-    K_osc,
-    G_phi,
-    G_p,
-    G_q,
-    G_R,
-    G_beta,
-    S_Pqq,
-    S_Pqx,
-    S_pq,
-    S_qq,
-    search_all,
-    out,
-    counts,
-):
+def spectrum_kernel(setup, acc, up, dt, search_all, out, counts):
     """Peaks of a bank of oscillators on one floor.
 
     Every oscillator is advanced at the record step by its exact recurrence (coupled to the
@@ -525,6 +553,8 @@ def spectrum_kernel(
 
     Parameters
     ----------
+    setup
+        :class:`SpectrumSetup`; its fields:
     phi, p, q
         Exact record-step recurrence of the building (empty on the ground).
     acc, up, dt
@@ -555,6 +585,33 @@ def spectrum_kernel(
     counts
         ``int64[2]``, incremented: oscillator-steps searched, floor sub-step data computed.
     """
+    phi = setup.phi
+    p = setup.p
+    q = setup.q
+    C = setup.C
+    PX = setup.PX
+    w = setup.w
+    xi = setup.xi
+    b_phi = setup.b_phi
+    b_p = setup.b_p
+    b_q = setup.b_q
+    b_R = setup.b_R
+    b_beta = setup.b_beta
+    b_K = setup.b_K
+    b_m = setup.b_m
+    grp = setup.grp
+    G_m = setup.G_m
+    G_K = setup.G_K
+    K_osc = setup.K_osc
+    G_phi = setup.G_phi
+    G_p = setup.G_p
+    G_q = setup.G_q
+    G_R = setup.G_R
+    G_beta = setup.G_beta
+    S_Pqq = setup.S_Pqq
+    S_Pqx = setup.S_Pqx
+    S_pq = setup.S_pq
+    S_qq = setup.S_qq
     n = phi.shape[0]
     nblk = C.shape[0]
     nosc = w.size
@@ -572,6 +629,7 @@ def spectrum_kernel(
     c = np.zeros(Kmax + 2)
     Q = np.zeros(Kmax + 2)
     poly = np.zeros(Kmax + 2)
+    work = scratch(Kmax + 2)
     S = np.zeros((nblk, NSTATE * NB))
     for blk in range(nblk):
         for o in range(NB):
@@ -585,7 +643,7 @@ def spectrum_kernel(
     XG = np.zeros((ngroups, G_m.max(), n))
     L = CHUNK
     XK = np.zeros((L, n))  # building state at the step starts of a chunk
-    FK = np.zeros((L, 4))  # floor: f0, f1, max|a_f|, deviation from the line
+    FK = np.zeros((L, 5))  # floor: f0, f1, max|a_f|, deviation from the line, max|a_f'|
     for k0 in range(0, npts - 1, L):
         k1 = min(k0 + L, npts - 1)
         # the building through this chunk, once for every block
@@ -600,13 +658,14 @@ def spectrum_kernel(
             f1 = b_beta[0] * a1  # floor acceleration at the step end
             for j in range(n):
                 f1 += b_R[0, j] * xe[j]
-            abound, fdev = _floor_bound(
+            abound, fdev, jbound = _floor_bound(
                 b_phi, b_p, b_q, b_R, b_beta, b_K, x, a, a1, b_m, dt / b_m, c, xs, xn, f0, f1
             )
             FK[k - k0, 0] = f0
             FK[k - k0, 1] = f1
             FK[k - k0, 2] = abound
             FK[k - k0, 3] = fdev
+            FK[k - k0, 4] = jbound
             for i in range(n):
                 x[i] = xe[i]
             f0 = f1
@@ -640,6 +699,7 @@ def spectrum_kernel(
                         FK[k - k0, 1],
                         FK[k - k0, 3],
                         FK[k - k0, 2],
+                        FK[k - k0, 4],
                     )
                     for g in range(ngroups):
                         ready[g] = False
@@ -680,6 +740,7 @@ def spectrum_kernel(
                             pk,
                             Q,
                             poly,
+                            work,
                         )
                         Sb[_PD * NB + o] = pk[0]
                         Sb[_PV * NB + o] = pk[1]
@@ -733,6 +794,7 @@ def spectrum_kernel(
                         c,
                         Q,
                         poly,
+                        work,
                     )
                     Sb[_PD * NB + o] = out[og, 0]
                     Sb[_PV * NB + o] = out[og, 1]

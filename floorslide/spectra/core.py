@@ -37,11 +37,10 @@ from floorslide.constants import MAX_LIST
 from floorslide.errors import ModelError
 from floorslide.inputs import RecordLike, as_record
 from floorslide.spectra import _kernels as K
-from floorslide.spectra._kernels import NB, NCOEF, spectrum_kernel
+from floorslide.spectra._kernels import NB, NCOEF, SpectrumSetup, spectrum_kernel
 
 # running totals of the kernel's work (diagnostics for benchmarks): oscillator-steps searched
 # inside, floor sub-step data computed
-SEARCHED = np.zeros(2, dtype=np.int64)
 METHODS = ("exact", "samples", "newmark", "fft", "reinterpolated")
 
 MAX_OSCILLATORS = 100_000
@@ -330,12 +329,12 @@ def _blocks(w, xi, dt, Pqq, Pqx, pq, qq, one_crit, Ih):
 
 
 @functools.lru_cache(maxsize=16)
-def _kernel_data(dt: float, T_bytes: bytes, Z_bytes: bytes, n: int, system: bytes) -> tuple:
+def _kernel_data(dt: float, T_bytes: bytes, Z_bytes: bytes, n: int, system: bytes) -> SpectrumSetup:
     """Everything the spectrum kernel needs but the record, for oscillators of periods ``T`` and
     damping ratios ``Z`` on a floor whose state-space data (``n`` states; ``A``, ``b``, ``Ca``,
     ``da`` packed in ``system``) is given, or on the ground (``n = 0``). Cached: a study asks for
     the same periods, damping ratios, dt and building record after record. The arrays returned
-    are shared between calls and must not be written."""
+    are shared between calls: they are returned read-only."""
     T = np.frombuffer(T_bytes)
     Z = np.frombuffer(Z_bytes)
     on_floor = n > 0
@@ -403,39 +402,54 @@ def _kernel_data(dt: float, T_bytes: bytes, Z_bytes: bytes, n: int, system: byte
             G_beta[g, : R.shape[1]] = beta[0]
     Ih = _impulse_integrals(w, xi, dt) if on_floor else np.zeros((3, nosc))
     C, PX = _blocks(w, xi, dt, Pqq, Pqx, pq, qq, one_crit, Ih)
-    return (
-        phi,
-        p,
-        q,
-        C,
-        PX,
-        w,
-        xi,
-        b_phi,
-        b_p,
-        b_q,
-        np.ascontiguousarray(b_R),
-        np.ascontiguousarray(b_beta),
-        int(b_K),
-        int(b_m),
-        grp,
-        groups.astype(np.int64),
-        G_K,
-        K_osc,
-        G_phi,
-        G_p,
-        G_q,
-        G_R,
-        G_beta,
-        S_Pqq,
-        S_Pqx,
-        S_pq,
-        S_qq,
+    return SpectrumSetup(
+        *_read_only(
+            phi,
+            p,
+            q,
+            C,
+            PX,
+            w,
+            xi,
+            b_phi,
+            b_p,
+            b_q,
+            np.ascontiguousarray(b_R),
+            np.ascontiguousarray(b_beta),
+            int(b_K),
+            int(b_m),
+            grp,
+            groups.astype(np.int64),
+            G_K,
+            K_osc,
+            G_phi,
+            G_p,
+            G_q,
+            G_R,
+            G_beta,
+            S_Pqq,
+            S_Pqx,
+            S_pq,
+            S_qq,
+        )
     )
 
 
-def _exact(a, dt, T, Z, building, floor, search_all=False):
-    """Exact spectra on the ground or a floor; returns sd, sv, sa of shape (len(Z), len(T))."""
+def _read_only(*items) -> tuple:
+    """``items`` with every array made read-only (they are cached and shared)."""
+    for x in items:
+        if isinstance(x, np.ndarray):
+            x.setflags(write=False)
+    return items
+
+
+def _exact(a, dt, T, Z, building, floor, search_all=False, counts=None):
+    """Exact spectra on the ground or a floor; returns sd, sv, sa of shape (len(Z), len(T)).
+
+    ``counts`` (``int64[2]``, optional) is incremented by the oscillator·steps searched inside
+    the step and the floor sub-step data computed (benchmarks report the search fraction)."""
+    if counts is None:
+        counts = np.zeros(2, dtype=np.int64)
     on_floor = building is not None and building.dof_of(floor) is not None
     if on_floor:
         A, B = building.state_matrices()
@@ -449,12 +463,12 @@ def _exact(a, dt, T, Z, building, floor, search_all=False):
         up = 1
     pos = T > 0
     h = dt / up
-    args = _kernel_data(
+    setup = _kernel_data(
         float(h), np.asarray(T[pos], float).tobytes(), np.asarray(Z, float).tobytes(), *system
     )
-    nosc = args[5].size
+    nosc = setup.w.size
     out = np.zeros((nosc, 3))
-    spectrum_kernel(args[0], args[1], args[2], a, up, h, *args[3:], search_all, out, SEARCHED)
+    spectrum_kernel(setup, a, up, h, search_all, out, counts)
     sd = np.zeros((Z.size, T.size))
     sv = np.zeros((Z.size, T.size))
     sa = np.zeros((Z.size, T.size))

@@ -258,3 +258,31 @@ def test_a_bad_record_does_not_stop_the_others(tmp_path):
     assert "bad.txt" in out.stderr and "Traceback" not in out.stderr
     res = results(tmp_path / "o.h5")
     assert [k[0] for k in res] == ["good"]
+
+
+def test_a_run_integrates_each_building_once_per_record(scene_file, tmp_path, monkeypatch):
+    """The planner's per-object rules need the true PFA; a real run leaves that to the tasks
+    (the dry run evaluates it to count), so each task integrates its building once for it."""
+    import floorslide.run.task as task_mod
+    from floorslide.building import motions
+    from floorslide.cli import run
+
+    calls = []
+
+    def counting(*args, **kwargs):
+        calls.append(1)
+        return peak_floor_acceleration(*args, **kwargs)
+
+    monkeypatch.setattr(motions, "peak_floor_acceleration", counting)
+    monkeypatch.setattr(task_mod, "peak_floor_acceleration", counting)
+    out = tmp_path / "once.h5"
+    with pytest.raises(SystemExit) as exit_:
+        run.main([str(scene_file), "-o", str(out), "--workers", "1"], standalone_mode=False)
+        raise SystemExit(0)
+    assert exit_.value.code in (0, None)
+    n_tasks = ResultFile(out).plan["tasks"]
+    assert len(calls) == n_tasks
+    calls.clear()
+    with pytest.raises(SystemExit):
+        run.main([str(scene_file), "--dry-run"], standalone_mode=False)
+    assert len(calls) == n_tasks
