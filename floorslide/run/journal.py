@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 import struct
 from typing import Any
 
@@ -30,6 +31,8 @@ import numpy as np
 
 from floorslide.run.snapshot import Data, Node, digest
 
+_DTYPE = re.compile(r"[<>|=]?[biufc][1-9][0-9]?")
+"""Type strings of the arrays an entry may hold (byte order, kind, item size)."""
 MAGIC = b"floorslide journal entry\n"
 VERSION = 1
 MAX_DEPTH = 16
@@ -150,10 +153,12 @@ def _decode_value(spec: Any, payload: memoryview) -> Any:
         return arr.reshape(shape)
     _need(set(spec) == {"dtype", "shape", "offset", "nbytes"}, "bad array value")
     code, offset, nbytes = spec["dtype"], spec["offset"], spec["nbytes"]
-    _need(isinstance(code, str) and len(code) <= 8, "bad dtype")
+    # only plain numeric type strings reach NumPy: its parser evaluates others (a "," raised a
+    # SyntaxError from ast.literal_eval)
+    _need(isinstance(code, str) and _DTYPE.fullmatch(code) is not None, f"refused dtype {code!r}")
     try:
         dtype = np.dtype(code)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, SyntaxError):
         raise EntryError(f"bad dtype {code!r}") from None
     _need(dtype.kind in "biufc" and dtype.str == code, f"refused dtype {code!r}")
     for n in (offset, nbytes):

@@ -122,3 +122,14 @@ def test_every_damaged_entry_is_refused_or_read_right(the_plan):
         assert tid == result.task_id and digest(got) == want
         outcomes["same"] += 1
     assert outcomes["refused"] > 350, outcomes
+
+
+@pytest.mark.parametrize("code", [",", "(2,)f8", "O", "V8", "f8,f8", "<U4"])
+def test_a_type_string_other_than_a_plain_number_is_refused(code):
+    """NumPy's dtype parser evaluates type strings like ',' (a SyntaxError escaped the
+    journal's checks, found by the bit-flip test): only byte order + kind + size pass."""
+    from floorslide.run.journal import EntryError, _decode_value
+
+    spec = {"dtype": code, "shape": [1], "offset": 0, "nbytes": 8}
+    with pytest.raises(EntryError):
+        _decode_value(spec, memoryview(b"\0" * 8))
