@@ -8,9 +8,13 @@ from importlib.metadata import PackageNotFoundError
 from importlib.metadata import version as _version
 
 from floorslide.building import (
+    BuildingMotion,
+    FloorMotion,
     IsolatedBuilding,
     Rayleigh,
     ShearBuilding,
+    building_motion,
+    floor_motion,
     floor_motions,
     peak_floor_acceleration,
 )
@@ -45,6 +49,8 @@ except PackageNotFoundError:  # pragma: no cover - running from a source tree
     __version__ = "0+unknown"
 
 __all__ = [
+    "BuildingMotion",
+    "FloorMotion",
     "G",
     "IsolatedBuilding",
     "Rayleigh",
@@ -60,6 +66,8 @@ __all__ = [
     "response_mode",
     "response_spectrum",
     "slide_oscillator",
+    "building_motion",
+    "floor_motion",
     "floor_motions",
     "peak_floor_acceleration",
     "slide",

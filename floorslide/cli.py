@@ -419,7 +419,7 @@ def slide(
     building → object); no filtering unless asked. The header says where the object stands
     and, on a floor, its peak floor acceleration.
     """
-    from floorslide.building.motions import peak_floor_acceleration
+    from floorslide.building.exact_motion import floor_motion
     from floorslide.constants import G
     from floorslide.contents.sliding import slide as slide_exact
     from floorslide.records.process import process
@@ -432,15 +432,9 @@ def slide(
         if not scale_pga > 0:
             raise click.BadParameter("must be > 0", param_hint="--scale-pga")
         tr = process(tr, scale_pga=scale_pga)
-    res = slide_exact(
-        tr.data,
-        tr.stats.delta,
-        mus,
-        mus_s,
-        direction=direction,
-        building=building,
-        floor=floor_no if building is not None else None,
-    )
+    # the floor's exact motion, integrated once for the slides and the PFA of the header
+    fm = floor_motion(building, tr.data, floor_no if building is not None else None, tr.stats.delta)
+    res = slide_exact(fm, None, mus, mus_s, direction=direction)
     rows = res.to_records()
     if as_json:
         for row in rows:
@@ -455,7 +449,7 @@ def slide(
         + (f", {where}" if building is None else "")
     )
     if building is not None:
-        pfa = peak_floor_acceleration(building, tr.data, tr.stats.delta, [floor_no]).peak[0]
+        pfa = fm.peak()[0]
         click.echo(f"{where}; PFA = {pfa:.4g} m/s2 ({pfa / G:.4f} g)")
     click.echo(
         f"{'mu_k':>7} {'mu_s':>7} {'peak slide (m)':>15} {'residual (m)':>13} "

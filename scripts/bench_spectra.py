@@ -76,10 +76,8 @@ def main() -> None:
             ]
         )
         counts = np.zeros(2, dtype=np.int64)
-        spectra_core._exact(
-            ag, dt, np.asarray(T, float), np.asarray(Z, float), kw.get("building"),
-            kw.get("floor"), counts=counts,
-        )  # fmt: skip
+        motion = spectra_core.motion_of(ag, dt, kw.get("building"), kw.get("floor"))
+        spectra_core._exact(motion, np.asarray(T, float), np.asarray(Z, float), counts=counts)
         searched.append(f"{where}: {counts[0] / n:.2%}")
         methods = [("floorslide peaks at samples", dict(method="samples"))]
         methods += [

@@ -1,6 +1,12 @@
 """Buildings: fixed-base and isolated shear buildings as state space, exact floor motions."""
 
 from floorslide.building.exact import ExactStepper, foh_matrices
+from floorslide.building.exact_motion import (
+    BuildingMotion,
+    FloorMotion,
+    building_motion,
+    floor_motion,
+)
 from floorslide.building.model import (
     IsolatedBuilding,
     LinearBuilding,
@@ -11,7 +17,11 @@ from floorslide.building.model import (
 from floorslide.building.motions import Peaks, floor_motions, peak_floor_acceleration
 
 __all__ = [
+    "BuildingMotion",
     "ExactStepper",
+    "FloorMotion",
+    "building_motion",
+    "floor_motion",
     "IsolatedBuilding",
     "LinearBuilding",
     "ModalProperties",

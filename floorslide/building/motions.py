@@ -7,8 +7,6 @@ are kept for the accuracy-versus-cost study (docs/design.md §6).
 
 from __future__ import annotations
 
-import dataclasses
-import functools
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -16,8 +14,9 @@ import control
 import numpy as np
 
 from floorslide._jit import njit
-from floorslide.building._kernels import foh_outputs, foh_peaks
-from floorslide.building.exact import ExactStepper, foh_matrices
+from floorslide.building._kernels import foh_outputs
+from floorslide.building.exact import foh_matrices
+from floorslide.building.exact_motion import building_motion, stepper
 from floorslide.building.model import LinearBuilding
 from floorslide.errors import ModelError
 from floorslide.inputs import RecordLike, as_record, check_record
@@ -25,36 +24,6 @@ from floorslide.inputs import RecordLike, as_record, check_record
 __all__ = ["Peaks", "check_record", "floor_motions", "peak_floor_acceleration", "stepper"]
 
 METHODS = ("exact", "zoh", "newmark", "forced_response")
-
-
-def stepper(building: LinearBuilding, dt: float, substeps: int | None = None) -> ExactStepper:
-    """The exact stepper of `building` for record step `dt`.
-
-    Discretising is a matrix exponential and an eigenvalue problem (about a millisecond), done
-    once per record and content otherwise; a small cache keyed by the *values* of the state
-    matrices (never by object identity, so it cannot go stale) keeps it, and each call gets its
-    own copies of the arrays (nothing shared can be written)."""
-    A, B = building.state_matrices()
-    A = np.ascontiguousarray(A, dtype=float)
-    b = np.ascontiguousarray(B[:, 0], dtype=float)
-    st = _cached_stepper(A.shape[0], A.tobytes(), b.tobytes(), float(dt), substeps)
-    return dataclasses.replace(
-        st,
-        A=st.A.copy(),
-        b=st.b.copy(),
-        phi=st.phi.copy(),
-        gamma0=st.gamma0.copy(),
-        gamma1=st.gamma1.copy(),
-    )
-
-
-@functools.lru_cache(maxsize=32)
-def _cached_stepper(
-    n: int, A_bytes: bytes, b_bytes: bytes, dt: float, substeps: int | None
-) -> ExactStepper:
-    A = np.frombuffer(A_bytes).reshape(n, n).copy()
-    b = np.frombuffer(b_bytes).copy()
-    return ExactStepper.build(A, b, dt, substeps)
 
 
 def floor_motions(
@@ -118,10 +87,7 @@ def floor_motions(
         a = np.interp(np.arange((a.size - 1) * oversample + 1) / oversample, t_old, a)
         dt = dt / oversample
     if method == "exact":
-        st = stepper(building, dt, 1)
-        p, q = st.input_weights()
-        Y = np.empty((C.shape[0], a.size))
-        foh_outputs(st.phi, p, q, C, D[:, 0], a, 1, np.zeros(st.n), Y)
+        Y = building_motion(building, a, dt, max_bytes=0, copy=False).samples(floors, kinds)
     elif method == "zoh":
         A, B = building.state_matrices()
         phi, g0, _ = foh_matrices(A, B[:, 0], dt)
@@ -203,13 +169,7 @@ def peak_floor_acceleration(
         k = int(np.argmax(np.abs(a)))
         return Peaks((0,), np.array([abs(a[k])]), np.array([k * dt]), notes)
     floors = building.check_floors(floors)
-    C, D, _ = building.output_matrices(floors, output)
-    st = stepper(building, dt)
-    p, q = st.input_weights()
-    R, beta = st.taylor_rows(C, D[:, 0])
-    peak = np.empty(C.shape[0])
-    tpk = np.empty(C.shape[0])
-    foh_peaks(st.phi, p, q, R, beta, a, st.substeps, st.h, np.zeros(st.n), peak, tpk)
+    peak, tpk = building_motion(building, a, dt, max_bytes=0, copy=False).peaks(floors, output)
     return Peaks(tuple(floors), peak, tpk, notes)
 
 

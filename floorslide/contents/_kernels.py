@@ -1,9 +1,10 @@
 """Compiled event-driven kernel of rigid blocks sliding with Coulomb friction on one floor.
 
-One loop over (sub-)steps advances the floor's exact state once and every object on it. The
-floor's absolute acceleration inside a sub-step is the Taylor polynomial of the exact response
-(:mod:`floorslide.building.exact`); on the ground it is the record's own linear segment (a
-"building" with no states). Per object and sub-step, cheap exact tests decide most cases (a
+One loop over (sub-)steps reads the floor's exact state (one chunk of a
+:class:`~floorslide.building.exact_motion.FloorMotion`, integrated once) and advances every object
+on it. The floor's absolute acceleration inside a sub-step is the Taylor polynomial of the exact
+response (:mod:`floorslide.building.exact`); on the ground it is the record's own linear segment
+(a motion with no states). Per object and sub-step, cheap exact tests decide most cases (a
 sticking block whose floor stays below its breakaway level; a slipping block whose relative
 velocity provably keeps its sign); only the rest go through the event search on polynomials.
 
@@ -19,7 +20,6 @@ from floorslide._jit import njit
 from floorslide.building._instep import (
     curvature_bound_at,
     curvature_tail_weights,
-    foh_step,
     poly_val,
     substep_inputs,
     taylor_coefficients,
@@ -263,9 +263,8 @@ def _general(
 
 @njit(cache=True)
 def slide_kernel(
-    phi,
-    p,
-    q,
+    X,
+    k0,
     R,
     beta,
     rv,
@@ -292,9 +291,12 @@ def slide_kernel(
 
     Parameters
     ----------
-    phi, p, q
-        Exact sub-step recurrence of the building (``x_{j+1} = Φ x_j + p a_j + q a_{j+1}``);
-        empty for the ground.
+    X, k0
+        One chunk of the floor motion's building states from record step ``k0``
+        (:meth:`floorslide.building.exact_motion.FloorMotion.chunks`: ``X[(k − k0)·substeps + r]``
+        at the start of sub-step ``r`` of step ``k``; no columns on the ground). The kernel
+        advances the objects through the chunk's steps; called chunk after chunk, it carries
+        everything in ``states`` and ``liftoff``.
     R, beta
         Taylor rows of the floor's absolute acceleration (``(K+1, n)``, ``(K+1,)``).
     rv, rd
@@ -317,17 +319,15 @@ def slide_kernel(
     hist_u, hist_v, hist_a
         ``(n_obj, npts)`` histories at the samples when ``want_hist``.
     liftoff
-        ``[lift-off time, number of lift-off intervals]`` out.
+        ``[lift-off time, number of lift-off intervals, in lift-off at the chunk end]``
+        in/out.
     max_events
         Most events per object and sub-step (:mod:`floorslide.contents.events`).
     """
-    n = phi.shape[0]
+    n = X.shape[1]
     K = R.shape[0] - 1
     nobj = muk.size
-    npts = acc.size
-    x = np.zeros(n)
-    x_prev = np.zeros(n)
-    y = np.empty(n)
+    nsteps = (X.shape[0] - 1) // substeps
     c = np.empty(K + 1)
     work = np.empty(4 * K + 16)
     rw = scratch(K + 3)
@@ -335,21 +335,23 @@ def slide_kernel(
     # weights of the tail of the curvature bound of the floor acceleration on a sub-step
     WX = np.zeros(n)
     WA, WS = curvature_tail_weights(R, beta, h, WX)
-    in_lift = False
-    # floor values at the very start
-    a_start = beta[0] * acc[0]
-    n_start = g + vert[0] if has_vert else g
-    for i in range(nobj):
-        # friction transmits at most mub·N: a block on a floor already beyond it at t = 0
-        # slides from the start
-        a_obj = min(abs(a_start), mub[i] * max(n_start, 0.0))
-        if a_obj > states[i, PEAK_ACC]:
-            states[i, PEAK_ACC] = a_obj
-        if want_hist:
-            hist_u[i, 0] = states[i, DISP]
-            hist_v[i, 0] = states[i, VEL]
-            hist_a[i, 0] = a_start
-    for k in range(npts - 1):
+    in_lift = liftoff[2] != 0.0
+    if k0 == 0:
+        # floor values at the very start (the building at rest)
+        a_start = beta[0] * acc[0]
+        n_start = g + vert[0] if has_vert else g
+        for i in range(nobj):
+            # friction transmits at most mub·N: a block on a floor already beyond it at t = 0
+            # slides from the start
+            a_obj = min(abs(a_start), mub[i] * max(n_start, 0.0))
+            if a_obj > states[i, PEAK_ACC]:
+                states[i, PEAK_ACC] = a_obj
+            if want_hist:
+                hist_u[i, 0] = states[i, DISP]
+                hist_v[i, 0] = states[i, VEL]
+                hist_a[i, 0] = a_start
+    for kk in range(nsteps):
+        k = k0 + kk
         a = acc[k]
         a1 = acc[k + 1]
         slope = (a1 - a) / (substeps * h)
@@ -362,11 +364,8 @@ def slide_kernel(
         for r in range(substeps):
             aa, ab = substep_inputs(a, a1, r, substeps)
             t0 = (k * substeps + r) * h
-            for i in range(n):
-                x_prev[i] = x[i]
-            foh_step(phi, p, q, x_prev, aa, ab, y)
-            for i in range(n):
-                x[i] = y[i]
+            x_prev = X[kk * substeps + r]
+            x = X[kk * substeps + r + 1]
             # shared floor quantities of this sub-step: end values, and a rigorous enclosure
             # [amin, amax] of the floor acceleration on it, tightened only when a decision
             # needs it (level 0: curvature bound from the state, O(n); 1: from the Taylor
@@ -490,3 +489,4 @@ def slide_kernel(
                     else:
                         nn = n0 + sn * h
                         hist_a[i, k + 1] = -m * muk[i] * (nn if nn > 0.0 else 0.0)
+    liftoff[2] = 1.0 if in_lift else 0.0

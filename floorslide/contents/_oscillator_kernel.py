@@ -22,7 +22,6 @@ import numpy as np
 
 from floorslide._jit import njit
 from floorslide.building._instep import (
-    foh_step,
     poly_val,
     substep_inputs,
     taylor_coefficients,
@@ -97,14 +96,14 @@ def _update_peak(poly, K, lo, hi, peaks, idx, work):
 
 @njit(cache=True)
 def oscillator_kernel(
-    phi,
-    p,
-    q,
+    X,
+    k0,
     R,
     beta,
     acc,
     substeps,
     h,
+    m_o,
     K,
     w,
     xi,
@@ -119,15 +118,19 @@ def oscillator_kernel(
 ):
     """Advance 2-DOF sliding oscillators (one per friction pair) through the record.
 
-    ``states[i]``: columns :data:`O_MODE` … :data:`O_LIMIT_AT`; ``hist[i, k]`` = [u, z, a_top,
-    a_base] at the samples when ``want_hist``.
+    ``X, k0``: one chunk of the floor motion's building states from record step ``k0``
+    (:meth:`floorslide.building.exact_motion.FloorMotion.chunks`, on its sub-steps of length
+    ``h``, ``substeps`` per record step; no columns on the ground), whose Taylor rows ``R,
+    beta`` give the floor acceleration polynomial on each sub-step. Each sub-step is split into
+    ``m_o`` equal parts on which the oscillator's phases have ``ρ·h/m_o ≤ 0.5``; the floor
+    polynomial is shifted to each part (it equals the floor motion on the whole sub-step). ``K``:
+    Taylor degree of the phase series (at least the floor's). ``states[i]``: columns
+    :data:`O_MODE` … :data:`O_LIMIT_AT`, carried from chunk to chunk; ``hist[i, k]`` = [u, z,
+    a_top, a_base] at the samples when ``want_hist``.
     """
-    n = phi.shape[0]
     nobj = muk.size
-    npts = acc.size
-    x = np.zeros(n)
-    x_prev = np.zeros(n)
-    xn = np.empty(n)
+    nsteps = (X.shape[0] - 1) // substeps
+    ho = h / m_o
     c = np.zeros(K + 1)
     cs = np.zeros(K + 1)
     Y = np.zeros((4, K + 1))
@@ -138,126 +141,124 @@ def oscillator_kernel(
     c2 = 2.0 * xi * w
     w2 = w * w
     kr = R.shape[0] - 1
-    for k in range(npts - 1):
+    for kk in range(nsteps):
+        k = k0 + kk
         a = acc[k]
         a1 = acc[k + 1]
         slope = (a1 - a) / (substeps * h)
         for sub in range(substeps):
-            aa, ab = substep_inputs(a, a1, sub, substeps)
-            for i in range(n):
-                x_prev[i] = x[i]
-            foh_step(phi, p, q, x_prev, aa, ab, xn)
-            for i in range(n):
-                x[i] = xn[i]
+            aa, _ = substep_inputs(a, a1, sub, substeps)
             for j in range(K + 1):
                 c[j] = 0.0
-            taylor_coefficients(R, beta, x_prev, aa, slope, c[: kr + 1])
-            for o in range(nobj):
-                mode = int(states[o, O_MODE])
-                for i in range(4):
-                    y[i] = states[o, O_U + i]
-                for i in range(4):
-                    pk[i] = states[o, O_PEAK_U + i]
-                fb = mub[o] * (1.0 + r) * g
-                fk = muk[o]
-                tau = 0.0
-                guard = 0
-                start = False
-                while tau < h:
-                    if guard >= max_events:
-                        if states[o, O_LIMIT_AT] < 0.0:
-                            states[o, O_LIMIT_AT] = (k * substeps + sub) * h
-                        break
-                    guard += 1
-                    _shift(c, K, tau, cs)
-                    _phase_series(y, mode, cs, K, w, xi, r, fk * g, start, Y)
-                    start = False
-                    span = h - tau
-                    t_ev = -1.0
-                    new_mode = mode
-                    if mode == 0:
-                        # F(σ) = r a_f − 2ξw z' − w² z; beyond ±fb already when the stick phase
-                        # begins (a record that starts mid-motion): the base moves at once
-                        f_now = r * cs[0] - c2 * Y[3, 0] - w2 * Y[2, 0]
-                        t_up = -1.0
-                        t_lo = -1.0
-                        if f_now > fb:
-                            t_up = 0.0
-                        elif f_now < -fb:
-                            t_lo = 0.0
-                        else:
-                            for j in range(K + 1):
-                                poly[j] = r * cs[j] - c2 * Y[3, j] - w2 * Y[2, j]
-                            poly[0] -= fb
-                            t_up = first_rise(poly, K, 0.0, span, 0.0, work)
-                            for j in range(K + 1):
-                                poly[j] = -(r * cs[j] - c2 * Y[3, j] - w2 * Y[2, j])
-                            poly[0] -= fb
-                            t_lo = first_rise(poly, K, 0.0, span, 0.0, work)
-                        if t_up >= 0.0 and (t_lo < 0.0 or t_up <= t_lo):
-                            t_ev, new_mode = t_up, -1
-                        elif t_lo >= 0.0:
-                            t_ev, new_mode = t_lo, 1
-                    else:
-                        sgn = float(mode)
-                        for j in range(K + 1):
-                            poly[j] = -sgn * Y[1, j]
-                        t_ev = first_rise(poly, K, 0.0, span, 0.0, work)
-                    t_end = span if t_ev < 0.0 else t_ev
-                    # peaks on [0, t_end]
-                    for j in range(K + 1):
-                        poly[j] = Y[0, j]
-                    _update_peak(poly, K, 0.0, t_end, pk, 0, work)
-                    for j in range(K + 1):
-                        poly[j] = Y[2, j]
-                    _update_peak(poly, K, 0.0, t_end, pk, 1, work)
-                    for j in range(K + 1):
-                        poly[j] = -(c2 * Y[3, j] + w2 * Y[2, j])
-                    _update_peak(poly, K, 0.0, t_end, pk, 2, work)
-                    if mode == 0 and t_end > 0.0:
-                        for j in range(K + 1):
-                            poly[j] = cs[j]
-                        _update_peak(poly, K, 0.0, t_end, pk, 3, work)
-                    elif mode != 0:
-                        sgn = float(mode)
-                        for j in range(K + 1):
-                            poly[j] = (c2 * Y[3, j] + w2 * Y[2, j]) / r
-                        poly[0] -= sgn * fk * g * (1.0 + r) / r
-                        _update_peak(poly, K, 0.0, t_end, pk, 3, work)
-                        states[o, O_SLIDE_TIME] += t_end
+            taylor_coefficients(R, beta, X[kk * substeps + sub], aa, slope, c[: kr + 1])
+            for so in range(m_o):
+                base = so * ho
+                for o in range(nobj):
+                    mode = int(states[o, O_MODE])
                     for i in range(4):
-                        y[i] = poly_val(Y[i], K, t_end)
-                    tau += t_end
-                    if t_ev < 0.0:
-                        break
-                    if mode != 0:
-                        y[1] = 0.0
-                        # stop: stick, or reverse at once if friction cannot hold the base
-                        fnow = r * poly_val(cs, K, t_end) - c2 * y[3] - w2 * y[2]
-                        if fnow > fb:
-                            new_mode = -1
-                        elif fnow < -fb:
-                            new_mode = 1
+                        y[i] = states[o, O_U + i]
+                    for i in range(4):
+                        pk[i] = states[o, O_PEAK_U + i]
+                    fb = mub[o] * (1.0 + r) * g
+                    fk = muk[o]
+                    tau = 0.0
+                    guard = 0
+                    start = False
+                    while tau < ho:
+                        if guard >= max_events:
+                            if states[o, O_LIMIT_AT] < 0.0:
+                                states[o, O_LIMIT_AT] = (k * substeps + sub) * h + base
+                            break
+                        guard += 1
+                        _shift(c, K, base + tau, cs)
+                        _phase_series(y, mode, cs, K, w, xi, r, fk * g, start, Y)
+                        start = False
+                        span = ho - tau
+                        t_ev = -1.0
+                        new_mode = mode
+                        if mode == 0:
+                            # F(σ) = r a_f − 2ξw z' − w² z; beyond ±fb already when the stick phase
+                            # begins (a record that starts mid-motion): the base moves at once
+                            f_now = r * cs[0] - c2 * Y[3, 0] - w2 * Y[2, 0]
+                            t_up = -1.0
+                            t_lo = -1.0
+                            if f_now > fb:
+                                t_up = 0.0
+                            elif f_now < -fb:
+                                t_lo = 0.0
+                            else:
+                                for j in range(K + 1):
+                                    poly[j] = r * cs[j] - c2 * Y[3, j] - w2 * Y[2, j]
+                                poly[0] -= fb
+                                t_up = first_rise(poly, K, 0.0, span, 0.0, work)
+                                for j in range(K + 1):
+                                    poly[j] = -(r * cs[j] - c2 * Y[3, j] - w2 * Y[2, j])
+                                poly[0] -= fb
+                                t_lo = first_rise(poly, K, 0.0, span, 0.0, work)
+                            if t_up >= 0.0 and (t_lo < 0.0 or t_up <= t_lo):
+                                t_ev, new_mode = t_up, -1
+                            elif t_lo >= 0.0:
+                                t_ev, new_mode = t_lo, 1
                         else:
-                            new_mode = 0
-                    else:
-                        y[1] = 0.0
-                    if new_mode != 0:
-                        states[o, O_SLIPS] += 1
-                        start = True
-                    mode = new_mode
-                states[o, O_MODE] = mode
-                for i in range(4):
-                    states[o, O_U + i] = y[i]
-                for i in range(4):
-                    states[o, O_PEAK_U + i] = pk[i]
-                if want_hist and sub == substeps - 1:
-                    af_end = poly_val(c, K, h)
-                    q_ = c2 * y[3] + w2 * y[2]
-                    hist[o, k + 1, 0] = y[0]
-                    hist[o, k + 1, 1] = y[2]
-                    hist[o, k + 1, 2] = -q_
-                    if mode == 0:
-                        hist[o, k + 1, 3] = af_end
-                    else:
-                        hist[o, k + 1, 3] = q_ / r - float(mode) * fk * g * (1.0 + r) / r
+                            sgn = float(mode)
+                            for j in range(K + 1):
+                                poly[j] = -sgn * Y[1, j]
+                            t_ev = first_rise(poly, K, 0.0, span, 0.0, work)
+                        t_end = span if t_ev < 0.0 else t_ev
+                        # peaks on [0, t_end]
+                        for j in range(K + 1):
+                            poly[j] = Y[0, j]
+                        _update_peak(poly, K, 0.0, t_end, pk, 0, work)
+                        for j in range(K + 1):
+                            poly[j] = Y[2, j]
+                        _update_peak(poly, K, 0.0, t_end, pk, 1, work)
+                        for j in range(K + 1):
+                            poly[j] = -(c2 * Y[3, j] + w2 * Y[2, j])
+                        _update_peak(poly, K, 0.0, t_end, pk, 2, work)
+                        if mode == 0 and t_end > 0.0:
+                            for j in range(K + 1):
+                                poly[j] = cs[j]
+                            _update_peak(poly, K, 0.0, t_end, pk, 3, work)
+                        elif mode != 0:
+                            sgn = float(mode)
+                            for j in range(K + 1):
+                                poly[j] = (c2 * Y[3, j] + w2 * Y[2, j]) / r
+                            poly[0] -= sgn * fk * g * (1.0 + r) / r
+                            _update_peak(poly, K, 0.0, t_end, pk, 3, work)
+                            states[o, O_SLIDE_TIME] += t_end
+                        for i in range(4):
+                            y[i] = poly_val(Y[i], K, t_end)
+                        tau += t_end
+                        if t_ev < 0.0:
+                            break
+                        if mode != 0:
+                            y[1] = 0.0
+                            # stop: stick, or reverse at once if friction cannot hold the base
+                            fnow = r * poly_val(cs, K, t_end) - c2 * y[3] - w2 * y[2]
+                            if fnow > fb:
+                                new_mode = -1
+                            elif fnow < -fb:
+                                new_mode = 1
+                            else:
+                                new_mode = 0
+                        else:
+                            y[1] = 0.0
+                        if new_mode != 0:
+                            states[o, O_SLIPS] += 1
+                            start = True
+                        mode = new_mode
+                    states[o, O_MODE] = mode
+                    for i in range(4):
+                        states[o, O_U + i] = y[i]
+                    for i in range(4):
+                        states[o, O_PEAK_U + i] = pk[i]
+                    if want_hist and sub == substeps - 1 and so == m_o - 1:
+                        af_end = poly_val(c, K, h)
+                        q_ = c2 * y[3] + w2 * y[2]
+                        hist[o, k + 1, 0] = y[0]
+                        hist[o, k + 1, 1] = y[2]
+                        hist[o, k + 1, 2] = -q_
+                        if mode == 0:
+                            hist[o, k + 1, 3] = af_end
+                        else:
+                            hist[o, k + 1, 3] = q_ / r - float(mode) * fk * g * (1.0 + r) / r

@@ -16,7 +16,8 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from floorslide.building.exact import ExactStepper, spectral_radius, substeps_for, taylor_degree
+from floorslide.building.exact import spectral_radius, substeps_for, taylor_degree
+from floorslide.building.exact_motion import FloorMotion, building_motion, unwrap
 from floorslide.building.model import LinearBuilding
 from floorslide.constants import G
 from floorslide.contents import _oscillator_kernel as cols
@@ -24,7 +25,7 @@ from floorslide.contents._oscillator_kernel import oscillator_kernel
 from floorslide.contents.events import OSCILLATOR_MAX_EVENTS, check_event_limit
 from floorslide.contents.sliding import friction_pairs
 from floorslide.errors import ModelError
-from floorslide.inputs import RecordLike, as_record
+from floorslide.inputs import RecordLike
 
 
 def phase_radius(w: float, xi: float, r: float) -> float:
@@ -81,7 +82,7 @@ class OscillatorResult:
 
 
 def slide_oscillator(
-    acc: RecordLike,
+    acc: RecordLike | FloorMotion,
     dt: float | None = None,
     mu=None,
     frequency: float | None = None,
@@ -108,7 +109,8 @@ def slide_oscillator(
         object stands on. Or an ObsPy Trace or one-trace Stream, dt from ``stats.delta`` (a
         given dt must equal it) and units from ``stats.units`` (converted to m/s² with a
         :class:`~floorslide.errors.UnitsConversionWarning` and a line in ``notes``; see
-        :mod:`floorslide.inputs`).
+        :mod:`floorslide.inputs`). Or a :class:`~floorslide.FloorMotion`: the floor's exact
+        motion integrated once (then no `building` or `floor` here).
     mu
         Kinetic friction coefficient(s), required (``mu_s`` defaults to it).
     frequency
@@ -143,7 +145,9 @@ def slide_oscillator(
     Brochard, D., Gantenbein, F. (1989). Seismic response of a sliding structure. *Transactions
     SMiRT 10*, vol. K2, 1147–1152.
     """
-    a, dt, notes = as_record(acc, dt, "acc")
+    fm, a, dt, notes = unwrap(acc, dt, building, floor)
+    if fm is not None:
+        building, floor = fm.building, fm.floor
     if mu is None or frequency is None:
         missing = "mu" if mu is None else "frequency"
         raise ModelError(f"slide_oscillator needs {missing}", missing)
@@ -171,49 +175,44 @@ def slide_oscillator(
                  grip_damping=grip_damping, integrator=integrator),
         )  # fmt: skip
         return replace(result, notes=notes) if notes else result
-    if on_floor:
-        A, B = building.state_matrices()
-        rho = max(spectral_radius(A), rho_obj)
-        m = substeps_for(rho, dt)
-        st = ExactStepper.build(A, B[:, 0], dt, substeps=m)
-        K = taylor_degree(rho * st.h)
-        p, q = st.input_weights()
-        Ca, Da, _ = building.output_matrices([floor], "acceleration")
-        R, beta = st.taylor_rows(Ca, Da[:, 0], order=K)
-        phi, R, beta, h = st.phi, R[0], beta[0], st.h
-    else:
-        m = substeps_for(rho_obj, dt)
-        h = dt / m
-        K = taylor_degree(rho_obj * h)
-        phi, p, q = np.zeros((0, 0)), np.zeros(0), np.zeros(0)
-        R = np.zeros((2, 0))
-        beta = np.array([1.0, 0.0])
+    if fm is None:
+        fm = building_motion(building if on_floor else None, a, dt, max_bytes=0, copy=False).floor(
+            floor if on_floor else 0
+        )
+    # the floor motion's own sub-steps, each split so that the oscillator's phases have
+    # ρ·h ≤ 0.5 (the floor polynomial is shifted to each part)
+    rho_b = 0.0 if fm.ground else spectral_radius(fm.motion.stepper.A)
+    m_o = substeps_for(rho_obj, fm.h)
+    ho = fm.h / m_o
+    K = max(fm.order, taylor_degree(max(rho_b, rho_obj) * ho))
     states = np.zeros((mk.size, cols.O_NCOL))
     states[:, cols.O_LIMIT_AT] = -1.0
     hist = np.zeros((mk.size, a.size, 4) if histories else (0, 0, 4))
     if histories:
-        hist[:, 0, 3] = beta[0] * a[0]
-    oscillator_kernel(
-        phi,
-        p,
-        q,
-        np.ascontiguousarray(R),
-        np.ascontiguousarray(beta),
-        a,
-        m,
-        h,
-        K,
-        w,
-        xi,
-        r,
-        G,
-        np.maximum(mk, ms),
-        mk,
-        states,
-        hist,
-        histories,
-        OSCILLATOR_MAX_EVENTS,
-    )
+        hist[:, 0, 3] = fm.beta[0] * a[0]
+    mub = np.maximum(mk, ms)
+    for k0, X in fm.chunks():
+        oscillator_kernel(
+            X,
+            k0,
+            fm.R,
+            fm.beta,
+            a,
+            fm.substeps,
+            fm.h,
+            m_o,
+            K,
+            w,
+            xi,
+            r,
+            G,
+            mub,
+            mk,
+            states,
+            hist,
+            histories,
+            OSCILLATOR_MAX_EVENTS,
+        )
     check_event_limit(states[:, cols.O_LIMIT_AT], mk, OSCILLATOR_MAX_EVENTS, "slide_oscillator")
     duration = (a.size - 1) * dt
     return OscillatorResult(

@@ -13,8 +13,8 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from floorslide.building.exact_motion import FloorMotion, building_motion, unwrap
 from floorslide.building.model import LinearBuilding
-from floorslide.building.motions import stepper
 from floorslide.constants import G
 from floorslide.contents import _kernels as cols
 from floorslide.contents._kernels import slide_kernel
@@ -129,30 +129,8 @@ def _allowed(direction: str) -> tuple[bool, bool]:
     return direction in ("both", "negative"), direction in ("both", "positive")
 
 
-def floor_model(building: LinearBuilding | None, floor: int | None, dt: float):
-    """Exact sub-step recurrence and Taylor rows of the absolute acceleration of `floor` (and
-    rows of its relative velocity and displacement); a stateless model for the ground."""
-    if building is None or (floor is not None and building.dof_of(floor) is None):
-        if building is not None:
-            building.check_floors([floor])
-        z = np.zeros((0, 0))
-        R = np.zeros((2, 0))
-        beta = np.array([1.0, 0.0])
-        return z, np.zeros(0), np.zeros(0), R, beta, np.zeros(0), np.zeros(0), 1, dt
-    if floor is None:
-        raise ModelError("floor is required with building=", "floor")
-    building.check_floors([floor])
-    st = stepper(building, dt)
-    p, q = st.input_weights()
-    Ca, Da, _ = building.output_matrices([floor], "acceleration")
-    R, beta = st.taylor_rows(Ca, Da[:, 0])
-    Cv, _, _ = building.output_matrices([floor], "velocity")
-    Cd, _, _ = building.output_matrices([floor], "displacement")
-    return st.phi, p, q, R[0], beta[0], Cv[0], Cd[0], st.substeps, st.h
-
-
 def slide(
-    acc: RecordLike,
+    acc: RecordLike | FloorMotion,
     dt: float | None = None,
     mu_k=None,
     mu_s=None,
@@ -178,9 +156,12 @@ def slide(
         ``stats.delta``, units from ``stats.units`` (converted to m/s² with a
         :class:`~floorslide.errors.UnitsConversionWarning` and a line in ``notes``; a trace
         without units or in unknown units is refused — see :mod:`floorslide.inputs`).
+        Or a :class:`~floorslide.FloorMotion` (:func:`~floorslide.floor_motion`): the floor's
+        exact motion integrated once, for many calls on one floor (then no `building` or
+        `floor` here).
     dt
         Time step, s; required for samples, optional for a Trace (must equal
-        ``stats.delta``).
+        ``stats.delta``) or a FloorMotion.
     mu_k
         Kinetic friction coefficient(s), required; many values are advanced in one compiled
         loop.
@@ -233,7 +214,9 @@ def slide(
     Jibson, R. W. (1993). Predicting earthquake-induced landslide displacements using Newmark's
     sliding block analysis. *Transportation Research Record* 1411, 9–17.
     """
-    a, dt, notes = as_record(acc, dt, "acc")
+    fm, a, dt, notes = unwrap(acc, dt, building, floor)
+    if fm is not None:
+        building, floor = fm.building, fm.floor
     if mu_k is None:
         raise ModelError("mu_k (the kinetic friction coefficient or coefficients) is required")
     mk, ms = friction_pairs(mu_k, mu_s)
@@ -277,46 +260,51 @@ def slide(
             max_step,
         )
     else:
-        result = _slide_exact(a, dt, mk, ms, building, floor, vert, direction, histories)
+        if fm is None:
+            fm = building_motion(building, a, dt, max_bytes=0, copy=False).floor(
+                0 if building is None else floor
+            )
+        result = _slide_exact(fm, mk, ms, vert, direction, histories)
     return replace(result, notes=notes) if notes else result
 
 
-def _slide_exact(a, dt, mk, ms, building, floor, vert, direction, histories) -> SlideResult:
+def _slide_exact(fm: FloorMotion, mk, ms, vert, direction, histories) -> SlideResult:
     allow_pos, allow_neg = _allowed(direction)
-    phi, p, q, R, beta, rv, rd, substeps, h = floor_model(building, floor, dt)
+    a, dt = fm.acc, fm.dt
     nobj = mk.size
     states = np.zeros((nobj, cols.NCOL))
     states[:, cols.LIMIT_AT] = -1.0
     npts = a.size
     shape = (nobj, npts) if histories else (0, 0)
     hu, hv, ha = np.zeros(shape), np.zeros(shape), np.zeros(shape)
-    lift = np.zeros(2)
-    slide_kernel(
-        phi,
-        p,
-        q,
-        np.ascontiguousarray(R),
-        np.ascontiguousarray(beta),
-        np.ascontiguousarray(rv),
-        np.ascontiguousarray(rd),
-        a,
-        vert if vert is not None else np.zeros(1),
-        vert is not None,
-        substeps,
-        h,
-        G,
-        np.maximum(mk, ms),
-        mk,
-        allow_pos,
-        allow_neg,
-        states,
-        hu,
-        hv,
-        ha,
-        histories,
-        lift,
-        SLIDE_MAX_EVENTS,
-    )
+    lift = np.zeros(3)
+    mub = np.maximum(mk, ms)
+    for k0, X in fm.chunks():
+        slide_kernel(
+            X,
+            k0,
+            fm.R,
+            fm.beta,
+            fm.rv,
+            fm.rd,
+            a,
+            vert if vert is not None else np.zeros(1),
+            vert is not None,
+            fm.substeps,
+            fm.h,
+            G,
+            mub,
+            mk,
+            allow_pos,
+            allow_neg,
+            states,
+            hu,
+            hv,
+            ha,
+            histories,
+            lift,
+            SLIDE_MAX_EVENTS,
+        )
     check_event_limit(states[:, cols.LIMIT_AT], mk, SLIDE_MAX_EVENTS, "slide")
     duration = (npts - 1) * dt
     return SlideResult(

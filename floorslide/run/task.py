@@ -11,7 +11,7 @@ import time
 
 import numpy as np
 
-from floorslide.building.motions import floor_motions, peak_floor_acceleration
+from floorslide.building.exact_motion import building_motion
 from floorslide.contents.oscillator import slide_oscillator
 from floorslide.contents.sliding import slide
 from floorslide.run.results import ContentResult, Histories, SpectrumResult, TaskResult
@@ -50,11 +50,10 @@ def run_task(task: Task, force: bool = False) -> TaskResult:
     acc, dt = rec.acc, rec.dt
     model = task.building.build()
     floors = np.array(task.floors, dtype=np.int64)
-    pfa = (
-        peak_floor_acceleration(model, acc, dt, floors=list(task.floors)).peak
-        if floors.size
-        else np.zeros(0)
-    )
+    # the building integrated once for this record: every floor peak, content, spectrum and
+    # history below reads this motion
+    motion = building_motion(model, acc, dt)
+    pfa = motion.peaks(list(task.floors))[0] if floors.size else np.zeros(0)
     pfa_of = dict(zip(task.floors, pfa, strict=True))
     result = TaskResult(task.task_id, _meta(task), floors, np.asarray(pfa, dtype=float))
     hist_slides, hist_mu, hist_deform, hist_top = {}, {}, {}, {}
@@ -74,20 +73,19 @@ def run_task(task: Task, force: bool = False) -> TaskResult:
             arr[rock] = np.nan
         slips[rock] = -1
         idx = np.nonzero(integrate)[0]
-        on = dict(building=model, floor=floor)
+        fm = motion.floor(floor)
         if content.model == "oscillator":
             deform = np.full(n, np.nan)
             top = np.full(n, np.nan)
             if idx.size:
                 r = slide_oscillator(
-                    acc,
-                    dt,
+                    fm,
+                    None,
                     mu[idx],
                     content.frequency,
                     content.damping,
                     content.mass_ratio,
                     mu_s=mu_s[idx],
-                    **on,
                 )
                 peak[idx], resid[idx] = r.peak_slide, r.residual_slide
                 acc_obj[idx], frac[idx], slips[idx] = (
@@ -98,7 +96,7 @@ def run_task(task: Task, force: bool = False) -> TaskResult:
                 deform[idx], top[idx] = r.peak_deformation, r.peak_top_accel
         elif idx.size:
             vert = rec.vertical if content.vertical else None
-            r = slide(acc, dt, mu[idx], mu_s[idx], vertical=vert, direction=content.direction, **on)
+            r = slide(fm, None, mu[idx], mu_s[idx], vertical=vert, direction=content.direction)
             peak[idx], resid[idx] = r.peak_slide, r.residual_slide
             acc_obj[idx], frac[idx], slips[idx] = r.peak_abs_accel, r.slide_fraction, r.slip_phases
         summary = modes[0] if len(set(modes)) == 1 else "mixed"
@@ -127,27 +125,25 @@ def run_task(task: Task, force: bool = False) -> TaskResult:
             key = f"{content.id}/floor_{floor}"
             if content.model == "oscillator":
                 r = slide_oscillator(
-                    acc,
-                    dt,
+                    fm,
+                    None,
                     mu[pick],
                     content.frequency,
                     content.damping,
                     content.mass_ratio,
                     mu_s=mu_s[pick],
                     histories=True,
-                    **on,
                 )
                 hist_deform[key], hist_top[key] = r.z, r.top_accel
             else:
                 r = slide(
-                    acc,
-                    dt,
+                    fm,
+                    None,
                     mu[pick],
                     mu_s[pick],
                     histories=True,
                     direction=content.direction,
                     vertical=rec.vertical if content.vertical else None,
-                    **on,
                 )
             hist_slides[key], hist_mu[key] = r.u, mu[pick]
             # an object that rocks is not a slider: no slide history is drawn for it
@@ -156,9 +152,7 @@ def run_task(task: Task, force: bool = False) -> TaskResult:
                     arr[rock[pick]] = np.nan
     sc = task.spectra
     for floor in task.spectra_floors:
-        sp = response_spectrum(
-            acc, dt, np.asarray(sc.periods), list(sc.damping), building=model, floor=floor
-        )
+        sp = response_spectrum(motion.floor(floor), None, np.asarray(sc.periods), list(sc.damping))
         out = SpectrumResult(floor, sp.periods, sp.damping, sp.psa, sp.sa, sp.sv, sp.sd)
         if sc.broadening:
             wide = broaden(sp, sc.broadening)
@@ -168,11 +162,7 @@ def run_task(task: Task, force: bool = False) -> TaskResult:
         result.spectra.append(out)
     if task.histories:
         fl = np.array(task.floors, dtype=np.int64)
-        motions = (
-            floor_motions(model, acc, dt, floors=list(task.floors))
-            if fl.size
-            else np.zeros((0, acc.size))
-        )
+        motions = motion.samples(list(task.floors)) if fl.size else np.zeros((0, acc.size))
         result.histories = Histories(dt, fl, motions, hist_slides, hist_mu, hist_deform, hist_top)
     result.seconds = time.perf_counter() - t0
     return result

@@ -509,14 +509,19 @@ def _stage_floor(C, S, flag, nb, a, a1, dt, f0, f1, fdev, abound, jbound):
     return nf
 
 
+def spectrum_state(nblk: int, f0: float) -> np.ndarray:
+    """The initial state of :func:`spectrum_kernel`'s oscillators (at rest, ``q'' = −f0`` with
+    ``f0`` the floor acceleration at ``t = 0``), ``(nblk, NSTATE·NB)``."""
+    S = np.zeros((nblk, NSTATE * NB))
+    S[:, _D * NB : (_D + 1) * NB] = -f0
+    return S
+
+
 class SpectrumSetup(NamedTuple):
     """Everything the spectrum kernel needs but the record, for one grid of periods and damping
     ratios on one floor (or the ground) and one step; built by ``core._kernel_data``. The field
     descriptions are those of :func:`spectrum_kernel`'s parameters."""
 
-    phi: Any
-    p: Any
-    q: Any
     C: Any
     PX: Any
     w: Any
@@ -544,7 +549,7 @@ class SpectrumSetup(NamedTuple):
 
 
 @njit(cache=True)
-def spectrum_kernel(setup, acc, up, dt, search_all, out, counts):
+def spectrum_kernel(setup, X, k0, acc, up, dt, search_all, S, out, counts):
     """Peaks of a bank of oscillators on one floor.
 
     Every oscillator is advanced at the record step by its exact recurrence (coupled to the
@@ -555,8 +560,10 @@ def spectrum_kernel(setup, acc, up, dt, search_all, out, counts):
     ----------
     setup
         :class:`SpectrumSetup`; its fields:
-    phi, p, q
-        Exact record-step recurrence of the building (empty on the ground).
+    X, k0
+        One chunk of the floor motion's building states from record step ``k0``
+        (:meth:`floorslide.building.exact_motion.FloorMotion.chunks`; row ``j`` at fine-grid
+        sample ``k0·up + j``; no columns on the ground): the building is not stepped here.
     acc, up, dt
         Ground acceleration samples; the kernel steps through the record on a grid ``up`` times
         finer (the same piecewise-linear function, values interpolated on the fly), of step
@@ -580,14 +587,14 @@ def spectrum_kernel(setup, acc, up, dt, search_all, out, counts):
         Per oscillator, the Taylor degree of its response on its sub-steps (at most its group's).
     search_all
         Search every step of every oscillator (tests: the skip rules change nothing).
+    S
+        ``(n_blocks, NSTATE·NB)``: the oscillators' states and peaks, carried from chunk to
+        chunk (:func:`spectrum_state` makes the initial one).
     out
         ``(n_osc, 3)``: peaks of ``|q|``, ``|q'|`` and ``|ω² q + 2ξω q'|``.
     counts
         ``int64[2]``, incremented: oscillator-steps searched, floor sub-step data computed.
     """
-    phi = setup.phi
-    p = setup.p
-    q = setup.q
     C = setup.C
     PX = setup.PX
     w = setup.w
@@ -612,16 +619,17 @@ def spectrum_kernel(setup, acc, up, dt, search_all, out, counts):
     S_Pqx = setup.S_Pqx
     S_pq = setup.S_pq
     S_qq = setup.S_qq
-    n = phi.shape[0]
+    n = X.shape[1]
     nblk = C.shape[0]
     nosc = w.size
-    npts = (acc.size - 1) * up + 1  # samples of the record on the fine grid
-    x = np.zeros(n)
+    kf0 = k0 * up  # first fine-grid sample of the chunk
+    kf1 = kf0 + X.shape[0] - 1
     xn = np.empty(n)
     xs = np.empty(n)
     xs2 = np.empty(n)
-    xe = np.empty(n)
-    f0 = b_beta[0] * acc[0]  # the floor acceleration at t = 0 (building at rest)
+    f0 = b_beta[0] * _sample(acc, kf0, up)  # the floor acceleration at the chunk start
+    for j in range(n):
+        f0 += b_R[0, j] * X[0, j]
     f1 = f0
     abound = 0.0
     fdev = 0.0
@@ -630,10 +638,6 @@ def spectrum_kernel(setup, acc, up, dt, search_all, out, counts):
     Q = np.zeros(Kmax + 2)
     poly = np.zeros(Kmax + 2)
     work = scratch(Kmax + 2)
-    S = np.zeros((nblk, NSTATE * NB))
-    for blk in range(nblk):
-        for o in range(NB):
-            S[blk, _D * NB + o] = -f0  # q'' at rest
     flag = np.zeros(NB, dtype=np.int64)
     need = np.zeros(3, dtype=np.bool_)
     pk = np.zeros(3)
@@ -642,39 +646,35 @@ def spectrum_kernel(setup, acc, up, dt, search_all, out, counts):
     CG = np.zeros((ngroups, G_m.max(), G_R.shape[1]))
     XG = np.zeros((ngroups, G_m.max(), n))
     L = CHUNK
-    XK = np.zeros((L, n))  # building state at the step starts of a chunk
     FK = np.zeros((L, 5))  # floor: f0, f1, max|a_f|, deviation from the line, max|a_f'|
-    for k0 in range(0, npts - 1, L):
-        k1 = min(k0 + L, npts - 1)
-        # the building through this chunk, once for every block
-        for k in range(k0, k1):
+    for c0 in range(kf0, kf1, L):
+        c1 = min(c0 + L, kf1)
+        # the floor through this piece, once for every block
+        for k in range(c0, c1):
             if n == 0:
                 break
             a = _sample(acc, k, up)
             a1 = _sample(acc, k + 1, up)
-            for i in range(n):
-                XK[k - k0, i] = x[i]
-            foh_step(phi, p, q, x, a, a1, xe)  # building state at the step end
+            x = X[k - kf0]
+            xe = X[k + 1 - kf0]  # building state at the step end
             f1 = b_beta[0] * a1  # floor acceleration at the step end
             for j in range(n):
                 f1 += b_R[0, j] * xe[j]
             abound, fdev, jbound = _floor_bound(
                 b_phi, b_p, b_q, b_R, b_beta, b_K, x, a, a1, b_m, dt / b_m, c, xs, xn, f0, f1
             )
-            FK[k - k0, 0] = f0
-            FK[k - k0, 1] = f1
-            FK[k - k0, 2] = abound
-            FK[k - k0, 3] = fdev
-            FK[k - k0, 4] = jbound
-            for i in range(n):
-                x[i] = xe[i]
+            FK[k - c0, 0] = f0
+            FK[k - c0, 1] = f1
+            FK[k - c0, 2] = abound
+            FK[k - c0, 3] = fdev
+            FK[k - c0, 4] = jbound
             f0 = f1
         # each block of oscillators through the chunk, its data staying in the L1 cache
         for blk in range(nblk):
             Cb = C[blk]
             Sb = S[blk]
             nb = min(NB, nosc - blk * NB)
-            for k in range(k0, k1):
+            for k in range(c0, c1):
                 a = _sample(acc, k, up)
                 a1 = _sample(acc, k + 1, up)
                 if n > 0:
@@ -683,7 +683,7 @@ def spectrum_kernel(setup, acc, up, dt, search_all, out, counts):
                         Sb[_CP0 * NB + o] = 0.0
                         Sb[_CP1 * NB + o] = 0.0
                     for j in range(n):
-                        xj = XK[k - k0, j]
+                        xj = X[k - kf0, j]
                         for o in range(NB):
                             Sb[_CP0 * NB + o] += PXb[(2 * j) * NB + o] * xj
                             Sb[_CP1 * NB + o] += PXb[(2 * j + 1) * NB + o] * xj
@@ -695,11 +695,11 @@ def spectrum_kernel(setup, acc, up, dt, search_all, out, counts):
                         a,
                         a1,
                         dt,
-                        FK[k - k0, 0],
-                        FK[k - k0, 1],
-                        FK[k - k0, 3],
-                        FK[k - k0, 2],
-                        FK[k - k0, 4],
+                        FK[k - c0, 0],
+                        FK[k - c0, 1],
+                        FK[k - c0, 3],
+                        FK[k - c0, 2],
+                        FK[k - c0, 4],
                     )
                     for g in range(ngroups):
                         ready[g] = False
@@ -759,7 +759,7 @@ def spectrum_kernel(setup, acc, up, dt, search_all, out, counts):
                         counts[1] += 1
                         mg = G_m[g]
                         for i in range(n):
-                            xs2[i] = XK[k - k0, i]
+                            xs2[i] = X[k - kf0, i]
                         for r in range(mg):
                             aa, ab = substep_inputs(a, a1, r, mg)
                             for i in range(n):

@@ -13,14 +13,14 @@ from __future__ import annotations
 import numpy as np
 
 from floorslide._jit import njit
-from floorslide.spectra.core import _exact, _sdof_recurrence, floor_samples
+from floorslide.spectra.core import _exact, _sdof_recurrence, floor_samples, motion_of
 
 
 def spectra(a, dt, T, Z, building, floor, method, substeps):
     """sd, sv, sa of shape (len(Z), len(T)) by an approximate method."""
     if method == "reinterpolated":
         af = floor_samples(a, dt, building, floor)
-        return _exact(af, dt, T, Z, None, None)
+        return _exact(motion_of(af, dt, None, None), T, Z)
     k = substeps if method == "newmark" else 1
     af = floor_samples(a, dt, building, floor, oversample=k)
     h = dt / k

@@ -31,13 +31,20 @@ from floorslide.building.exact import (
     taylor_degree,
     taylor_degrees,
 )
+from floorslide.building.exact_motion import FloorMotion, building_motion, unwrap
 from floorslide.building.model import LinearBuilding
-from floorslide.building.motions import floor_motions, peak_floor_acceleration
+from floorslide.building.motions import floor_motions
 from floorslide.constants import MAX_LIST
 from floorslide.errors import ModelError
-from floorslide.inputs import RecordLike, as_record
+from floorslide.inputs import RecordLike
 from floorslide.spectra import _kernels as K
-from floorslide.spectra._kernels import NB, NCOEF, SpectrumSetup, spectrum_kernel
+from floorslide.spectra._kernels import (
+    NB,
+    NCOEF,
+    SpectrumSetup,
+    spectrum_kernel,
+    spectrum_state,
+)
 
 # running totals of the kernel's work (diagnostics for benchmarks): oscillator-steps searched
 # inside, floor sub-step data computed
@@ -356,15 +363,12 @@ def _kernel_data(dt: float, T_bytes: bytes, Z_bytes: bytes, n: int, system: byte
     one_crit = np.maximum(w, rho_b) * dt <= MAX_PHASE
     # the building: record step, and its own sub-steps for the floor-acceleration bound
     if on_floor:
-        full = ExactStepper.build(A, b, dt, substeps=1)
-        phi, p, q = full.phi, *full.input_weights()
         own = ExactStepper.build(A, b, dt)
         b_R, b_beta = own.taylor_rows(Ca[None, :], np.array([da]))
         b_phi, (b_p, b_q), b_R, b_beta = own.phi, own.input_weights(), b_R[0], b_beta[0]
         b_K, b_m = own.order, own.substeps
     else:
-        phi, p, q = np.zeros((0, 0)), np.zeros(0), np.zeros(0)
-        b_phi, b_p, b_q = phi, p, q
+        b_phi, b_p, b_q = np.zeros((0, 0)), np.zeros(0), np.zeros(0)
         b_R, b_beta, b_K, b_m = np.zeros((2, 0)), np.array([1.0, 0.0]), 1, 1
     # in-step search: sub-steps per oscillator (at most one critical point on each), grouped
     # by their number
@@ -404,9 +408,6 @@ def _kernel_data(dt: float, T_bytes: bytes, Z_bytes: bytes, n: int, system: byte
     C, PX = _blocks(w, xi, dt, Pqq, Pqx, pq, qq, one_crit, Ih)
     return SpectrumSetup(
         *_read_only(
-            phi,
-            p,
-            q,
             C,
             PX,
             w,
@@ -443,21 +444,31 @@ def _read_only(*items) -> tuple:
     return items
 
 
-def _exact(a, dt, T, Z, building, floor, search_all=False, counts=None):
-    """Exact spectra on the ground or a floor; returns sd, sv, sa of shape (len(Z), len(T)).
+def motion_of(a, dt, building, floor) -> FloorMotion:
+    """The floor motion a spectrum of `floor` of `building` (or of the ground) reads."""
+    if building is None:
+        return building_motion(None, a, dt, copy=False).floor(0)
+    return building_motion(building, a, dt, max_bytes=0, copy=False).floor(floor)
+
+
+def _exact(fm, T, Z, search_all=False, counts=None):
+    """Exact spectra on the ground or a floor (a :class:`FloorMotion`); returns sd, sv, sa of
+    shape (len(Z), len(T)).
 
     ``counts`` (``int64[2]``, optional) is incremented by the oscillator·steps searched inside
     the step and the floor sub-step data computed (benchmarks report the search fraction)."""
     if counts is None:
         counts = np.zeros(2, dtype=np.int64)
-    on_floor = building is not None and building.dof_of(floor) is not None
+    a, dt = fm.acc, fm.dt
+    building, floor = fm.building, fm.floor
+    on_floor = not fm.ground
     if on_floor:
         A, B = building.state_matrices()
         Ca, Da, _ = building.output_matrices([floor], "acceleration")
         system = (A.shape[0], np.concatenate([A.ravel(), B[:, 0], Ca[0], Da[0]]).tobytes())
         # the floor is stepped on the building's own sub-steps (ρ(A)·h ≤ 0.5), where the skip
-        # tests of most oscillators can use the sign of a derivative
-        up = substeps_for(spectral_radius(A), dt)
+        # tests of most oscillators can use the sign of a derivative: the floor motion's grid
+        up = fm.substeps
     else:
         system = (0, b"")
         up = 1
@@ -468,7 +479,9 @@ def _exact(a, dt, T, Z, building, floor, search_all=False, counts=None):
     )
     nosc = setup.w.size
     out = np.zeros((nosc, 3))
-    spectrum_kernel(setup, a, up, h, search_all, out, counts)
+    S = spectrum_state(setup.C.shape[0], fm.beta[0] * a[0])
+    for k0, X in fm.chunks():
+        spectrum_kernel(setup, X, k0, a, up, h, search_all, S, out, counts)
     sd = np.zeros((Z.size, T.size))
     sv = np.zeros((Z.size, T.size))
     sa = np.zeros((Z.size, T.size))
@@ -476,15 +489,12 @@ def _exact(a, dt, T, Z, building, floor, search_all=False, counts=None):
     sv[:, pos] = out[:, 1].reshape(Z.size, -1)
     sa[:, pos] = out[:, 2].reshape(Z.size, -1)
     if (~pos).any():
-        pfa = peak_floor_acceleration(
-            building if on_floor else None, a, dt, floors=[floor] if on_floor else None
-        ).peak[0]
-        sa[:, ~pos] = pfa
+        sa[:, ~pos] = fm.peak()[0]
     return sd, sv, sa
 
 
 def response_spectrum(
-    acc: RecordLike,
+    acc: RecordLike | FloorMotion,
     dt: float | None = None,
     periods=None,
     damping=0.05,
@@ -503,9 +513,11 @@ def response_spectrum(
         linear). Or an ObsPy Trace or one-trace Stream: dt from ``stats.delta``, units from
         ``stats.units`` (converted to m/s² with a
         :class:`~floorslide.errors.UnitsConversionWarning` and a line in ``notes``; see
-        :mod:`floorslide.inputs`).
+        :mod:`floorslide.inputs`). Or a :class:`~floorslide.FloorMotion`: the floor's exact
+        motion integrated once (then no `building` or `floor` here).
     dt
-        Time step, s; required for samples, optional for a Trace (must equal ``stats.delta``).
+        Time step, s; required for samples, optional for a Trace (must equal ``stats.delta``)
+        or a FloorMotion.
     periods
         Oscillator periods (s, list; 0 gives the peak of the motion) or ``{"min", "max", "n"}``
         (log-spaced); required. At most :data:`~floorslide.constants.MAX_LIST` (as in a scene),
@@ -532,7 +544,9 @@ def response_spectrum(
     earthquake records. *Bull. Seismol. Soc. Am.* 59(2), 909–922.
     Van Loan (1978), Theorem 1 (the augmented matrix exponential).
     """
-    a, dt, notes = as_record(acc, dt, "acc")
+    fm, a, dt, notes = unwrap(acc, dt, building, floor)
+    if fm is not None:
+        building, floor = fm.building, fm.floor
     if periods is None:
         raise ModelError("periods are required: a list in s or {min, max, n}", "periods")
     T = period_grid(periods)
@@ -547,7 +561,9 @@ def response_spectrum(
     elif floor not in (None, 0):
         raise ModelError("floor= needs building=", "floor")
     if method == "exact":
-        sd, sv, sa = _exact(a, dt, T, Z, building, floor)
+        if fm is None:
+            fm = motion_of(a, dt, building, floor)
+        sd, sv, sa = _exact(fm, T, Z)
     else:
         from floorslide.spectra import approximate
 

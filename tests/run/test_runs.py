@@ -261,20 +261,22 @@ def test_a_bad_record_does_not_stop_the_others(tmp_path):
 
 
 def test_a_run_integrates_each_building_once_per_record(scene_file, tmp_path, monkeypatch):
-    """The planner's per-object rules need the true PFA; a real run leaves that to the tasks
-    (the dry run evaluates it to count), so each task integrates its building once for it."""
-    import floorslide.run.task as task_mod
-    from floorslide.building import motions
+    """Every task integrates its building once (one ``foh_states`` pass: the floor peaks, each
+    content, each floor spectrum and the histories all read that motion); the planner's
+    per-object rules need the true PFA, which a real run leaves to the tasks (the dry run
+    evaluates it to count, once per task too)."""
+    from floorslide.building import exact_motion
     from floorslide.cli import run
 
     calls = []
+    real = exact_motion.foh_states
 
-    def counting(*args, **kwargs):
-        calls.append(1)
-        return peak_floor_acceleration(*args, **kwargs)
+    def counting(phi, p, q, acc, k0, *rest):
+        if k0 == 0:  # a pass through the record starts (a streamed one goes on chunk by chunk)
+            calls.append(1)
+        return real(phi, p, q, acc, k0, *rest)
 
-    monkeypatch.setattr(motions, "peak_floor_acceleration", counting)
-    monkeypatch.setattr(task_mod, "peak_floor_acceleration", counting)
+    monkeypatch.setattr(exact_motion, "foh_states", counting)
     out = tmp_path / "once.h5"
     with pytest.raises(SystemExit) as exit_:
         run.main([str(scene_file), "-o", str(out), "--workers", "1"], standalone_mode=False)

@@ -175,10 +175,10 @@ def test_skip_rules_change_nothing_across_blocks(where, elcentro, coarse_record)
         )
     T = np.geomspace(0.02, 4.0, 40)
     Z = np.array([0.02, 0.1])
-    from floorslide.spectra.core import _exact
+    from floorslide.spectra.core import _exact, motion_of
 
-    got = _exact(acc, dt, T, Z, kw.get("building"), kw.get("floor"))
-    full = _exact(acc, dt, T, Z, kw.get("building"), kw.get("floor"), search_all=True)
+    got = _exact(motion_of(acc, dt, kw.get("building"), kw.get("floor")), T, Z)
+    full = _exact(motion_of(acc, dt, kw.get("building"), kw.get("floor")), T, Z, search_all=True)
     for a, b in zip(got, full, strict=True):
         np.testing.assert_allclose(a, b, rtol=1e-13, atol=0)
     if kw:

@@ -9,7 +9,7 @@ import pytest
 from scipy.linalg import expm
 
 import floorslide as fs
-from floorslide.spectra.core import _exact
+from floorslide.spectra.core import _exact, motion_of
 from tests.reference import linear_peaks
 
 DT = 0.01
@@ -68,7 +68,9 @@ def test_displacement_peak_between_two_close_zeros(wdt, xi):
     assert (ref - end) / ref > 1e-5  # the peak is inside the last step, above the samples
     sp = fs.response_spectrum(acc, DT, [2 * np.pi / w], xi)
     assert sp.sd[0, 0] == pytest.approx(ref, rel=1e-10)
-    sd, _, _ = _exact(acc, DT, np.array([2 * np.pi / w]), np.array([xi]), None, None, True)
+    sd, _, _ = _exact(
+        motion_of(acc, DT, None, None), np.array([2 * np.pi / w]), np.array([xi]), True
+    )
     assert sd[0, 0] == pytest.approx(ref, rel=1e-10)
 
 
