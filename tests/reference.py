@@ -38,38 +38,57 @@ def linear_response(A, b, acc, dt, rtol=1e-13, atol=1e-16, dense=False):
     return (X, sols) if dense else X
 
 
-def sliding_oscillator(acc, dt, mu, f, xi, r, g=9.80665, rtol=1e-12, max_step=None):
-    """2-DOF sliding oscillator on the ground by DOP853 with event location, step by step.
+def sliding_oscillator(acc, dt, mu, f, xi, r, g=9.80665, rtol=1e-12, max_step=None, system=None):
+    """2-DOF sliding oscillator by DOP853 with event location, step by step: on the ground, or
+    on a floor whose absolute acceleration is ``a_f = ca·x + da·a(t)`` with ``x' = A x + b a(t)``
+    (``system = (A, b, ca, da)``, integrated together with the oscillator on the augmented
+    state ``[x, u, v, z, zd]``).
 
-    Returns (peak |u|, residual u, peak |z|). State [u, v, z, zd] per unit top mass.
+    Returns (peak |u|, residual u, peak |z|). Oscillator state [u, v, z, zd] per unit top mass.
     """
+    if system is None:
+        A, b, ca, da = np.zeros((0, 0)), np.zeros(0), np.zeros(0), 1.0
+    else:
+        A, b, ca, da = system
+        A = np.asarray(A, dtype=float)
+        b, ca = np.asarray(b, dtype=float).ravel(), np.asarray(ca, dtype=float).ravel()
+    n = A.shape[0]
+    U, V, Z, ZD = n, n + 1, n + 2, n + 3
     w = 2 * np.pi * f
     c2, w2 = 2 * xi * w, w * w
     fb = mu * (1 + r) * g
-    y = np.zeros(4)
+    y = np.zeros(n + 4)
     mode = 0
     peak_u = peak_z = 0.0
     max_step = max_step or dt / 16
     for k in range(acc.size - 1):
         a0, s = acc[k], (acc[k + 1] - acc[k]) / dt
+
+        def floor(tt, yy, a0=a0, s=s):
+            return ca @ yy[:n] + da * (a0 + s * tt)
+
         t = 0.0
         for _ in range(1000):
             if mode == 0:
                 # the floor already beyond the friction limit when sticking begins (a record
                 # that starts mid-motion): the base breaks away at once
-                F0 = r * (a0 + s * t) - c2 * y[3] - w2 * y[2]
+                F0 = r * floor(t, y) - c2 * y[ZD] - w2 * y[Z]
                 if F0 > fb or F0 < -fb:
                     mode = -1 if F0 > fb else 1
                     continue
 
-                def rhs(tt, yy, a0=a0, s=s):
-                    return [0.0, 0.0, yy[3], -(a0 + s * tt) - c2 * yy[3] - w2 * yy[2]]
+                def rhs(tt, yy, a0=a0, s=s, floor=floor):
+                    out = np.zeros(n + 4)
+                    out[:n] = A @ yy[:n] + b * (a0 + s * tt)
+                    out[Z] = yy[ZD]
+                    out[ZD] = -floor(tt, yy) - c2 * yy[ZD] - w2 * yy[Z]
+                    return out
 
-                def up(tt, yy, a0=a0, s=s):
-                    return r * (a0 + s * tt) - c2 * yy[3] - w2 * yy[2] - fb
+                def up(tt, yy, floor=floor):
+                    return r * floor(tt, yy) - c2 * yy[ZD] - w2 * yy[Z] - fb
 
-                def lo(tt, yy, a0=a0, s=s):
-                    return -(r * (a0 + s * tt) - c2 * yy[3] - w2 * yy[2]) - fb
+                def lo(tt, yy, floor=floor):
+                    return -(r * floor(tt, yy) - c2 * yy[ZD] - w2 * yy[Z]) - fb
 
                 up.terminal = lo.terminal = True
                 up.direction = lo.direction = 1.0
@@ -77,17 +96,18 @@ def sliding_oscillator(acc, dt, mu, f, xi, r, g=9.80665, rtol=1e-12, max_step=No
             else:
                 sg = float(mode)
 
-                def rhs(tt, yy, a0=a0, s=s, sg=sg):
-                    q = c2 * yy[3] + w2 * yy[2]
-                    return [
-                        yy[1],
-                        -(a0 + s * tt) + q / r - sg * mu * g * (1 + r) / r,
-                        yy[3],
-                        -q * (1 + 1 / r) + sg * mu * g * (1 + r) / r,
-                    ]
+                def rhs(tt, yy, a0=a0, s=s, sg=sg, floor=floor):
+                    q = c2 * yy[ZD] + w2 * yy[Z]
+                    out = np.zeros(n + 4)
+                    out[:n] = A @ yy[:n] + b * (a0 + s * tt)
+                    out[U] = yy[V]
+                    out[V] = -floor(tt, yy) + q / r - sg * mu * g * (1 + r) / r
+                    out[Z] = yy[ZD]
+                    out[ZD] = -q * (1 + 1 / r) + sg * mu * g * (1 + r) / r
+                    return out
 
                 def stop(tt, yy, sg=sg):
-                    return sg * yy[1] + 1e-13
+                    return sg * yy[V] + 1e-13
 
                 stop.terminal = True
                 stop.direction = -1.0
@@ -105,31 +125,31 @@ def sliding_oscillator(acc, dt, mu, f, xi, r, g=9.80665, rtol=1e-12, max_step=No
             )
             ts = np.linspace(t, sol.t[-1], 33)
             dense = sol.sol(ts)
-            peak_u = max(peak_u, np.abs(dense[0]).max())
-            i = int(np.argmax(np.abs(dense[2])))
+            peak_u = max(peak_u, np.abs(dense[U]).max())
+            i = int(np.argmax(np.abs(dense[Z])))
             lo_, hi_ = ts[max(i - 1, 0)], ts[min(i + 1, ts.size - 1)]
             if hi_ > lo_:  # refine the in-segment extremum of |z| on the dense output
                 best = minimize_scalar(
-                    lambda tt, sol=sol: -abs(sol.sol(tt)[2]),
+                    lambda tt, sol=sol: -abs(sol.sol(tt)[Z]),
                     bounds=(lo_, hi_),
                     method="bounded",
                     options={"xatol": 1e-14},
                 )
                 peak_z = max(peak_z, -best.fun)
-            peak_z = max(peak_z, np.abs(dense[2]).max())
+            peak_z = max(peak_z, np.abs(dense[Z]).max())
             y = sol.y[:, -1].copy()
             t = sol.t[-1]
             if sol.status != 1:
                 break
-            y[1] = 0.0
+            y[V] = 0.0
             if mode == 0:  # breakaway: which limit was crossed
                 mode = -1 if sol.t_events[0].size else 1
             else:  # stop: stick, or reverse if friction cannot hold the base
-                F = r * (a0 + s * t) - c2 * y[3] - w2 * y[2]
+                F = r * floor(t, y) - c2 * y[ZD] - w2 * y[Z]
                 mode = -1 if F > fb else (1 if F < -fb else 0)
             if t >= dt * (1 - 1e-13):
                 break
-    return peak_u, y[0], peak_z
+    return peak_u, y[U], peak_z
 
 
 def linear_peaks(A, b, C, acc, dt, rtol=1e-13, candidates=4):

@@ -1,9 +1,12 @@
-"""Exact sliding against an independent reference on real bundled records.
+"""Exact sliding against independent references on real bundled records.
 
-The reference is SciPy's DOP853 (rtol 1e-12) integrating the building and the block together
-with event location, restarted at every sample and with steps ≤ dt/16 so that brief threshold
-excursions inside a step are not stepped over. Agreement is required to 1e-8 relative for slides
-above 1 mm (docs/design.md §7, issue 4).
+Two references: floorslide's own ``method="solve_ivp"`` (SciPy's DOP853, rtol 1e-12, building
+and block together with event location, restarted at every sample, steps ≤ dt/16), and — so
+that a convention shared by floorslide's methods cannot hide a mistake (issue 20 §4) — the
+references of ``tests/reference.py``, written apart from the package: the closed-form block on
+the ground, DOP853 on the augmented building + block state, and DOP853 with lift-off for
+vertical shaking. Agreement is required to 1e-8 relative for slides above 1 mm (docs/design.md
+§7, issue 4).
 """
 
 from __future__ import annotations
@@ -13,6 +16,24 @@ import pytest
 
 from floorslide.building.model import IsolatedBuilding, ShearBuilding
 from floorslide.contents.sliding import slide
+from tests.reference import rigid_block_ground, rigid_block_on_system, rigid_block_vertical
+
+
+def independent(acc, dt, exact, building=None, floor=None, vertical=None):
+    """``exact`` (a SlideResult) against the references written apart from the package."""
+    for i, (mk, ms) in enumerate(zip(exact.mu_k, exact.mu_s, strict=True)):
+        if vertical is not None:
+            assert mk == ms
+            peak, resid = rigid_block_vertical(acc, vertical, dt, mk)
+        elif building is None:
+            peak, resid = rigid_block_ground(acc, dt, mk, ms)
+        else:
+            A, B = building.state_matrices()
+            C, D, _ = building.output_matrices([floor], "acceleration")
+            peak, resid = rigid_block_on_system(A, B[:, 0], C[0], D[0, 0], acc, dt, mk, ms)
+        scale = max(peak, 1e-3)
+        assert abs(exact.peak_slide[i] - peak) <= 1e-8 * scale
+        assert abs(exact.residual_slide[i] - resid) <= 1e-8 * scale
 
 
 def compare(acc, dt, mu_k, mu_s=None, **kw):
@@ -30,25 +51,29 @@ def compare(acc, dt, mu_k, mu_s=None, **kw):
 
 def test_ground_real_record(elcentro):
     acc, dt = elcentro
-    compare(acc[:1800], dt, [0.05, 0.15], [0.05, 0.2])
+    res = compare(acc[:1800], dt, [0.05, 0.15], [0.05, 0.2])
+    independent(acc[:1800], dt, res)
 
 
 def test_stiff_building_floor_real_record(elcentro):
     acc, dt = elcentro
     fb = ShearBuilding.from_period(1, 0.1, 0.05)
     compare(acc[:1200], dt, [0.1, 0.2], building=fb, floor=1)
+    independent(acc[:600], dt, slide(acc[:600], dt, [0.1, 0.2], building=fb, floor=1), fb, 1)
 
 
 def test_isolated_roof_real_record(coarse_record):
     acc, dt = coarse_record
     iso = IsolatedBuilding(ShearBuilding.from_period(2, 0.3, 0.02), 1.0, 2.0, 0.1)
-    compare(acc[:700], dt, [0.05, 0.1], building=iso, floor=2)
+    res = compare(acc[:700], dt, [0.05, 0.1], building=iso, floor=2)
+    independent(acc[:700], dt, res, iso, 2)
 
 
 def test_vertical_shaking_real_record(elcentro):
     acc, dt = elcentro
     vert = 0.6 * acc[::-1].copy()  # a second real component as vertical motion (|a_v| < g)
     res = compare(acc[:1500], dt, [0.1, 0.2], vertical=vert[:1500])
+    independent(acc[:1500], dt, res, vertical=vert[:1500])
     plain = slide(acc[:1500], dt, [0.1, 0.2])
     assert not np.allclose(res.peak_slide, plain.peak_slide, rtol=1e-3)
 
