@@ -332,7 +332,26 @@ def first_rise(c, deg, lo, hi, level, work):
     little on either side of the level: a ``p`` that starts at or below the level and rises is a
     rise at ``lo``; one that starts above it and falls through it is not a rise (that start is
     rounding). If ``p > level`` on the whole interval, ``lo`` is returned.
+
+    Degrees 1 and 2 (the rigid block on the ground: a linear floor acceleration, a quadratic
+    relative velocity) are decided in closed form by :func:`_rise_low` whenever its certified
+    signs allow, else, like every higher degree, by root isolation
+    (:func:`_first_rise_isolating`).
     """
+    d = deg
+    while d > 0 and c[d] == 0.0:
+        d -= 1
+    if d == 1 or d == 2:
+        r = _rise_low(c[0] - level, c[1], c[2] if d == 2 else 0.0, d, lo, hi)
+        if r != UNDECIDED:
+            return r
+    return _first_rise_isolating(c, deg, lo, hi, level, work)
+
+
+@njit(cache=True)
+def _first_rise_isolating(c, deg, lo, hi, level, work):
+    """:func:`first_rise` by rigorous root isolation (any degree; the reference of the closed
+    forms of :func:`_rise_low`)."""
     q = work[R_COEF]
     for j in range(deg + 1):
         q[j] = c[j]
@@ -379,6 +398,202 @@ def first_rise(c, deg, lo, hi, level, work):
         if probe > x and poly_val(q, deg, probe) > 0.0:
             return _first_positive(q, deg, x, probe)
     return -1.0
+
+
+UNDECIDED = -2.0
+"""Returned by :func:`_rise_low` when a sign it needs is within its rounding bound."""
+_HORNER_ERR = 1e-15
+"""Relative error bound of a Horner evaluation of degree ≤ 2, and of the discriminant, above
+``γ_4 = 4u/(1 − 4u) ≈ 4.4·10⁻¹⁶`` (Higham 2002, §5.1 and §1.8)."""
+_TINY = 1e-300
+"""Absolute slack added to every error bound (underflow in the products)."""
+_SETTLE_STEPS = 16
+"""Most machine numbers :func:`_settle` steps through before giving up."""
+
+
+@njit(cache=True, inline="always")
+def _val2(q0, q1, q2, x):
+    """``q0 + q1 x + q2 x²`` by Horner, the same operations as :func:`poly_val` (degree 2; with
+    ``q2 = 0`` the same value as degree 1 for finite ``x``)."""
+    return (q2 * x + q1) * x + q0
+
+
+@njit(cache=True, inline="always")
+def _bound2(q0, q1, q2, x):
+    """A bound of the rounding error of :func:`_val2` at ``x`` (Higham 2002, eq. (5.3):
+    ``γ_{2n}·Σ|q_j||x|^j``), with slack for underflow."""
+    ax = abs(x)
+    return _HORNER_ERR * ((abs(q2) * ax + abs(q1)) * ax + abs(q0)) + _TINY
+
+
+@njit(cache=True)
+def _settle(q0, q1, q2, lo, hi, x):
+    """The machine number ``x' ∈ (lo, hi]`` nearest the estimate ``x`` of a rising root such
+    that ``q(x') > 0`` and ``q`` at the machine number before ``x'`` is ``≤ 0`` (or that number
+    is ``lo``), both as evaluated by :func:`poly_val`; :data:`UNDECIDED` if that takes more than
+    :data:`_SETTLE_STEPS` steps (a root so ill-conditioned that rounding blurs it over many
+    machine numbers: root isolation decides)."""
+    first = np.nextafter(lo, np.inf)
+    if not x >= first:  # also NaN
+        x = first
+    if x > hi:
+        x = hi
+    for _ in range(_SETTLE_STEPS):
+        if not _val2(q0, q1, q2, x) > 0.0:
+            if x >= hi:
+                return UNDECIDED
+            x = np.nextafter(x, np.inf)
+            continue
+        xp = np.nextafter(x, -np.inf)
+        if _val2(q0, q1, q2, xp) > 0.0:
+            if xp <= lo:  # above 0 from lo on: not a rise through this root
+                return UNDECIDED
+            x = xp
+            continue
+        return x
+    return UNDECIDED
+
+
+@njit(cache=True)
+def _rise_low(q0, q1, q2, deg, lo, hi):
+    """:func:`first_rise` of ``q = q0 + q1 τ (+ q2 τ²)`` above 0 on ``(lo, hi]`` in closed form,
+    for ``deg`` 1 (``q1 ≠ 0``) or 2 (``q2 ≠ 0``); :data:`UNDECIDED` when a sign it needs cannot
+    be certified (then root isolation decides).
+
+    Degree 1: the evaluated ``q`` (one product, one sum, both correctly rounded) is monotone in
+    ``τ``, so, the sign of ``q(hi)`` being certified, a rise exists iff ``q(hi) > 0`` with
+    ``q1 > 0``, and the smallest machine number with ``q > 0`` is found by stepping from
+    ``−q0/q1`` (a few units in the last place): the result of root isolation, bit for bit.
+
+    Degree 2: after the quick rejections of root isolation (replayed operation for operation),
+    every decision rests on a sign certified by a rigorous error bound — of ``q`` at the ends
+    and of ``q'`` there (Horner, Higham 2002 §5.1), and of the discriminant
+    ``D = q1² − 4 q0 q2`` (the sign of the extremum ``−D/(4 q2)``). Ends of opposite signs hold
+    one root between them (rising or falling); ends of one sign hold none or two, two only if
+    the vertex is inside (``q'`` is linear: its signs at the ends tell) and ``D > 0``. That
+    leaves at most one candidate rising root, computed stably without cancellation
+    (``s = −(q1 + sign(q1)√D)/2``, roots ``s/q2`` and ``q0/s``: Higham 2002, §1.8; Press et al.
+    2007, §5.6) and settled on machine numbers by :func:`_settle`. A start within rounding of
+    0 (a stop, a breakaway) is decided by its evaluated sign, as root isolation does. Any other
+    sign within its bound (a double root, a root at ``hi``, a tangency, overflow, NaN) gives
+    :data:`UNDECIDED`.
+
+    References
+    ----------
+    Higham, N. J. (2002). *Accuracy and Stability of Numerical Algorithms*, 2nd ed., SIAM.
+    Press, W. H., Teukolsky, S. A., Vetterling, W. T., Flannery, B. P. (2007). *Numerical
+    Recipes*, 3rd ed., Cambridge University Press.
+    """
+    if not (abs(q0) < np.inf and abs(q1) < np.inf and abs(q2) < np.inf):
+        return UNDECIDED
+    if not (abs(lo) < np.inf and abs(hi) < np.inf and lo < hi):
+        return UNDECIDED
+    # first the two quick rejections of root isolation, operation for operation (the same
+    # decisions, bit for bit): p(0) + Σ|q_j| hi^j ≤ 0 from lo = 0, then every Bernstein
+    # coefficient on [lo, hi] ≤ 0 (convex hull; the start counts as evaluated there: a start at
+    # the level within rounding, a stop or a breakaway, is no rise)
+    w = hi - lo
+    if deg == 1:
+        if lo == 0.0 and q0 + abs(q1) * hi <= 0.0:
+            return -1.0
+        b0 = q0 + lo * q1
+        if max(b0, b0 + q1 * w) <= 0.0:
+            return -1.0
+        f_hi = q1 * hi + q0
+        e_hi = _bound2(q0, q1, 0.0, hi)
+        if not abs(f_hi) > e_hi:  # a root at (or within rounding of) hi
+            return UNDECIDED
+        if q1 > 0.0:
+            if f_hi < 0.0:
+                return -1.0
+            if q1 * lo + q0 > 0.0:
+                return lo
+            return _settle(q0, q1, 0.0, lo, hi, -q0 / q1)
+        # falling: above 0 on the whole interval, or no rise
+        return lo if f_hi > 0.0 else -1.0
+    if lo == 0.0 and q0 + (abs(q1) * hi + abs(q2) * (hi * hi)) <= 0.0:
+        return -1.0
+    lq2 = lo * q2
+    t1 = q1 + lq2
+    b0 = q0 + lo * t1  # p(lo) (Horner)
+    o1 = (t1 + lq2) * w
+    if max(b0, max(b0 + 0.5 * o1, (b0 + o1) + q2 * (w * w))) <= 0.0:
+        return -1.0
+    f_lo = b0
+    e_lo = _bound2(q0, q1, q2, lo)
+    f_hi = _val2(q0, q1, q2, hi)
+    e_hi = _bound2(q0, q1, q2, hi)
+    pos_lo = f_lo > e_lo
+    neg_lo = f_lo < -e_lo
+    pos_hi = f_hi > e_hi
+    neg_hi = f_hi < -e_hi
+    convex = q2 > 0.0
+    if neg_lo and pos_hi:  # an odd number of roots inside: one, rising
+        return _settle(q0, q1, q2, lo, hi, _quadratic_root(q0, q1, q2, convex))
+    if pos_lo and neg_hi:  # one root inside, falling
+        return -1.0
+    # q' = q1 + 2 q2 τ (linear) at the ends: 2 q2 τ is exact but for under/overflow
+    g_lo = 2.0 * q2 * lo + q1
+    g_hi = 2.0 * q2 * hi + q1
+    eg_lo = _HORNER_ERR * (2.0 * abs(q2 * lo) + abs(q1)) + _TINY
+    eg_hi = _HORNER_ERR * (2.0 * abs(q2 * hi) + abs(q1)) + _TINY
+    inc_lo = g_lo > eg_lo
+    dec_lo = g_lo < -eg_lo
+    inc_hi = g_hi > eg_hi
+    dec_hi = g_hi < -eg_hi
+    vertex_inside = (dec_lo and inc_hi) or (inc_lo and dec_hi)
+    disc = q1 * q1 - 4.0 * q0 * q2
+    e_disc = _HORNER_ERR * (q1 * q1 + 4.0 * abs(q0 * q2)) + _TINY
+    if pos_lo and pos_hi:  # no root inside, or two
+        if not convex or inc_lo or dec_hi:  # concave, or monotone: above 0 throughout
+            return lo
+        if vertex_inside:
+            if disc < -e_disc:  # minimum above 0
+                return lo
+            if disc > e_disc:  # falls, then rises through the larger root
+                return _settle(q0, q1, q2, lo, hi, _quadratic_root(q0, q1, q2, True))
+        return UNDECIDED
+    if neg_lo and neg_hi:  # no root inside, or a brief excursion above 0
+        if convex or dec_lo or inc_hi:  # convex, or monotone: below 0 throughout
+            return -1.0
+        if vertex_inside:
+            if disc < -e_disc:  # maximum below 0
+                return -1.0
+            if disc > e_disc:  # rises through the smaller root
+                return _settle(q0, q1, q2, lo, hi, _quadratic_root(q0, q1, q2, False))
+        return UNDECIDED
+    # q(lo) within rounding of 0 (a start at a stop or a breakaway); q(hi) certified
+    if not (pos_lo or neg_lo):
+        if pos_hi:
+            if not convex or inc_lo:  # above 0 on (lo, hi] but within rounding of lo
+                if f_lo > 0.0:
+                    return lo
+                return _settle(q0, q1, q2, lo, hi, _quadratic_root(q0, q1, q2, convex))
+            if dec_lo and inc_hi and disc > e_disc:  # falls from lo, rises through the larger
+                return _settle(q0, q1, q2, lo, hi, _quadratic_root(q0, q1, q2, True))
+            return UNDECIDED
+        if neg_hi and f_lo > 0.0 and (convex or (dec_lo and dec_hi)):
+            # starts above 0 (as evaluated) and stays below q(lo) (convex: q ≤ max of the
+            # ends; or decreasing), the set where q ≤ 0 an interval ending at hi: no rise
+            return -1.0
+    return UNDECIDED
+
+
+@njit(cache=True, inline="always")
+def _quadratic_root(q0, q1, q2, larger):
+    """The larger or smaller real root of ``q0 + q1 τ + q2 τ²`` (``q2 ≠ 0``, discriminant known
+    positive), without cancellation: ``s = −(q1 + sign(q1)√D)/2``, roots ``s/q2`` and ``q0/s``
+    (Higham 2002, §1.8). NaN if ``s`` vanishes (then :func:`_settle` starts at ``lo``)."""
+    disc = q1 * q1 - 4.0 * q0 * q2
+    sq = np.sqrt(max(disc, 0.0))
+    s = -0.5 * (q1 + sq) if q1 >= 0.0 else -0.5 * (q1 - sq)
+    if s == 0.0:
+        return np.nan
+    r1 = s / q2
+    r2 = q0 / s
+    if larger:
+        return max(r1, r2)
+    return min(r1, r2)
 
 
 @njit(cache=True)

@@ -241,9 +241,11 @@ def _ground_search(
     ``f`` says which quantities to search (bit 0: ``|q|``, 1: ``|q'|``, 2: ``|ω²q + 2ξωq'|``);
     ``s..`` is the oscillator's exact sub-step recurrence ``q⁺ = s00 q + s01 q' + sp0 a + sq0 a⁺``,
     ``q'⁺ = s10 q + s11 q' + sp1 a + sq1 a⁺``; ``pk`` holds the three peaks so far and is
-    updated. On a sub-step a quantity is searched only if its first or second derivative changes
-    sign there (with neither, it is monotone or has one critical point found by the sign of its
-    derivative: every derivative of the free vibration has at most one zero when ``ω·h ≤ 0.5``) and
+    updated. On a sub-step a quantity is searched only if its derivative changes sign there, or
+    its second derivative does and its derivative comes within its chord deviation
+    ``h²/8·max|f'''|`` of zero at an end (with neither, it has no critical point: every
+    derivative of the free vibration has at most one zero when ``ω·h ≤ 0.5``, and a derivative
+    of one sign at both ends farther from zero than its chord deviation keeps its sign) and
     the cubic Hermite interpolant of its end values and slopes plus the interpolation error bound
     ``h⁴/384·max|f⁗|`` can exceed its peak (the response is the exact particular solution
     ``α + βτ`` plus a free vibration ``Re(C e^{λτ})`` whose k-th derivative is at most
@@ -274,9 +276,11 @@ def _ground_search(
         ddd1 = -slope - c2 * dd1 - w2 * vn
         Add0 = w2 * dd0 + c2 * ddd0
         Add1 = w2 * dd1 + c2 * ddd1
-        nd = (f & 1) != 0 and ((v > 0.0) != (vn > 0.0) or (dd0 > 0.0) != (dd1 > 0.0))
+        sd = (v > 0.0) != (vn > 0.0)
+        sa = (Ad0 > 0.0) != (Ad1 > 0.0)
+        nd = (f & 1) != 0 and (sd or (dd0 > 0.0) != (dd1 > 0.0))
         nv = (f & 2) != 0 and ((dd0 > 0.0) != (dd1 > 0.0))
-        na = (f & 4) != 0 and ((Ad0 > 0.0) != (Ad1 > 0.0) or (Add0 > 0.0) != (Add1 > 0.0))
+        na = (f & 4) != 0 and (sa or (Add0 > 0.0) != (Add1 > 0.0))
         td = tv = ta = -1.0
         if nd or nv or na:
             bet = -slope / w2
@@ -285,6 +289,15 @@ def _ground_search(
             ci = (e0 * (-xi * w) - (v - bet)) / wd
             cm = math.sqrt(e0 * e0 + ci * ci)
             h4 = h * h * h * h / 384.0 * cm * w2 * w2
+            # a derivative of one sign at both ends and farther from zero than its chord
+            # deviation h²/8·max|f'''| keeps its sign: no critical point (|q'''| ≤ |C|ω³ and
+            # |(ω²q + 2ξωq')'''| ≤ |C|ω⁵(1 + 2ξ), the free vibration's: the particular solution
+            # is linear)
+            k3 = 0.125 * h * h * cm * w2 * w * (1.0 + 1e-6)  # margin: rounding of the ends
+            if nd and not sd:
+                nd = min(abs(v), abs(vn)) <= k3
+            if na and not sa:
+                na = min(abs(Ad0), abs(Ad1)) <= k3 * w2 * (1.0 + 2.0 * xi)
             if nd:
                 hd, td = _hermite_max(q, v, qn, vn, h)
                 nd = hd + h4 > pk[0]
@@ -335,6 +348,10 @@ _Q, _V, _D, _PD, _PV, _PA, _QS, _VS, _CP0, _CP1 = range(10)
 NSTATE = 10
 
 
+_MARGIN2 = (1.0 + 1e-6) ** 2
+"""Squared relative margin of the chord-deviation tests of :func:`_stage_ground`."""
+
+
 @njit(cache=True)
 def _stage_ground(C, S, flag, nb, a, a1, dt):
     """Advance the first ``nb`` oscillators of a block by one record step on the ground and flag
@@ -345,8 +362,14 @@ def _stage_ground(C, S, flag, nb, a, a1, dt):
     linear input plus a damped free vibration ``e = Re(C e^{λτ})`` with ``|e^(k)| ≤ |C| ω^k``. A
     quantity is flagged when both its bound ``max|particular| + |C|·ω^k`` and its end values plus
     the linear interpolation error ``dt²/8·max|f''|`` exceed its peak so far and, for
-    oscillators with at most one critical point per step (``ω·dt ≤ 0.5``, row ``ONE``), its
-    derivative changes sign. Comparisons are made on squares (no square root).
+    oscillators with ``ω·dt ≤ 0.5`` (row ``ONE``), it may have a critical point in the step:
+    its derivative changes sign between the ends, or comes within its own chord deviation
+    ``dt²/8·max|f'''|`` of zero at an end (``|f'''| ≤ |C|ω^(k+3)``: the particular solution is
+    linear), for ``|q|`` only when ``q''`` changes sign as well (``q'' = e''`` has at most one
+    zero in such a step). A derivative of one sign at both ends and farther from zero than its
+    chord deviation keeps its sign: this replaces the sign test of the second derivative, whose
+    third derivatives cost more in this vectorised pass than the few extra steps searched.
+    Comparisons are made on squares (no square root).
     Branch-free on purpose: the compiler vectorises it (and spelled out: the update it shares
     with :func:`_stage_floor` in an inlined helper stops the vectoriser).
     """
@@ -390,21 +413,26 @@ def _stage_ground(C, S, flag, nb, a, a1, dt):
         sa = pa - max(abs(A0), abs(A1))
         ad0 = w2 * v0 + c2 * d0
         ad1 = w2 * v1 + c2 * d1
-        # third derivative of q and second of w²q + 2ξwq' at the ends
-        j0 = -slope - c2 * d0 - w2 * v0
-        j1 = -slope - c2 * d1 - w2 * v1
-        add0 = w2 * d0 + c2 * j0
-        add1 = w2 * d1 + c2 * j1
+        kv = C[KV2 * NB + o] * cm2
         ld = C[KD2 * NB + o] * cm2 > sd * sd
-        lv = C[KV2 * NB + o] * cm2 > sv * sv
+        lv = kv > sv * sv
         la = C[KA2 * NB + o] * cm2 > sa * sa
         many = C[ONE * NB + o] == 0.0
-        # with w·dt ≤ 0.5 every derivative of the damped free vibration has at most one zero in
-        # the step, so a quantity (linear + free vibration) has at most one critical point
-        # unless its second derivative changes sign: both signs are checked
-        fd = bd & ld & (many | (v0 * v1 <= 0.0) | (d0 * d1 <= 0.0))
+        # a quantity has a critical point in the step only if its derivative changes sign
+        # between the ends, or comes within its chord deviation dt²/8·max|f'''| of zero (one
+        # sign at both ends and farther from zero than that: one sign throughout). The
+        # particular solution is linear, so f''' is the free vibration's: |q'''| ≤ |C|ω³ (row
+        # KV2), |(ω²q + 2ξωq')'''| ≤ |C|ω⁵(1 + 2ξ) (KA2·ω²). For |q| the sign of q'' is checked
+        # too (already at hand): with w·dt ≤ 0.5, q'' = e'' has at most one zero in the step,
+        # so a q'' of one sign at both ends makes q' monotone
+        # (with a relative margin of 10⁻⁶ for the rounding of the end values)
+        kvm = kv * _MARGIN2
+        ka = C[KA2 * NB + o] * cm2 * w2 * _MARGIN2
+        near_d = (v0 * v0 <= kvm) | (v1 * v1 <= kvm)
+        near_a = (ad0 * ad0 <= ka) | (ad1 * ad1 <= ka)
+        fd = bd & ld & (many | (v0 * v1 <= 0.0) | ((d0 * d1 <= 0.0) & near_d))
         fv = bv & lv & (many | (d0 * d1 <= 0.0))
-        fa = ba & la & (many | (ad0 * ad1 <= 0.0) | (add0 * add1 <= 0.0))
+        fa = ba & la & (many | (ad0 * ad1 <= 0.0) | near_a)
         f = fd + 2 * fv + 4 * fa
         flag[o] = f
         nf += f
