@@ -14,15 +14,21 @@ floorslide's kernels are therefore cached in a per-user folder instead:
 3. else, when that folder cannot be written, ``<tmp>/floorslide-numba-<user>``.
 
 Under it, each source folder gets its own subfolder (named after the folder and a hash of its
-absolute path), so an installed copy and a source tree never share cache files, and numba's own
-staleness check (source time stamp and size) still applies. A ``NUMBA_CACHE_DIR`` set by the user
+absolute path), so an installed copy and a source tree never share cache files. A cached kernel
+is stale when *any* of floorslide's kernel sources changed, not only its own file (numba's own
+check): a kernel compiles the helpers it calls from other files into itself, so after an edit
+of, say, ``numerics/polynomial.py`` numba would otherwise go on loading kernels that run the old
+helper. The stamp is a SHA-256 of the contents of every source file that defines compiled
+functions (:func:`kernel_sources_stamp`). A ``NUMBA_CACHE_DIR`` set by the user
 takes precedence (numba's own locator is used then), as the benchmark's fresh-compile
 measurement relies on. Only functions defined in floorslide's own source files are affected.
 """
 
 from __future__ import annotations
 
+import functools
 import getpass
+import hashlib
 import os
 import sys
 import tempfile
@@ -31,7 +37,7 @@ from pathlib import Path
 from numba import njit
 from numba.core import caching, config
 
-__all__ = ["cache_root", "njit"]
+__all__ = ["cache_root", "kernel_sources_stamp", "njit"]
 
 PACKAGE_DIR = Path(__file__).resolve().parent
 """The folder of the floorslide package whose functions are cached by this locator."""
@@ -50,6 +56,22 @@ def cache_root() -> Path:
     xdg = os.environ.get("XDG_CACHE_HOME")
     base = Path(xdg).expanduser() if xdg else Path.home() / ".cache"
     return base / "floorslide" / "numba"
+
+
+@functools.lru_cache(maxsize=4)
+def kernel_sources_stamp(root: Path = PACKAGE_DIR) -> str:
+    """SHA-256 of the contents of every source file under `root` that defines compiled kernels
+    (imports ``floorslide._jit``), names included: the staleness stamp of every cached kernel."""
+    digest = hashlib.sha256()
+    for path in sorted(Path(root).rglob("*.py")):
+        try:
+            text = path.read_bytes()
+        except OSError:  # pragma: no cover - unreadable: not part of the stamp
+            continue
+        if b"floorslide._jit import" in text or path.name == "_jit.py":
+            digest.update(path.relative_to(root).as_posix().encode() + b"\0")
+            digest.update(hashlib.sha256(text).digest())
+    return digest.hexdigest()
 
 
 def _fallback_root() -> Path:
@@ -81,6 +103,10 @@ class FloorslideCacheLocator(_SourceBacked, _CacheLocator):
 
     def get_cache_path(self) -> str:
         return self._cache_path
+
+    def get_source_stamp(self) -> str:
+        """Every kernel source, not only this function's file (see the module docstring)."""
+        return kernel_sources_stamp()
 
     @classmethod
     def from_function(cls, py_func, py_file):

@@ -60,3 +60,28 @@ def test_a_kernel_call_writes_nothing_into_the_package(tmp_path):
     assert list(tmp_path.rglob("*.nbi")), "no kernel cached in FLOORSLIDE_CACHE_DIR"
     after = {str(p) for p in PACKAGE_DIR.rglob("*.nb[ic]")}
     assert after == before == set()
+
+
+def test_a_kernel_is_stale_when_any_kernel_source_changes(tmp_path):
+    """numba's own check looks at a kernel's own file only; a kernel compiled against an older
+    helper from another file (e.g. numerics/polynomial.py) must not be loaded (issue 20)."""
+    from floorslide._jit import FloorslideCacheLocator, kernel_sources_stamp
+
+    root = tmp_path / "pkg"
+    (root / "numerics").mkdir(parents=True)
+    (root / "kern.py").write_text("from floorslide._jit import njit\\n")
+    helper = root / "numerics" / "helper.py"
+    helper.write_text("from floorslide._jit import njit\\nX = 1\\n")
+    (root / "cli.py").write_text("print('no kernels here')\\n")
+    before = kernel_sources_stamp(root)
+    (root / "cli.py").write_text("print('still none')\\n")
+    kernel_sources_stamp.cache_clear()
+    assert kernel_sources_stamp(root) == before  # a file without kernels does not count
+    helper.write_text("from floorslide._jit import njit\\nX = 2\\n")  # same size, new content
+    kernel_sources_stamp.cache_clear()
+    assert kernel_sources_stamp(root) != before
+    kernel_sources_stamp.cache_clear()
+    func = slide_kernel.py_func
+    loc = FloorslideCacheLocator.from_function(func, func.__code__.co_filename)
+    if loc is not None:  # not under a user's NUMBA_CACHE_DIR
+        assert loc.get_source_stamp() == kernel_sources_stamp()
