@@ -401,6 +401,12 @@ def unwrap(acc, dt, building, floor, name: str = "acc"):
                 f"{name} is a FloorMotion: give building= and floor= when building it, not here",
                 "building",
             )
+        if dt is not None and (isinstance(dt, bool) or not np.isscalar(dt)):
+            raise ModelError(
+                f"{name} is a FloorMotion, whose dt is its own: give the other arguments by "
+                f"keyword (e.g. mu_k=..., mu=..., periods=...), not {dt!r} in dt's place",
+                "dt",
+            )
         if dt is not None and not np.isclose(float(dt), acc.dt, rtol=1e-9, atol=0.0):
             raise ModelError(f"dt={dt} differs from the FloorMotion's dt={acc.dt}", "dt")
         return acc, acc.acc, acc.dt, acc.notes

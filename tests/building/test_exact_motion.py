@@ -142,6 +142,8 @@ def test_bad_combinations_are_refused(record, buildings):
         fs.slide(fm, mu_k=[0.1], building=buildings["fixed"], floor=2)
     with pytest.raises(ModelError, match="dt"):
         fs.response_spectrum(fm, 0.02, [0.5])
+    with pytest.raises(ModelError, match="by keyword"):  # friction values in dt's place
+        fs.slide_oscillator(fm, [0.1, 0.2], 5.0)
     with pytest.raises(ModelError, match="floor 7 does not exist"):
         fs.building_motion(buildings["fixed"], a, dt).floor(7)
     with pytest.raises(ModelError, match="needs building"):
