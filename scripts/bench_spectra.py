@@ -18,6 +18,7 @@ import numpy as np
 from _common import markdown_table, record_4000, timeit
 
 import floorslide as fs
+from floorslide.building.exact_motion import single_use_motion
 from floorslide.spectra import core as spectra_core
 
 T = np.geomspace(0.02, 5.0, 100)
@@ -76,7 +77,7 @@ def main() -> None:
             ]
         )
         counts = np.zeros(2, dtype=np.int64)
-        motion = spectra_core.motion_of(ag, dt, kw.get("building"), kw.get("floor"))
+        motion = single_use_motion(kw.get("building"), ag, dt, kw.get("floor"))
         spectra_core._exact(motion, np.asarray(T, float), np.asarray(Z, float), counts=counts)
         searched.append(f"{where}: {counts[0] / n:.2%}")
         methods = [("floorslide peaks at samples", dict(method="samples"))]

@@ -47,6 +47,8 @@ __all__ = [
     "FloorMotion",
     "building_motion",
     "floor_motion",
+    "ground_peak",
+    "single_use_motion",
     "stepper",
     "unwrap",
 ]
@@ -175,12 +177,13 @@ class BuildingMotion:
         if b is None:
             if floor not in (None, 0):
                 raise ModelError("floor= needs building=", "floor")
-            return FloorMotion(self, 0, np.zeros((2, 0)), np.array([1.0, 0.0]), 1)
-        if floor is None:
-            raise ModelError("floor is required with building=", "floor")
-        (floor,) = b.check_floors([floor])
-        if b.dof_of(floor) is None:  # the ground under a fixed-base building
-            return FloorMotion(self, floor, np.zeros((2, 0)), np.array([1.0, 0.0]), 1, ground=True)
+            floor = 0
+        else:
+            if floor is None:
+                raise ModelError("floor is required with building=", "floor")
+            (floor,) = b.check_floors([floor])
+        if b is None or b.dof_of(floor) is None:  # the ground (under a fixed-base building)
+            return FloorMotion(self, floor, np.zeros((2, 0)), np.array([1.0, 0.0]), 1)
         Ca, Da, _ = b.output_matrices([floor], "acceleration")
         Cv, _, _ = b.output_matrices([floor], "velocity")
         Cd, _, _ = b.output_matrices([floor], "displacement")
@@ -218,8 +221,8 @@ class BuildingMotion:
         """True peaks ``max_t |y(t)|`` of an output of `floors` over the record, inside steps
         included, and their times (:func:`~floorslide.building._kernels.foh_peaks`)."""
         if self.building is None:
-            k = int(np.argmax(np.abs(self.acc)))
-            return np.array([abs(self.acc[k])]), np.array([k * self.dt])
+            peak, t = ground_peak(self.acc, self.dt)
+            return np.array([peak]), np.array([t])
         C, D, _ = self.building.output_matrices(floors, output)
         R, beta = self.stepper.taylor_rows(C, D[:, 0])
         peak = np.zeros(C.shape[0])
@@ -251,8 +254,6 @@ class FloorMotion:
     rv, rd
         Rows of the floor's velocity and displacement relative to the ground (empty on the
         ground).
-    ground
-        True when the floor is the ground (no building states).
     """
 
     motion: BuildingMotion
@@ -262,11 +263,11 @@ class FloorMotion:
     order: int
     rv: np.ndarray = field(default_factory=lambda: np.zeros(0))
     rd: np.ndarray = field(default_factory=lambda: np.zeros(0))
-    ground: bool = False
 
-    def __post_init__(self) -> None:
-        if self.motion.building is None:
-            object.__setattr__(self, "ground", True)
+    @property
+    def ground(self) -> bool:
+        """True when the floor is the ground (its rows read no building state)."""
+        return self.R.shape[1] == 0
 
     @property
     def building(self) -> LinearBuilding | None:
@@ -315,8 +316,7 @@ class FloorMotion:
     def peak(self) -> tuple[float, float]:
         """The true peak floor acceleration (inside steps included) and its time, s."""
         if self.ground:
-            k = int(np.argmax(np.abs(self.acc)))
-            return float(abs(self.acc[k])), k * self.dt
+            return ground_peak(self.acc, self.dt)
         p, t = self.motion.peaks([self.floor])
         return float(p[0]), float(t[0])
 
@@ -360,8 +360,8 @@ def building_motion(
         a = np.array(a, dtype=float)
         a.setflags(write=False)
     steps = a.size - 1
-    if building is None:
-        return BuildingMotion(None, a, dt, 1, dt, None, max(steps, 1), notes)
+    if building is None:  # no states: zero-width, kept whole
+        return BuildingMotion(None, a, dt, 1, dt, None, max(steps, 1), notes, np.zeros((a.size, 0)))
     st = stepper(building, dt)
     m, n = st.substeps, st.n
     rows = steps * m + 1
@@ -373,6 +373,18 @@ def building_motion(
         return BuildingMotion(building, a, dt, m, st.h, st, max(steps, 1), notes, X, None)
     L = max(1, min(steps, CHUNK_BYTES // (8 * n * m)))
     return BuildingMotion(building, a, dt, m, st.h, st, L, notes, None, [])
+
+
+def ground_peak(acc: np.ndarray, dt: float) -> tuple[float, float]:
+    """Peak ``|a|`` of a piecewise-linear record and its time: at a sample."""
+    k = int(np.argmax(np.abs(acc)))
+    return float(abs(acc[k])), k * dt
+
+
+def single_use_motion(building, acc: np.ndarray, dt: float, floor) -> FloorMotion:
+    """The floor motion a solver builds for its own single pass (``slide(acc, dt, building=,
+    floor=)``): streamed (memory O(1) in the record's length) and reading `acc` in place."""
+    return building_motion(building, acc, dt, max_bytes=0, copy=False).floor(floor)
 
 
 def floor_motion(

@@ -16,7 +16,7 @@ import numpy as np
 from floorslide._jit import njit
 from floorslide.building._kernels import foh_outputs
 from floorslide.building.exact import foh_matrices
-from floorslide.building.exact_motion import building_motion, stepper
+from floorslide.building.exact_motion import building_motion, ground_peak, stepper
 from floorslide.building.model import LinearBuilding
 from floorslide.errors import ModelError
 from floorslide.inputs import RecordLike, as_record, check_record
@@ -166,8 +166,8 @@ def peak_floor_acceleration(
     """
     a, dt, notes = as_record(ground_acc, dt, "ground_acc")
     if building is None:
-        k = int(np.argmax(np.abs(a)))
-        return Peaks((0,), np.array([abs(a[k])]), np.array([k * dt]), notes)
+        peak, t = ground_peak(a, dt)
+        return Peaks((0,), np.array([peak]), np.array([t]), notes)
     floors = building.check_floors(floors)
     peak, tpk = building_motion(building, a, dt, max_bytes=0, copy=False).peaks(floors, output)
     return Peaks(tuple(floors), peak, tpk, notes)

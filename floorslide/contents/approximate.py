@@ -17,7 +17,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from floorslide._jit import njit
-from floorslide.building.exact_motion import building_motion
+from floorslide.building.exact_motion import single_use_motion
 from floorslide.building.motions import floor_motions
 from floorslide.constants import G
 from floorslide.errors import ModelError
@@ -48,9 +48,7 @@ def slide(
     on_floor = building is not None and building.dof_of(floor) is not None
     if method == "reinterpolated":
         af = floor_motions(building, a, dt, floors=[floor])[0] if on_floor else a
-        res = _slide_exact(
-            building_motion(None, af, dt, copy=False).floor(0), mk, ms, vert, direction, False
-        )
+        res = _slide_exact(single_use_motion(None, af, dt, None), mk, ms, vert, direction, False)
         return _renamed(res, method)
     if method in ("slammer", "newmark"):
         k = 1 if method == "slammer" else int(substeps)

@@ -17,7 +17,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from floorslide.building.exact import spectral_radius, substeps_for, taylor_degree
-from floorslide.building.exact_motion import FloorMotion, building_motion, unwrap
+from floorslide.building.exact_motion import FloorMotion, single_use_motion, unwrap
 from floorslide.building.model import LinearBuilding
 from floorslide.constants import G
 from floorslide.contents import _oscillator_kernel as cols
@@ -176,9 +176,7 @@ def slide_oscillator(
         )  # fmt: skip
         return replace(result, notes=notes) if notes else result
     if fm is None:
-        fm = building_motion(building if on_floor else None, a, dt, max_bytes=0, copy=False).floor(
-            floor if on_floor else 0
-        )
+        fm = single_use_motion(building if on_floor else None, a, dt, floor if on_floor else 0)
     # the floor motion's own sub-steps, each split so that the oscillator's phases have
     # ρ·h ≤ 0.5 (the floor polynomial is shifted to each part)
     rho_b = 0.0 if fm.ground else spectral_radius(fm.motion.stepper.A)

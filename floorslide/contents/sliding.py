@@ -13,7 +13,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from floorslide.building.exact_motion import FloorMotion, building_motion, unwrap
+from floorslide.building.exact_motion import FloorMotion, single_use_motion, unwrap
 from floorslide.building.model import LinearBuilding
 from floorslide.constants import G
 from floorslide.contents import _kernels as cols
@@ -261,9 +261,7 @@ def slide(
         )
     else:
         if fm is None:
-            fm = building_motion(building, a, dt, max_bytes=0, copy=False).floor(
-                0 if building is None else floor
-            )
+            fm = single_use_motion(building, a, dt, floor)
         result = _slide_exact(fm, mk, ms, vert, direction, histories)
     return replace(result, notes=notes) if notes else result
 

@@ -13,14 +13,15 @@ from __future__ import annotations
 import numpy as np
 
 from floorslide._jit import njit
-from floorslide.spectra.core import _exact, _sdof_recurrence, floor_samples, motion_of
+from floorslide.building.exact_motion import single_use_motion
+from floorslide.spectra.core import _exact, _sdof_recurrence, floor_samples
 
 
 def spectra(a, dt, T, Z, building, floor, method, substeps):
     """sd, sv, sa of shape (len(Z), len(T)) by an approximate method."""
     if method == "reinterpolated":
         af = floor_samples(a, dt, building, floor)
-        return _exact(motion_of(af, dt, None, None), T, Z)
+        return _exact(single_use_motion(None, af, dt, None), T, Z)
     k = substeps if method == "newmark" else 1
     af = floor_samples(a, dt, building, floor, oversample=k)
     h = dt / k

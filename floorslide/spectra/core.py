@@ -31,7 +31,7 @@ from floorslide.building.exact import (
     taylor_degree,
     taylor_degrees,
 )
-from floorslide.building.exact_motion import FloorMotion, building_motion, unwrap
+from floorslide.building.exact_motion import FloorMotion, single_use_motion, unwrap
 from floorslide.building.model import LinearBuilding
 from floorslide.building.motions import floor_motions
 from floorslide.constants import MAX_LIST
@@ -444,13 +444,6 @@ def _read_only(*items) -> tuple:
     return items
 
 
-def motion_of(a, dt, building, floor) -> FloorMotion:
-    """The floor motion a spectrum of `floor` of `building` (or of the ground) reads."""
-    if building is None:
-        return building_motion(None, a, dt, copy=False).floor(0)
-    return building_motion(building, a, dt, max_bytes=0, copy=False).floor(floor)
-
-
 def _exact(fm, T, Z, search_all=False, counts=None):
     """Exact spectra on the ground or a floor (a :class:`FloorMotion`); returns sd, sv, sa of
     shape (len(Z), len(T)).
@@ -562,7 +555,7 @@ def response_spectrum(
         raise ModelError("floor= needs building=", "floor")
     if method == "exact":
         if fm is None:
-            fm = motion_of(a, dt, building, floor)
+            fm = single_use_motion(building, a, dt, floor)
         sd, sv, sa = _exact(fm, T, Z)
     else:
         from floorslide.spectra import approximate

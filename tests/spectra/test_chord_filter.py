@@ -10,7 +10,8 @@ import numpy as np
 import pytest
 
 import floorslide as fs
-from floorslide.spectra.core import _exact, motion_of
+from floorslide.building.exact_motion import single_use_motion
+from floorslide.spectra.core import _exact
 from tests.reference import linear_peaks
 from tests.spectra.test_two_critical_points import DT, two_zero_record
 
@@ -39,8 +40,8 @@ def test_close_zeros_of_the_velocity_are_still_searched(wdt, xi, z1, z2):
     Z = np.array([xi])
     end = abs(fs.response_spectrum(acc, DT, T, xi, method="samples").sd[0, 0])
     assert (ref - end) / ref > 5e-5  # the peak is inside the last step, above the samples
-    sd, _, _ = _exact(motion_of(acc, DT, None, None), T, Z)
-    full, _, _ = _exact(motion_of(acc, DT, None, None), T, Z, search_all=True)
+    sd, _, _ = _exact(single_use_motion(None, acc, DT, None), T, Z)
+    full, _, _ = _exact(single_use_motion(None, acc, DT, None), T, Z, search_all=True)
     assert sd[0, 0] == pytest.approx(full[0, 0], rel=1e-13)
     assert sd[0, 0] == pytest.approx(ref, rel=1e-10)
 
@@ -67,8 +68,8 @@ def test_skip_rules_change_nothing(seed):
     T = np.geomspace(0.02, 5.0, 100)
     Z = np.array([0.0, 0.02, 0.05, 0.2])
     for acc in _records(rng):
-        got = _exact(motion_of(acc, DT, None, None), T, Z)
-        full = _exact(motion_of(acc, DT, None, None), T, Z, search_all=True)
+        got = _exact(single_use_motion(None, acc, DT, None), T, Z)
+        full = _exact(single_use_motion(None, acc, DT, None), T, Z, search_all=True)
         for g, f in zip(got, full, strict=True):
             # a peak searched anew is re-evaluated from the Taylor polynomial: rounding apart
             np.testing.assert_allclose(g, f, rtol=1e-13, atol=0)
@@ -81,5 +82,5 @@ def test_the_filter_skips_steps():
     T = np.geomspace(0.02, 5.0, 50)
     Z = np.array([0.05])
     counts = np.zeros(2, dtype=np.int64)
-    _exact(motion_of(acc, DT, None, None), T, Z, counts=counts)
+    _exact(single_use_motion(None, acc, DT, None), T, Z, counts=counts)
     assert 0 < counts[0] < 0.5 * T.size * acc.size

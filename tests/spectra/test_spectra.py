@@ -175,10 +175,12 @@ def test_skip_rules_change_nothing_across_blocks(where, elcentro, coarse_record)
         )
     T = np.geomspace(0.02, 4.0, 40)
     Z = np.array([0.02, 0.1])
-    from floorslide.spectra.core import _exact, motion_of
+    from floorslide.building.exact_motion import single_use_motion
+    from floorslide.spectra.core import _exact
 
-    got = _exact(motion_of(acc, dt, kw.get("building"), kw.get("floor")), T, Z)
-    full = _exact(motion_of(acc, dt, kw.get("building"), kw.get("floor")), T, Z, search_all=True)
+    fm = single_use_motion(kw.get("building"), acc, dt, kw.get("floor"))
+    got = _exact(fm, T, Z)
+    full = _exact(fm, T, Z, search_all=True)
     for a, b in zip(got, full, strict=True):
         np.testing.assert_allclose(a, b, rtol=1e-13, atol=0)
     if kw:

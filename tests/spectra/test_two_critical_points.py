@@ -9,7 +9,8 @@ import pytest
 from scipy.linalg import expm
 
 import floorslide as fs
-from floorslide.spectra.core import _exact, motion_of
+from floorslide.building.exact_motion import single_use_motion
+from floorslide.spectra.core import _exact
 from tests.reference import linear_peaks
 
 DT = 0.01
@@ -69,7 +70,7 @@ def test_displacement_peak_between_two_close_zeros(wdt, xi):
     sp = fs.response_spectrum(acc, DT, [2 * np.pi / w], xi)
     assert sp.sd[0, 0] == pytest.approx(ref, rel=1e-10)
     sd, _, _ = _exact(
-        motion_of(acc, DT, None, None), np.array([2 * np.pi / w]), np.array([xi]), True
+        single_use_motion(None, acc, DT, None), np.array([2 * np.pi / w]), np.array([xi]), True
     )
     assert sd[0, 0] == pytest.approx(ref, rel=1e-10)
 
