@@ -92,6 +92,32 @@ def _print_notes(rows: list[dict]) -> None:
             click.echo(f"note: {label}: {note}")
 
 
+def _processing_notes(trace) -> list[str]:
+    """The processing steps applied to a trace (``stats.processing``), unit conversions left
+    out."""
+    return [p for p in trace.stats.get("processing", []) if "convert_units" not in p]
+
+
+def _print_quality(rows: list[dict], processed: bool) -> None:
+    """The quality flags of the inspected records, below the table, and the processing that
+    removes them."""
+    flagged = [row for row in rows if row["qa"]["flags"]]
+    if not flagged:
+        what = "processed " if processed else ""
+        click.echo(f"quality: no flags on the {len(rows)} {what}records")
+        return
+    click.echo(f"quality: {len(flagged)} of {len(rows)} records flagged")
+    fixes: list[str] = []
+    for row in flagged:
+        label = row["record"] + (f" [{row['component']}]" if row.get("multi") else "")
+        for detail in row["qa"]["details"]:
+            tail = f"; try {detail['fix']}" if detail["fix"] else f"; {detail['advice']}"
+            click.echo(f"  {label}: {detail['check']}: {detail['message']}{tail}")
+        fixes += [f for f in row["qa"]["suggest"] if f not in fixes]
+    if fixes:
+        click.echo(f"suggested processing: {' '.join(fixes)} (nothing is applied unless asked)")
+
+
 def _finite(value):
     """`value` with every float that is NaN or infinite, at any depth, replaced by None."""
     if isinstance(value, float):
@@ -200,6 +226,101 @@ DT_OPTION = click.option(
 )
 
 
+DETREND_CHOICES = ("demean", "constant", "linear")
+
+
+def _check_detrend(ctx, param, value: str | None) -> str | None:
+    """``--detrend``: demean, constant, linear or a polynomial order ≥ 1."""
+    if value is None:
+        return None
+    key = value.strip().lower()
+    if key in DETREND_CHOICES or (key.isdigit() and int(key) >= 1):
+        return key
+    raise click.BadParameter(
+        f"expected demean, constant, linear or a polynomial order (an integer ≥ 1), got {value!r}",
+        ctx,
+        param,
+    )
+
+
+def processing_options(func):
+    """``--detrend/--taper/--highpass/--lowpass``: the scene's ``[processing]`` steps of the
+    same names for one record (docs/design.md §3), applied in the order of
+    :func:`floorslide.process`."""
+    for option in reversed(
+        [
+            click.option(
+                "--detrend",
+                metavar="demean|linear|N",
+                callback=_check_detrend,
+                help="Remove the mean (demean, or constant), a line (linear) or a polynomial "
+                "of order N before anything else.",
+            ),
+            click.option(
+                "--taper",
+                type=NUMBER,
+                metavar="FRACTION",
+                help="Cosine taper of this fraction of the record at each end (0 < f ≤ 0.5).",
+            ),
+            click.option(
+                "--highpass",
+                type=NUMBER,
+                metavar="HZ",
+                help="Butterworth high-pass corner (Hz; order 4, zero-phase).",
+            ),
+            click.option(
+                "--lowpass",
+                type=NUMBER,
+                metavar="HZ",
+                help="Butterworth low-pass corner (Hz; order 4, zero-phase).",
+            ),
+        ]
+    ):
+        func = option(func)
+    return func
+
+
+def _processing(
+    detrend: str | None, taper: float | None, highpass: float | None, lowpass: float | None
+) -> dict:
+    """The keywords of :func:`floorslide.process` for the processing options given."""
+    steps: dict = {}
+    if detrend == "demean":
+        steps["demean"] = True
+    elif detrend in ("constant", "linear"):
+        steps["detrend"] = detrend
+    elif detrend is not None:
+        steps["detrend"] = "polynomial"
+        steps["detrend_order"] = int(detrend)
+    for key, value in (("taper", taper), ("highpass", highpass), ("lowpass", lowpass)):
+        if value is not None:
+            steps[key] = value
+    return steps
+
+
+def _apply_processing(trace, steps: dict):
+    """`trace` processed as asked (unchanged when nothing is asked); a value the record cannot
+    take (a corner above its Nyquist frequency ...) is a usage error naming the option."""
+    if not steps:
+        return trace
+    from floorslide.errors import ModelError
+    from floorslide.records.process import process
+
+    try:
+        return process(trace, **steps)
+    except ModelError as exc:
+        text = str(exc)
+        key = text.split(":", 1)[0].removeprefix("processing ").strip()
+        hint = "--detrend" if key.startswith("detrend") else f"--{key}"
+        raise click.BadParameter(text.split(":", 1)[-1].strip(), param_hint=hint) from None
+
+
+def _warn_quality(label: str, report) -> None:
+    """The flags of a record's quality checks, one warning line each on stderr."""
+    for line in report.lines():
+        click.echo(f"floorslide: warning: {label}: {line}", err=True)
+
+
 @cli.command()
 @click.argument("records", nargs=-1, required=True)
 @click.option("--json", "as_json", is_flag=True, help="Print a JSON list (SI values) on stdout.")
@@ -207,6 +328,7 @@ DT_OPTION = click.option(
 @UNITS_OPTION
 @DT_OPTION
 @click.option("--component", metavar="C", help="Component to keep from multi-trace files.")
+@processing_options
 def inspect(
     records: tuple[str, ...],
     as_json: bool,
@@ -214,6 +336,10 @@ def inspect(
     units: str | None,
     dt: float | None,
     component: str | None,
+    detrend: str | None,
+    taper: float | None,
+    highpass: float | None,
+    lowpass: float | None,
 ) -> None:
     """Intensity measures of each RECORD: format, dt, npts, duration, PGA (m/s² and g), PGV,
     PGD, Arias intensity, CAV, significant durations D5-75 and D5-95.
@@ -223,9 +349,16 @@ def inspect(
     component is shown), or a directory, searched recursively for both (files a catalog lists
     are read once, through it; documentation such as *.md is skipped). --format/--units/--dt/
     --component apply to record files, not to catalog rows, which carry their own. Measures
-    are exact for the piecewise-linear record; nothing is filtered. A measure that is undefined
-    (the durations of a record of zeros, one beyond floating point) is '-' in the table and
-    null in JSON, and a note says why.
+    are exact for the piecewise-linear record; nothing is filtered unless --detrend, --taper,
+    --highpass or --lowpass ask for it (then the measures are those of the processed record).
+    A measure that is undefined (the durations of a record of zeros, one beyond floating
+    point) is '-' in the table and null in JSON, and a note says why.
+
+    Every record is checked (floorslide.records.quality): mean offset, linear trend, clipping,
+    a record that ends during strong shaking. Each check that trips is listed below the table
+    with its numbers and the processing that removes it (e.g. --detrend demean); in JSON each
+    record has "qa" with the flags, every check's numbers and the suggestions. Flags do not
+    change the exit code.
 
     Exit codes: 0 every record read; 3 a record could not be read (or a file named is not a
     record, or nothing was found to read) — reported on stderr in one line each, the others
@@ -236,8 +369,10 @@ def inspect(
     from floorslide.errors import RecordError
     from floorslide.records.discover import discover
     from floorslide.records.measures import MEASURE_KEYS, measures
+    from floorslide.records.quality import check_record
     from floorslide.records.read import format_name
 
+    steps = _processing(detrend, taper, highpass, lowpass)
     sources, problems = discover(records)
     failed = bool(problems)
     for problem in problems:
@@ -250,13 +385,17 @@ def inspect(
         for source in sources:
             try:
                 stream = source.read(format=fmt, units=units, dt=dt, component=component)
-                found = [(trace, measures(trace)) for trace in stream]
+                stream = [_apply_processing(trace, steps) for trace in stream]
+                found = [
+                    (trace, measures(trace), check_record(trace.data, trace.stats.delta))
+                    for trace in stream
+                ]
             except RecordError as exc:
                 failed = True
                 bar.write(f"floorslide: error: {exc}", file=sys.stderr)
                 bar.update()
                 continue
-            for trace, values in found:
+            for trace, values, quality in found:
                 record = trace.stats.record
                 row = {
                     "record": source.label,
@@ -266,6 +405,8 @@ def inspect(
                     "event": record.event,
                     **{key: values[key] for key in MEASURE_KEYS},
                     "notes": list(values["notes"]),
+                    "processing": _processing_notes(trace),
+                    "qa": quality.to_dict(),
                     "multi": len(stream) > 1,
                 }
                 rows.append(row)
@@ -276,6 +417,7 @@ def inspect(
     elif rows:
         _print_table(rows)
         _print_notes(rows)
+        _print_quality(rows, bool(steps))
     if failed:
         sys.exit(EXIT_RECORD)
 
@@ -398,6 +540,7 @@ def _building(spec: str | None, floor: str | None):
 @click.option("--json", "as_json", is_flag=True, help="Print a JSON list (SI values) on stdout.")
 @building_options
 @record_options
+@processing_options
 def slide(
     record,
     mu,
@@ -411,23 +554,34 @@ def slide(
     units,
     dt,
     component,
+    detrend,
+    taper,
+    highpass,
+    lowpass,
 ):
     """Sliding of a rigid block under RECORD — on the ground, or on a floor of a building given
     with --building (and --floor) — one row per friction coefficient: peak slide, residual
     slide (m), peak absolute acceleration of the object (m/s²), fraction of time sliding and
     number of slip phases. Exact for the piecewise-linear record, end to end (ground →
-    building → object); no filtering unless asked. The header says where the object stands
-    and, on a floor, its peak floor acceleration.
+    building → object); no filtering unless asked (--detrend, --taper, --highpass,
+    --lowpass, applied before --scale-pga). The header says where the object stands and, on a
+    floor, its peak floor acceleration. The record's quality flags (mean offset, trend,
+    clipping, truncation: floorslide inspect) are printed as warnings on stderr, with the
+    processing that removes them; in JSON each row also has "qa_flags".
     """
     from floorslide.building.exact_motion import floor_motion
     from floorslide.constants import G
     from floorslide.contents.sliding import slide as slide_exact
     from floorslide.records.process import process
+    from floorslide.records.quality import check_record
 
     mus = _floats(mu, "--mu")
     mus_s = _floats(mu_s, "--mu-s") if mu_s else None
     building, floor_no, where = _building(building_spec, floor)
     tr = _read_one(record, fmt, units, dt, component)
+    tr = _apply_processing(tr, _processing(detrend, taper, highpass, lowpass))
+    quality = check_record(tr.data, tr.stats.delta)
+    _warn_quality(record, quality)
     if scale_pga is not None:
         if not scale_pga > 0:
             raise click.BadParameter("must be > 0", param_hint="--scale-pga")
@@ -442,6 +596,7 @@ def slide(
             row["direction"] = direction
             row["building"] = building_spec
             row["floor"] = floor_no
+            row["qa_flags"] = list(quality.codes)
         click.echo(_strict_json(rows))
         return
     click.echo(
@@ -510,24 +665,46 @@ def _spectrum_grid(periods: str | None, damping: str):
 @click.option("--json", "as_json", is_flag=True, help="Print JSON (SI values) on stdout.")
 @building_options
 @record_options
-def spectrum(record, damping, periods, as_json, building_spec, floor, fmt, units, dt, component):
+@processing_options
+def spectrum(
+    record,
+    damping,
+    periods,
+    as_json,
+    building_spec,
+    floor,
+    fmt,
+    units,
+    dt,
+    component,
+    detrend,
+    taper,
+    highpass,
+    lowpass,
+):
     """Response spectra of RECORD — or, with --building (and --floor), floor response spectra
     of that floor: pseudo-spectral acceleration PSA, absolute acceleration SA, relative
     velocity SV, displacement SD (and pseudo-velocity PSV), exact for the piecewise-linear
     record with peaks inside steps, end to end (ground → building → oscillator). No filtering
-    is applied. The header says which motion the spectra are of.
+    is applied unless asked (--detrend, --taper, --highpass, --lowpass). The header says which
+    motion the spectra are of. The record's quality flags (mean offset, trend, clipping,
+    truncation, periods below 4·dt) are printed as warnings on stderr; in JSON under "qa".
     """
     from floorslide.constants import G
     from floorslide.errors import ModelError
+    from floorslide.records.quality import check_record
     from floorslide.spectra.core import check_oscillators, response_spectrum
 
     grid, zetas = _spectrum_grid(periods, damping)
     building, floor_no, where = _building(building_spec, floor)
     tr = _read_one(record, fmt, units, dt, component)
+    tr = _apply_processing(tr, _processing(detrend, taper, highpass, lowpass))
     try:
         check_oscillators(grid, zetas, tr.stats.delta)
     except ModelError as exc:
         raise click.BadParameter(exc.message, param_hint="--periods") from None
+    quality = check_record(tr.data, tr.stats.delta, periods=grid)
+    _warn_quality(record, quality)
     sp = response_spectrum(
         tr.data,
         tr.stats.delta,
@@ -537,7 +714,13 @@ def spectrum(record, damping, periods, as_json, building_spec, floor, fmt, units
         floor=floor_no if building is not None else None,
     )
     if as_json:
-        out = {"record": record, "building": building_spec, "floor": floor_no, **sp.to_dict()}
+        out = {
+            "record": record,
+            "building": building_spec,
+            "floor": floor_no,
+            **sp.to_dict(),
+            "qa": quality.to_dict(),
+        }
         click.echo(_strict_json(out))
         return
     click.echo(
@@ -654,7 +837,7 @@ def run(scene, out, dry_run, resume, overwrite, workers, scheduler, scheduler_ti
         sys.exit(EXIT_RECORD)
 
 
-REPORT_TABLES = ("slides", "pfa", "frs", "slide_ratios", "pfa_ratios")
+REPORT_TABLES = ("slides", "pfa", "frs", "slide_ratios", "pfa_ratios", "records")
 """The design tables, in output order (floorslide.report.tables.TABLE_NAMES)."""
 
 REPORT_EXIT_CODES = (
@@ -941,7 +1124,29 @@ def demo_summary(tables) -> str:
             pg = f"{p['pfa_g_median']:.2f}" if p else "—"
             out.append(f"| {b} | {pg} | " + " | ".join(cells) + " |")
         out.append("")
+    out += _quality_summary(tables["records"]) if "records" in tables.tables else []
     return "\n".join(out)
+
+
+def _quality_summary(rows: list[dict]) -> list[str]:
+    """One line per quality check that tripped: how many records, which; from the ``records``
+    table."""
+    from collections import Counter
+
+    counts: Counter = Counter()
+    names: dict[str, list[str]] = {}
+    for row in rows:
+        for code in filter(None, row["qa_flags"].split(",")):
+            counts[code] += 1
+            names.setdefault(code, []).append(row["record"])
+    n = len({(r["record_set"].split("@")[0], r["record"]) for r in rows})
+    if not counts:
+        return [f"quality checks: no flags on the {n} records"]
+    out = [f"quality checks on the {n} records (details: the records table):"]
+    for code, k in counts.items():
+        shown = ", ".join(names[code][:4]) + (", …" if k > 4 else "")
+        out.append(f"  {code}: {k} records ({shown})")
+    return out
 
 
 def _demo_may_replace(h5, scene_text: str) -> bool:

@@ -35,7 +35,7 @@ rests under); a median or 84th percentile that falls on rocking records is the o
 OUTCOMES = ("rest", "slide", ROCK)
 """Outcome of a statistic of the peak slide: ``rest`` (0), ``slide`` (> 0) or ``rock``."""
 
-TABLE_NAMES = ("slides", "pfa", "frs", "slide_ratios", "pfa_ratios")
+TABLE_NAMES = ("slides", "pfa", "frs", "slide_ratios", "pfa_ratios", "records")
 """The tables, in output order."""
 
 
@@ -217,6 +217,18 @@ COLUMNS: dict[str, tuple[Column, ...]] = {
         Column("pfa_median_ratio", "1", "median PFA A / B"),
         Column("pfa_p84_ratio", "1", "84th-percentile PFA A / B"),
     ),
+    "records": (
+        Column("record_set", "", "record set (scaled sets are named set@PGAg)"),
+        Column("record", "", "record id (file name without extension)"),
+        Column("record_file", "", "the record's file"),
+        Column("status", "", "ran, or rejected by the quality checks ([scene] qa = 'reject')"),
+        Column("dt", "s", "time step"),
+        Column("npts", "1", "samples"),
+        Column("pga_g", "g", "peak ground acceleration as run (processed and scaled)"),
+        Column("scale", "1", "factor applied to the record"),
+        Column("qa_flags", "", "quality checks that tripped (floorslide.records.quality)"),
+        Column("qa", "", "what each check found, with its numbers and remedy"),
+    ),
 }
 """Columns of every table, in order."""
 
@@ -232,6 +244,7 @@ TITLES = {
     "frs": "Floor response spectra: PSA at the report periods",
     "slide_ratios": "Peak-slide ratios between buildings (A / B)",
     "pfa_ratios": "PFA ratios between buildings (A / B)",
+    "records": "Records: quality flags (mean offset, trend, clipping, truncation, sampling)",
 }
 
 

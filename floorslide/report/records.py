@@ -48,6 +48,11 @@ RECORD_COLUMNS: tuple[Column, ...] = (
     Column("pga", "m/s**2", "peak ground acceleration of the record as run (after scaling)"),
     Column("scale", "1", "factor applied to the record"),
     Column("skipped", "", 'why the object was not integrated ("" when it was)'),
+    Column(
+        "qa_flags",
+        "",
+        "the record's quality flags (floorslide.records.quality; see the records table)",
+    ),
 )
 """Columns of the per-record table, in order."""
 
@@ -116,6 +121,7 @@ def record_rows(study: Study) -> list[dict]:
                         "peak_top_accel_g": top / G,
                         "pfa": float(pfa_of.get(int(c.floor), math.nan)),
                         "pga": _float(m.get("pga")),
+                        "qa_flags": str(m.get("qa_flags", "") or ""),
                         "scale": _float(m.get("scale")),
                         "skipped": c.skipped,
                     }

@@ -53,6 +53,9 @@ class Study:
     notes: list[str] = field(default_factory=list)
     tasks_planned: int | None = None
     scene_path: str = ""
+    quality: dict = field(default_factory=dict)
+    """The plan's record quality checks: ``action``, ``flagged`` and ``rejected`` records with
+    their flags (empty for files written before floorslide checked records)."""
 
     def set_tasks(self, record_set: str) -> list[TaskResult]:
         """The tasks of one record set."""
@@ -226,4 +229,16 @@ def load_study(result: str | Path | ResultFile | Study) -> Study:
         notes,
         tasks_planned=rf.planned_tasks,
         scene_path=rf.scene_path,
+        quality=_quality(rf.plan),
+    )
+
+
+def _quality(plan: dict) -> dict:
+    """The ``quality`` part of a stored plan, with its lists always present."""
+    q = plan.get("quality") if isinstance(plan, dict) else None
+    q = q if isinstance(q, dict) else {}
+    return dict(
+        action=str(q.get("action", "")),
+        flagged=list(q.get("flagged", []) or []),
+        rejected=list(q.get("rejected", []) or []),
     )

@@ -21,6 +21,10 @@ Tables (one row per …, statistics over the records of a set; units in :data:`C
 ``slide_ratios`` and ``pfa_ratios``
     comparison ``A:B`` × record set × floor (× content × friction pair): the statistic of
     building A divided by that of building B, for every variant of A and of B.
+``records``
+    record set × record: dt, samples, PGA as run, scale, and the record's quality flags
+    (:mod:`floorslide.records.quality`) with their numbers; records rejected by ``[scene] qa =
+    "reject"`` follow with status ``rejected``.
 
 Conventions
 -----------
@@ -216,6 +220,64 @@ def slide_table(study: Study) -> list[dict]:
         )
         row.update(stats)
         rows.append(row)
+    return rows
+
+
+def _qa_text(flags) -> str:
+    """The flags of a record as one cell: ``check: message [remedy]; …``."""
+    parts = []
+    for f in flags:
+        remedy = f.get("fix_scene") and f" [{f['fix_scene']} in [processing]]"
+        parts.append(f"{f.get('check', '')}: {f.get('message', '')}{remedy or ''}")
+    return "; ".join(parts)
+
+
+def records_table(study: Study) -> list[dict]:
+    """The ``records`` table: every record of the study (one row per record set × record, as
+    run) with its quality flags, then the records the quality checks rejected."""
+    details = {
+        (str(item.get("set", "")), str(item.get("record", ""))): item.get("flags", [])
+        for item in study.quality.get("flagged", [])
+    }
+    seen: dict[tuple[str, str], dict] = {}
+    for t in study.tasks:
+        m = t.meta
+        key = (str(m["record_set"]), str(m["record"]))
+        if key in seen:
+            continue
+        flags = details.get((key[0].split("@")[0], key[1]), [])
+        seen[key] = dict(
+            record_set=key[0],
+            record=key[1],
+            record_file=str(m.get("record_file", "")),
+            status="ran",
+            dt=_float(m.get("dt")),
+            npts=int(_float(m.get("npts"), 0)),
+            pga_g=_float(m.get("pga")) / G,
+            scale=_float(m.get("scale")),
+            qa_flags=str(m.get("qa_flags", "") or ""),
+            qa=_qa_text(flags),
+        )
+    set_rank = {s: i for i, s in enumerate(study.sets)}
+    rows = sorted(
+        seen.values(), key=lambda r: (set_rank.get(r["record_set"], len(set_rank)), r["record"])
+    )
+    for item in study.quality.get("rejected", []):
+        flags = item.get("flags", [])
+        rows.append(
+            dict(
+                record_set=str(item.get("set", "")),
+                record=str(item.get("record", "")),
+                record_file=str(item.get("label", "")),
+                status="rejected",
+                dt=math.nan,
+                npts=0,
+                pga_g=math.nan,
+                scale=math.nan,
+                qa_flags=",".join(str(f.get("check", "")) for f in flags),
+                qa=_qa_text(flags),
+            )
+        )
     return rows
 
 
@@ -629,7 +691,8 @@ def design_tables(
     Returns
     -------
     DesignTables
-        ``tables`` maps ``slides``, ``pfa``, ``frs``, ``slide_ratios``, ``pfa_ratios`` to
+        ``tables`` maps ``slides``, ``pfa``, ``frs``, ``slide_ratios``, ``pfa_ratios``,
+        ``records`` to
         rows (dicts, SI values; columns and units in :data:`COLUMNS`), in a fixed order:
         record sets and buildings as in the scene (isolated variants by period), floors up,
         contents as in the scene, friction ascending.
@@ -665,6 +728,7 @@ def design_tables(
         "frs": frs_table(study, chosen, z),
         "slide_ratios": slide_ratio_table(study, slides, comparisons),
         "pfa_ratios": pfa_ratio_table(study, pfa, comparisons),
+        "records": records_table(study),
     }
     notes = table_notes(study, z) + period_notes + study.notes
     return DesignTables(

@@ -5,12 +5,15 @@ Layout (every dataset carries a ``units`` attribute; ``1`` means dimensionless):
     /                        attrs floorslide_format=1, floorslide_version, scene_name, created,
                              task_digest="sha256-1" (every task carries its digest)
     /scene                   the scene file's text (attr path)
-    /plan                    the plan as JSON text (what runs, what was skipped and why)
+    /plan                    the plan as JSON text (what runs, what was skipped and why;
+                             "quality": the records' quality flags with their numbers and the
+                             records rejected by ``[scene] qa = "reject"``)
     /tasks/<task>            one group per (record × building); attrs: record_set, record,
                              record_file, building (the variant, e.g. "isolated@T=2.5"),
                              building_base (the scene's id), building_kind, stories,
                              isolation_period, isolation_damping (NaN when fixed),
-                             superstructure, fixed_period, dt, npts, pga, scale, seconds;
+                             superstructure, fixed_period, dt, npts, pga, scale, qa_flags
+                             (the record's quality flags, comma-separated; "" none), seconds;
                              sha256 (the task's digest, written with it); done = 1, set last
       floors                 floors output (0 = ground or base mat)
       pfa                    true peak floor acceleration per floor (m/s**2)

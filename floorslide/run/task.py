@@ -40,6 +40,7 @@ def _meta(task: Task) -> dict:
         npts=int(r.acc.size),
         pga=float(np.abs(r.acc).max()),
         scale=r.scale,
+        qa_flags=r.qa_flags,
     )
 
 

@@ -47,6 +47,14 @@ class LoadedRecord:
     vertical: np.ndarray | None
     scale: float
     meta: dict = field(default_factory=dict)
+    qa: tuple[dict, ...] = ()
+    """The record's quality flags (:meth:`floorslide.records.quality.Flag.to_dict`; a flag
+    of the vertical component has its check prefixed ``vertical:``), empty when none tripped."""
+
+    @property
+    def qa_flags(self) -> str:
+        """The codes of the flags, comma-separated ("" when none)."""
+        return ",".join(f["check"] for f in self.qa)
 
 
 @dataclass(frozen=True)
@@ -73,6 +81,21 @@ class Plan:
     failures: list[str]
     skipped: Counter = field(default_factory=Counter)
     runs: Counter = field(default_factory=Counter)
+    rejected: list[dict] = field(default_factory=list)
+    """Records left out by ``[scene] qa = "reject"``: set, record, label and flags."""
+
+    def quality(self) -> dict:
+        """The quality checks of the study (JSON-ready, stored in the plan): ``action`` (the
+        scene's ``qa``), ``flagged`` (records that ran with flags, with their details) and
+        ``rejected`` (records left out by ``qa = "reject"``)."""
+        seen: set[tuple[str, str]] = set()
+        flagged = []
+        for r in self.records:
+            key = (r.set.split("@")[0], r.record)
+            if r.qa and key not in seen:
+                seen.add(key)
+                flagged.append(dict(set=key[0], record=r.record, label=r.label, flags=list(r.qa)))
+        return dict(action=self.scene.qa, flagged=flagged, rejected=list(self.rejected))
 
     def summary(self) -> dict:
         """JSON-ready plan summary (stored in the result file)."""
@@ -84,6 +107,7 @@ class Plan:
             tasks=len(self.tasks),
             runs=dict(self.runs),
             skipped=dict(self.skipped),
+            quality=self.quality(),
         )
 
     def describe(self) -> str:
@@ -115,7 +139,29 @@ class Plan:
             lines.append(f"  {count:7d}  {what}")
         for failure in self.failures:
             lines.append(f"  unreadable record: {failure}")
+        lines += self._describe_quality()
         return "\n".join(lines)
+
+    def _describe_quality(self) -> list[str]:
+        """The quality flags of the records, and the records rejected for them."""
+        q = self.quality()
+        if not q["flagged"] and not q["rejected"]:
+            return [f"quality checks: no record flagged (qa = {q['action']!r})"]
+        lines = []
+        for items, what in (
+            (q["flagged"], "records flagged; they run (qa = 'warn')"),
+            (q["rejected"], "records rejected, not run (qa = 'reject')"),
+        ):
+            if not items:
+                continue
+            lines.append(f"quality checks: {len(items)} {what}:")
+            for item in items:
+                for f in item["flags"]:
+                    fix = f" [remedy: {f['fix_scene']} in [processing]]" if f["fix_scene"] else ""
+                    lines.append(
+                        f"  {item['set']}/{item['record']}: {f['check']}: {f['message']}{fix}"
+                    )
+        return lines
 
 
 MODE_CODES = {"rest": 0, "slide": 1, "rock": 2, "slide-rock": 3}
@@ -153,7 +199,29 @@ def decide(content: ContentSpec, pfa: float, force: bool = False):
     return modes, integrate, reasons
 
 
-def _load_set(rs: RecordSetSpec, processing: dict, failures: list[str]) -> list[LoadedRecord]:
+def _quality(tr, vtr, periods) -> tuple[dict, ...]:
+    """The quality flags of a record as it will run (processed), its vertical component's
+    prefixed ``vertical:``."""
+    from floorslide.records.quality import check_record
+
+    flags = [f.to_dict() for f in check_record(tr.data, tr.stats.delta, periods=periods).flags]
+    if vtr is not None:
+        for f in check_record(vtr.data, vtr.stats.delta).flags:
+            flags.append({**f.to_dict(), "check": f"vertical:{f.check}"})
+    return tuple(flags)
+
+
+def _load_set(
+    rs: RecordSetSpec,
+    processing: dict,
+    failures: list[str],
+    periods: tuple[float, ...] = (),
+    qa: str = "warn",
+    rejected: list[dict] | None = None,
+) -> list[LoadedRecord]:
+    """The records of a set, read, processed, checked (:mod:`floorslide.records.quality`,
+    against the scene's spectra `periods`) and scaled; with ``qa = "reject"`` a flagged record
+    is left out and added to `rejected`."""
     from floorslide.records.catalog import load_catalog
     from floorslide.records.process import process
     from floorslide.records.read import read_record
@@ -189,6 +257,7 @@ def _load_set(rs: RecordSetSpec, processing: dict, failures: list[str]) -> list[
                 if not picked:
                     raise RecordError(f"no vertical component {rs.vertical_component!r}", label)
                 vtr = picked[0]
+            vtr = None
             tr = process(horizontal, **processing) if processing else horizontal
             if rs.vertical_component is not None:
                 vtr = process(vtr, **processing) if processing else vtr
@@ -199,6 +268,15 @@ def _load_set(rs: RecordSetSpec, processing: dict, failures: list[str]) -> list[
                 vert = np.asarray(vtr.data, dtype=float)
         except FloorslideError as exc:
             failures.append(str(exc) if isinstance(exc, RecordError) else f"{label}: {exc}")
+            continue
+        flags = _quality(tr, vtr, periods)
+        if flags and qa == "reject":
+            if rejected is not None:
+                rejected.append(dict(set=rs.set, record=record_id, label=label, flags=list(flags)))
+            codes = ", ".join(f["check"] for f in flags)
+            failures.append(
+                f"{label}: rejected by the quality checks ({codes}; [scene] qa = 'reject')"
+            )
             continue
         acc = np.asarray(tr.data, dtype=float)
         pga = float(np.abs(acc).max())
@@ -217,6 +295,7 @@ def _load_set(rs: RecordSetSpec, processing: dict, failures: list[str]) -> list[
                     vertical=None if vert is None else vert * factor,
                     scale=factor,
                     meta={k: str(v) for k, v in catalog_meta.items()},
+                    qa=flags,
                 )
             )
     return out
@@ -255,14 +334,18 @@ def plan(scene: Scene, *, force: bool = False, evaluate: bool = True) -> Plan:
     """
     failures: list[str] = []
     records: list[LoadedRecord] = []
+    rejected: list[dict] = []
+    periods = tuple(scene.spectra.periods) if scene.spectra is not None else ()
     for rs in scene.records:
-        records += _load_set(rs, scene.processing, failures)
+        records += _load_set(rs, scene.processing, failures, periods, scene.qa, rejected)
     _check_short_periods(scene, records)
     history = scene.report.get("history_record")
     if history is None and records:
         history = records[0].record
     tasks: list[Task] = []
-    p = Plan(scene, tasks, records, failures)
+    p = Plan(scene, tasks, records, failures, rejected=rejected)
+    if rejected:
+        p.skipped["records rejected by the quality checks ([scene] qa = 'reject')"] += len(rejected)
     needs_vertical = [c.id for c in scene.contents if c.vertical]
     if needs_vertical:
         for r in records:

@@ -69,6 +69,8 @@ CONTENT_KEYS = {
 }
 SPECTRA_KEYS = {"floors", "damping", "periods", "broadening"}
 REPORT_KEYS = {"periods", "damping", "compare", "history_record"}
+QA_ACTIONS = ("warn", "reject")
+"""Values of ``[scene] qa`` (:mod:`floorslide.records.quality`)."""
 MAX_STORIES = 200
 """Largest building a scene may declare (a 200-storey shear building has 400 states)."""
 
@@ -188,6 +190,9 @@ class Scene:
     warnings: tuple[str, ...] = ()
     """Values that are valid but almost surely a mistake (``key.path: message``), shown by the
     dry run; e.g. an isolation period not above the superstructure's fixed-base period."""
+    qa: str = "warn"
+    """``[scene] qa``: what a record whose quality checks trip does (``"warn"``: it runs and its
+    flags are stored and listed; ``"reject"``: it is skipped and reported, the others run)."""
 
 
 def _floors(spec, stories: int) -> tuple[int, ...]:
@@ -293,13 +298,24 @@ def parse_scene(text: str, path: str | Path = "scene.toml") -> Scene:
     ck.keys(doc, TOP_KEYS, "")
     base = path.parent
     name = path.stem
+    qa = "warn"
     if "scene" in doc:
         if not isinstance(doc["scene"], dict):
             ck.add("scene", "must be a table")
         else:
-            ck.keys(doc["scene"], {"name"}, "scene")
+            ck.keys(doc["scene"], {"name", "qa"}, "scene")
             if "name" in doc["scene"]:
                 name = ck.string(doc["scene"]["name"], "scene.name") or name
+            if "qa" in doc["scene"]:
+                value = doc["scene"]["qa"]
+                if value in QA_ACTIONS:
+                    qa = value
+                else:
+                    ck.add(
+                        "scene.qa",
+                        f"{value!r}: expected one of {', '.join(map(repr, QA_ACTIONS))} (what "
+                        "to do with a record whose quality checks trip)",
+                    )
     records, record_ids = _records(doc.get("records"), ck, base)
     processing = _processing(doc.get("processing", {}), ck)
     buildings, building_ids = _buildings(doc.get("buildings"), ck)
@@ -324,6 +340,7 @@ def parse_scene(text: str, path: str | Path = "scene.toml") -> Scene:
         spectra,
         report,
         warnings=tuple(ck.warnings),
+        qa=qa,
     )
 
 

@@ -18,7 +18,17 @@ from tests.conftest import ROOT, SLAMMER
 from tests.records.conftest import ELC_FILE, FIXTURES
 
 RECORDS = ROOT / "data" / "records"
-KEYS = {"record", "format", "component", "station", "event", *MEASURE_KEYS, "notes"}
+KEYS = {
+    "record",
+    "format",
+    "component",
+    "station",
+    "event",
+    *MEASURE_KEYS,
+    "notes",
+    "processing",
+    "qa",
+}
 
 
 def run(*args: str):
@@ -44,6 +54,9 @@ def test_inspect_reads_every_bundled_record(all_bundled):
         assert row["format"] == "text"  # the name --format takes, not the plugin FSTEXT
         assert row["pga"] == pytest.approx(row["pga_g"] * 9.80665, rel=1e-15)
         assert 0 < row["d5_75"] < row["d5_95"] <= row["duration"]
+        assert row["processing"] == []  # nothing applied unless asked
+        assert row["qa"]["flags"] == []  # the bundled records are processed: no flags
+        assert set(row["qa"]["checks"]) >= {"offset", "trend", "clipping", "truncated"}
 
 
 def test_inspect_values_are_those_of_the_api(all_bundled):
@@ -73,7 +86,8 @@ def test_table_output():
     lines = result.stdout.splitlines()
     assert lines[0].split()[:4] == ["record", "format", "dt(s)", "npts"]
     assert "pga(g)" in lines[0] and "d5-95(s)" in lines[0]
-    assert len(lines) == 1 + 36
+    assert len(lines) == 1 + 36 + 1
+    assert lines[-1] == "quality: no flags on the 36 records"
     elc = next(line for line in lines if ELC_FILE in line)
     assert "0.3129" in elc and "3949" in elc
     assert result.stderr == ""  # no progress bar when stderr is not a terminal
