@@ -27,8 +27,10 @@ its readers one by one and imports them as it goes).
 
 from __future__ import annotations
 
+import logging
 import math
 import warnings
+from contextlib import contextmanager
 from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 from typing import Any
@@ -52,7 +54,7 @@ INSTALL_HINT = (
 """What an error says when a file would need gmprocess and it is not installed."""
 
 _ACC = "acc"
-_STANDARD_SKIP = {"comments"}  # free text that can run to many lines; kept by gmprocess only
+_STANDARD_SKIP: set[str] = set()  # every stats.standard field is kept
 
 
 class GmprocessUnknown(RecordError):
@@ -148,12 +150,15 @@ def read_gmprocess(path: str | Path, where: str, detect: bool = False) -> Stream
             where=where,
         )
     try:
-        with warnings.catch_warnings():
-            # gmprocess's format checks leave files open, and its readers warn about what they
-            # guess; neither is the caller's business (the traces' metadata say what was read).
+        with warnings.catch_warnings(), _capture_logs() as notes:
+            # gmprocess's format checks leave files open (ResourceWarning); its readers log what
+            # they assume through the root logger. Neither reaches the caller's console: the
+            # log lines are kept with the traces (stats.gmprocess["log"]).
             warnings.simplefilter("ignore")
             streams = read_data(str(path))
-    except Exception as exc:
+    except (KeyboardInterrupt, SystemExit):
+        raise
+    except BaseException as exc:  # some gmprocess readers raise a bare BaseException
         text = " ".join(str(exc).split())
         if "No format found" in text:
             if detect:
@@ -166,7 +171,36 @@ def read_gmprocess(path: str | Path, where: str, detect: bool = False) -> Stream
             f"{text[:200] or type(exc).__name__}",
             where=where,
         ) from None
-    return to_record_stream(streams, where)
+    stream = to_record_stream(streams, where)
+    for trace in stream:
+        trace.stats.gmprocess["log"] = list(notes)
+    return stream
+
+
+@contextmanager
+def _capture_logs():
+    """Collect what is logged to the root logger meanwhile (gmprocess logs with
+    ``logging.warning``), without printing it; the list of messages is yielded.
+
+    While a handler is attached, ``logging.warning`` does not call ``logging.basicConfig``,
+    which would otherwise install a console handler on the root logger for good.
+    """
+    messages: list[str] = []
+
+    class _Keep(logging.Handler):
+        def emit(self, record: logging.LogRecord) -> None:
+            try:
+                messages.append(f"{record.levelname}: {record.getMessage()}")
+            except Exception:  # a malformed log call in a third-party package
+                messages.append(f"{record.levelname}: {record.msg!r}")
+
+    root = logging.getLogger()
+    handler = _Keep(level=logging.WARNING)
+    root.addHandler(handler)
+    try:
+        yield messages
+    finally:
+        root.removeHandler(handler)
 
 
 def to_record_stream(streams: Any, where: str) -> Stream:
