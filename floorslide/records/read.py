@@ -213,9 +213,17 @@ def _read_record(
         except _UnknownFormat as unknown:
             # gmprocess (the optional extra) before the suffix fallback: a DMG ".V2", a CWB
             # ".dat" or an ESM ".ASC" would otherwise be read as COSMOS or text and fail there.
-            stream = gmprocess_formats.read_gmprocess(path, where, detect=True)
+            # A file with one of floorslide's suffixes that gmprocess fails on too is most
+            # likely a malformed file of that format: its reader's error says what is wrong.
+            by_suffix = SUFFIX_FORMATS.get(path.suffix.lower())
+            try:
+                stream = gmprocess_formats.read_gmprocess(path, where, detect=True)
+            except RecordError:
+                if by_suffix is None:
+                    raise
+                stream = None
             if stream is None:
-                fmt = SUFFIX_FORMATS.get(path.suffix.lower())
+                fmt = by_suffix
                 if fmt is None:
                     raise _UnknownFormat(
                         gmprocess_formats.unknown_format_message(unknown.message), where=where
