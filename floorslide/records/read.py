@@ -2,8 +2,10 @@
 
 :func:`read_record` reads PEER ``.AT2``, COSMOS V1/V2 and plain text with floorslide's own
 readers (also registered as ObsPy plugins, so :func:`obspy.read` reads them too), and every
-format ObsPy reads (MiniSEED, SAC, K-NET/KiK-net, GSE2, SEG-Y ...) through ObsPy, unchanged.
-It then does only what makes the data a record in SI:
+format ObsPy reads (MiniSEED, SAC, K-NET/KiK-net, GSE2, SEG-Y ...) through ObsPy, unchanged, and,
+with the optional extra ``floorslide[gmprocess]``, the formats USGS gmprocess reads (DMG/CSMIP,
+GeoNet, CWB, UNAM, SMC, ESM ...; see :mod:`floorslide.records.gmprocess_formats`) for a file
+neither knows. It then does only what makes the data a record in SI:
 
 - data as float64 in m/s², ``stats.units = "m/s**2"``, ``stats.original_units`` the units of the
   file, and one note in ``stats.processing`` when a conversion factor was applied;
@@ -44,6 +46,7 @@ from obspy import Stream, Trace
 from obspy.core import AttribDict
 
 from floorslide.errors import RecordError, UnitsError
+from floorslide.records import gmprocess_formats
 from floorslide.records.formats import at2, cosmos, text
 from floorslide.records.units import FACTORS, SI_UNITS, canonical_units
 
@@ -81,6 +84,7 @@ FORMAT_ALIASES = {
     "miniseed": "MSEED",
     "knet": "KNET",
     "kiknet": "KNET",
+    "gmprocess": gmprocess_formats.FORMAT,
 }
 """Format names accepted by ``format=`` besides ObsPy's own (case-insensitive)."""
 
@@ -138,8 +142,9 @@ def read_record(
         The record file.
     format
         Format name: ``"AT2"``, ``"COSMOSV2"`` (also ``"COSMOS"``, ``"V2"``), ``"FSTEXT"`` (also
-        ``"TEXT"``), or any ObsPy format (``"MSEED"``, ``"SAC"``, ``"KNET"`` ...); default:
-        detected from the content.
+        ``"TEXT"``), any ObsPy format (``"MSEED"``, ``"SAC"``, ``"KNET"`` ...), or
+        ``"gmprocess"`` (read by gmprocess, the optional extra; also ``"gmprocess:dmg"`` ...
+        as ``floorslide inspect`` shows it); default: detected from the content.
     units
         Units of the values in the file (``"g"``, ``"gal"``, ``"m/s**2"``, ``"mm/s**2"``, or a
         spelling :func:`~floorslide.records.units.canonical_units` knows). Needed when the
@@ -205,12 +210,34 @@ def _read_record(
     if fmt is None:
         try:
             stream = _read_with_obspy(path, None, where)
-        except _UnknownFormat:
-            fmt = SUFFIX_FORMATS.get(path.suffix.lower())
-            if fmt is None:
-                raise
+        except _UnknownFormat as unknown:
+            # gmprocess (the optional extra) before the suffix fallback: a DMG ".V2", a CWB
+            # ".dat" or an ESM ".ASC" would otherwise be read as COSMOS or text and fail there.
+            # A file with one of floorslide's suffixes that gmprocess fails on too is most
+            # likely a malformed file of that format: its reader's error says what is wrong.
+            by_suffix = SUFFIX_FORMATS.get(path.suffix.lower())
+            try:
+                stream = gmprocess_formats.read_gmprocess(path, where, detect=True)
+            except RecordError:
+                if by_suffix is None:
+                    raise
+                stream = None
+            if stream is None:
+                fmt = by_suffix
+                if fmt is None:
+                    raise _UnknownFormat(
+                        gmprocess_formats.unknown_format_message(unknown.message), where=where
+                    ) from None
+            else:
+                fmt = stream[0].stats._format
         else:
             fmt = stream[0].stats.get("_format") if len(stream) else None
+    elif fmt == gmprocess_formats.FORMAT or fmt.startswith(gmprocess_formats.FORMAT_PREFIX):
+        stream = gmprocess_formats.read_gmprocess(path, where)
+        got = stream[0].stats._format
+        if fmt != gmprocess_formats.FORMAT and got != fmt:
+            raise RecordError(f"format {fmt!r} was given but gmprocess reads {got!r}", where=where)
+        fmt = got
     entry = None
     if fmt == text.FORMAT:
         record = text.parse_text_record(path)
@@ -284,14 +311,17 @@ def resolve_format(format: str, where: str = "") -> str:
     key = format.strip()
     if key.lower() in FORMAT_ALIASES:
         return FORMAT_ALIASES[key.lower()]
+    if key.lower().startswith(gmprocess_formats.FORMAT_PREFIX):  # as inspect shows it
+        return key.lower()
     from obspy.core.util.base import ENTRY_POINTS
 
     known = {name.upper() for name in ENTRY_POINTS["waveform"]}
     if key.upper() in known:
         return key.upper()
     raise RecordError(
-        f"unknown format {format!r}; floorslide reads AT2, COSMOSV2, text (plain text) and "
-        "the ObsPy formats (MSEED, SAC, KNET, GSE2, SEGY, ...)",
+        f"unknown format {format!r}; floorslide reads AT2, COSMOSV2, text (plain text), "
+        "the ObsPy formats (MSEED, SAC, KNET, GSE2, SEGY, ...) and, with the optional extra "
+        "floorslide[gmprocess], gmprocess's (format 'gmprocess')",
         where=where or None,
     )
 
@@ -441,6 +471,8 @@ def _source_metadata(trace: Trace, fmt: str) -> tuple[str, str, str]:
     elif fmt == "SAC":
         name = str(stats.get("sac", {}).get("kevnm", "")).strip()
         event = "" if name in ("", "-12345") else name
+    elif fmt.startswith(gmprocess_formats.FORMAT_PREFIX):
+        event, station, comp = gmprocess_formats.source_metadata(trace)
     return event, station or "", comp or stats.get("channel", "")
 
 
