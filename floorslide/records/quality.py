@@ -385,7 +385,7 @@ def check_record(
     --------
     >>> import numpy as np
     >>> t = np.arange(0, 20, 0.01)
-    >>> a = np.sin(2 * np.pi * t) * np.exp(-0.2 * t)
+    >>> a = np.cos(2 * np.pi * t) * np.exp(-0.2 * t)
     >>> check_record(a, 0.01).ok
     True
     >>> check_record(a + 0.05, 0.01).codes
