@@ -39,7 +39,7 @@ from floorslide.errors import (
     UnitsConversionWarning,
     UnitsError,
 )
-from floorslide.records import measures, process, read_catalog, read_record
+from floorslide.records import check_record, measures, process, read_catalog, read_record
 from floorslide.report import design_tables, plot_figures, record_table
 from floorslide.spectra import Spectrum, broaden, envelope, response_spectrum
 
@@ -82,6 +82,7 @@ __all__ = [
     "SceneError",
     "UnitsConversionWarning",
     "UnitsError",
+    "check_record",
     "measures",
     "process",
     "read_catalog",

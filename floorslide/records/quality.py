@@ -15,7 +15,7 @@ The checks (thresholds in :data:`CHECKS`, each with where it comes from):
     (``mean·T``) and a displacement drift (``mean·T²/2``) that are not ground motion. Where the
     record has a *pre-event window* — the samples before ``|a − median(a)|`` first reaches 2 %
     of its largest value, if they last at least 1 s and 20 samples — its mean is compared with
-    PGA too (threshold 2 %: noise before the event is zero-mean; measured on the 60 processed
+    PGA too (threshold 2 %: noise before the event is zero-mean; measured on the 63 processed
     records bundled or shared with the project the largest is 1.0 %). Removed by ``demean``
     (or ``detrend = "linear"``). Boore & Bommer (2005) §3; gmprocess removes the mean first
     (its ``detrend`` steps, ``demean``).
