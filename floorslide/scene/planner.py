@@ -138,7 +138,8 @@ class Plan:
         for what, count in sorted(self.skipped.items()):
             lines.append(f"  {count:7d}  {what}")
         for failure in self.failures:
-            lines.append(f"  unreadable record: {failure}")
+            if not failure.endswith(REJECTED_SUFFIX):  # listed with the quality checks below
+                lines.append(f"  unreadable record: {failure}")
         lines += self._describe_quality()
         return "\n".join(lines)
 
@@ -163,6 +164,9 @@ class Plan:
                     )
         return lines
 
+
+REJECTED_SUFFIX = "; [scene] qa = 'reject')"
+"""The end of the failure line of a record left out by the quality checks."""
 
 MODE_CODES = {"rest": 0, "slide": 1, "rock": 2, "slide-rock": 3}
 
@@ -274,9 +278,7 @@ def _load_set(
             if rejected is not None:
                 rejected.append(dict(set=rs.set, record=record_id, label=label, flags=list(flags)))
             codes = ", ".join(f["check"] for f in flags)
-            failures.append(
-                f"{label}: rejected by the quality checks ({codes}; [scene] qa = 'reject')"
-            )
+            failures.append(f"{label}: rejected by the quality checks ({codes}{REJECTED_SUFFIX}")
             continue
         acc = np.asarray(tr.data, dtype=float)
         pga = float(np.abs(acc).max())

@@ -112,6 +112,7 @@ def test_reject_leaves_the_record_out_and_the_batch_goes_on(tmp_path):
     assert p.rejected[0]["record"] == "AOM0081801241951"
     text = p.describe()
     assert "1 records rejected, not run (qa = 'reject')" in text
+    assert "unreadable record" not in text  # it was read: rejected, not unreadable
     out = tmp_path / "out.h5"
     summary = execute(p, str(out), workers=1)
     assert summary.tasks == 1 and len(summary.failures) == 1
