@@ -25,11 +25,13 @@ The checks (thresholds in :data:`CHECKS`, each with where it comes from):
     ``detrend = "linear"``. gmprocess detrends linearly before anything else.
 ``clipping`` — flat runs at the extreme
     Runs of three or more consecutive equal samples within 1 % of the record's extreme of
-    their sign (a saturated sensor or digitiser holds its full-scale value). Not removed by any
-    processing: the peaks are lost; treat PGA, the spectra and every slide as lower bounds or
-    leave the record out. gmprocess's standard-deviation clipping test (``Std_Dev``: low
-    variance of neighbouring samples near the extremes) is the anchor; exact equality is used
-    here because floorslide reads the values as stored.
+    their sign (a saturated sensor or digitiser holds its full-scale value), flagged when they
+    hold six samples or more — one run of three at a weak record's peak is quantisation (seen
+    on a 1-gal CWB excerpt stored to 0.001 gal), not clipping. Not removed by any processing:
+    the peaks are lost; treat PGA, the spectra and every slide as lower bounds or leave the
+    record out. gmprocess's standard-deviation clipping test (``Std_Dev``: low variance of
+    neighbouring samples at ≥ 85 % of the extremes, failed above 5 such points) is the anchor;
+    exact equality is used here because floorslide reads the values as stored.
 ``truncated`` — the record ends during strong shaking
     The share of the Arias intensity (of the record with its mean removed, so that an offset
     does not pass for shaking) in the last 5 % of the duration, threshold 1 % (a record that
@@ -108,7 +110,7 @@ CHECKS: dict[str, Check] = {
         Check(
             "clipping",
             "flat runs at the extreme (clipped)",
-            {"min_run": 3, "level": 0.99},
+            {"min_run": 3, "min_samples": 6, "level": 0.99},
             advice="no processing restores clipped peaks: results are lower bounds; "
             "leave the record out or use another",
         ),
@@ -307,7 +309,7 @@ def _clipping(acc: np.ndarray) -> tuple[dict, Flag | None]:
     c = CHECKS["clipping"].thresholds
     runs, samples, longest = flat_runs(acc, c["level"], int(c["min_run"]))
     values = {"flat_runs": runs, "flat_samples": samples, "longest_run": longest}
-    if not runs:
+    if samples < c["min_samples"]:
         return values, None
     msg = (
         f"{runs} runs of ≥ {int(c['min_run'])} equal samples at the extremes ({samples} "

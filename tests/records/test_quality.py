@@ -164,13 +164,22 @@ def test_clipping(elc):
     assert longest == lengths.max()
     assert report.suggestions() == []  # no processing restores a clipped peak
     assert "lower bounds" in report.flags[0].advice
-    # two equal samples at the peak are not a run; three are
+    # at the peak: two equal samples are not a run; one run of three is quantisation, not
+    # clipping; six samples in runs (two plateaus of three, or one of six) are
     b = a.copy()
     k = int(np.argmax(np.abs(b)))
     b[k + 1] = b[k]
     assert "clipping" not in check_record(b, dt).codes
     b[k + 2] = b[k]
+    assert flat_runs(b, 0.99, 3) == (1, 3, 3)
+    assert "clipping" not in check_record(b, dt).codes
+    j = int(np.argmax(np.where(np.arange(b.size) > k + 10, -b * np.sign(b[k]), -np.inf)))
+    b[j : j + 3] = -b[k]  # a second plateau, at the other extreme
+    assert flat_runs(b, 0.99, 3)[:2] == (2, 6)
     assert "clipping" in check_record(b, dt).codes
+    c = a.copy()
+    c[k : k + 6] = c[k]
+    assert check_record(c, dt).codes == ("clipping",)
 
 
 def test_truncated(elc):
