@@ -16,7 +16,7 @@ from floorslide.records.quality import CHECKS, check_record, flat_runs, pre_even
 from tests.conftest import SLAMMER, G
 from tests.records.conftest import ELC_FILE, FIXTURES
 
-KNET_RAW = FIXTURES / "AOM0081801241951.NS"
+KNET_RAW = FIXTURES.parent / "raw" / "AOM0081801241951.NS"
 
 
 def knet_by_hand() -> tuple[np.ndarray, float]:

@@ -19,7 +19,7 @@ from floorslide.scene.planner import plan
 from floorslide.scene.schema import load_scene, parse_scene
 from tests.conftest import ROOT
 
-KNET = (ROOT / "tests" / "data" / "records" / "AOM0081801241951.NS").as_posix()
+KNET = (ROOT / "tests" / "data" / "raw" / "AOM0081801241951.NS").as_posix()
 ELC = (ROOT / "data" / "records" / "slammer" / "ImperialValley_1940_ELC-180.txt").as_posix()
 CATALOG = (ROOT / "data" / "records" / "slammer" / "index.csv").as_posix()
 
