@@ -208,7 +208,8 @@ FORMAT_OPTION = click.option(
     "fmt",
     metavar="F",
     callback=_check_format,
-    help="Record format: AT2, COSMOSV2, text, or an ObsPy format (MSEED, SAC, KNET ...); "
+    help="Record format: AT2, COSMOSV2, text, an ObsPy format (MSEED, SAC, KNET ...) or "
+    "gmprocess (DMG V2, GeoNet, CWB, UNAM, SMC, ESM ...: needs floorslide[gmprocess]); "
     "default: detected.",
 )
 UNITS_OPTION = click.option(
