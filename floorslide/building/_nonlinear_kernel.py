@@ -1,0 +1,247 @@
+"""Compiled event-driven integration of a building on a piecewise-linear isolation layer.
+
+Between events the building is linear time-invariant (one of a few *branches*: elastic or
+yielding rubber, sliding or stuck pendulum), so on each sub-step its state is stepped by the
+branch's exact first-order-hold recurrence and, inside the sub-step, known as the branch's
+Taylor polynomials (exact to rounding on sub-steps with ``ρ(A)·h ≤ 0.5``; see
+:mod:`floorslide.building.exact`). An event — yield, unloading, breakaway, stop, reversal — is
+the first crossing of a level by one such polynomial (isolator displacement, its velocity, or
+the friction a stuck pendulum needs), found by rigorous root isolation
+(:func:`floorslide.numerics.polynomial.first_rise`); the state there is the polynomials'
+value, the branch changes, and the rest of the sub-step continues from it. The augmented
+state's last component is the layer's constant force on the branch (``F0``: ``−(k1 − k2)·p``
+elastic, ``±Q`` yielding, ``±mu·W`` sliding).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from floorslide._jit import njit
+from floorslide.building._instep import foh_step, substep_inputs, taylor_coefficients
+from floorslide.numerics.polynomial import first_rise, max_abs_on, poly_val, scratch
+
+# branch codes: as floorslide.building.isolators
+LINEAR, ELASTIC, PLASTIC_POS, PLASTIC_NEG, SLIP_POS, SLIP_NEG, STICK = 0, 1, 2, 3, 4, 5, 6
+NO_EVENT = 1e300
+EVENT_GAP = 1e-12
+"""Shortest time between two events, in sub-steps (see :func:`nonlinear_run`)."""
+
+
+@njit(cache=True)
+def _state_at(R, B, x, a0, slope, s, K, out, c):
+    """All states at ``s`` from the branch's full-state Taylor rows ``R[i], B[i]``."""
+    for i in range(x.size):
+        taylor_coefficients(R[i], B[i], x, a0, slope, c)
+        out[i] = poly_val(c, K, s)
+
+
+@njit(cache=True)
+def _event(branch, R, B, ER, EB, x, a0, slope, L, K, p, dy, limit, lo, c, work):
+    """First event of `branch` in ``(lo, L]`` from state `x`: ``(time, kind)`` with kind +1 or
+    −1 (the level crossed upward or downward), ``(NO_EVENT, 0)`` if none. Just after an event
+    ``lo`` is a rounding-level time (see :func:`nonlinear_run`), else 0."""
+    n = (x.size - 1) // 2
+    if lo >= L:
+        return NO_EVENT, 0
+    if branch == LINEAR:
+        return NO_EVENT, 0
+    if branch == ELASTIC:
+        taylor_coefficients(R[0], B[0], x, a0, slope, c)
+        t_up = first_rise(c, K, lo, L, p + dy, work)
+        for j in range(K + 1):
+            c[j] = -c[j]
+        t_dn = first_rise(c, K, lo, L, -(p - dy), work)
+    elif branch == STICK:
+        taylor_coefficients(ER, EB, x, a0, slope, c)
+        t_up = first_rise(c, K, lo, L, limit, work)
+        for j in range(K + 1):
+            c[j] = -c[j]
+        t_dn = first_rise(c, K, lo, L, limit, work)
+    else:
+        taylor_coefficients(R[n], B[n], x, a0, slope, c)
+        t_up = -1.0
+        if branch == PLASTIC_POS or branch == SLIP_POS:  # velocity falls through 0
+            for j in range(K + 1):
+                c[j] = -c[j]
+            t_dn = first_rise(c, K, lo, L, 0.0, work)
+        else:  # velocity rises through 0
+            t_dn = -1.0
+            t_up = first_rise(c, K, lo, L, 0.0, work)
+    best, kind = NO_EVENT, 0
+    if t_up >= 0.0:
+        best, kind = t_up, 1
+    if t_dn >= 0.0 and t_dn < best:
+        best, kind = t_dn, -1
+    return best, kind
+
+
+@njit(cache=True)
+def _needed_friction(fr, fd, x, a):
+    """Friction force a stuck pendulum needs to keep the mat on the ground."""
+    s = fd * a
+    for i in range(fr.size):
+        s += fr[i] * x[i]
+    return s
+
+
+@njit(cache=True)
+def _peaks(branch_rows, branch_beta, x, a0, slope, L, K, peak, t_peak, t0, c, work):
+    """Update the true peaks ``max|y|`` of the outputs with Taylor rows ``branch_rows`` on a
+    segment ``[0, L]`` from state `x`."""
+    for i in range(peak.size):
+        taylor_coefficients(branch_rows[i], branch_beta[i], x, a0, slope, c)
+        v, t = max_abs_on(c, K, L, peak[i], work)
+        if v > peak[i]:
+            peak[i] = v
+            t_peak[i] = t0 + t
+
+
+@njit(cache=True)
+def nonlinear_run(
+    mat_of,
+    PHI,
+    PP,
+    QQ,
+    RR,
+    BB,
+    ER,
+    EB,
+    OR,
+    OB,
+    K,
+    consts,
+    acc,
+    substeps,
+    h,
+    x0,
+    branch0,
+    X,
+    BR,
+    ev_row,
+    ev_tau,
+    ev_branch,
+    peak,
+    t_peak,
+    max_events,
+):
+    """Integrate the building over the record.
+
+    ``mat_of[branch]`` is the index of the branch's matrices in the stacks ``PHI, PP, QQ``
+    (exact sub-step recurrence), ``RR, BB`` (full-state Taylor rows), ``ER, EB`` (the friction
+    a stuck pendulum needs, as Taylor rows) and ``OR, OB`` (Taylor rows of the outputs whose
+    true peaks are tracked in ``peak``/``t_peak``). ``consts = [k1 − k2, D_y, Q, mu·W,
+    mu_s·W]`` and, from index 5, the linear functional of the needed friction (state
+    coefficients, then the ground's). ``X[j]``/``BR[j]`` receive the state and branch at the
+    start of every sub-step (the last row: the end); events: the sub-step, the time in it and
+    the branch after. Returns the number of events, or ``-1 − row`` when more than
+    ``max_events`` happen in sub-step ``row``.
+
+    Just after an event the search for the next one starts ``EVENT_GAP·h`` later: a branch
+    entered at a level crossing (a breakaway at exactly the friction limit, a stop at exactly
+    zero velocity) starts on its level up to rounding, and a rounding-level sign there is not
+    an event (it would switch back at once, without end). A true event that close to the last
+    one is seen as ``EVENT_GAP·h`` later, a rounding-level shift.
+    """
+    N = x0.size
+    n = (N - 1) // 2
+    kk = consts[0]
+    dy = consts[1]
+    Q = consts[2]
+    muW = consts[3]
+    musW = consts[4]
+    fr = consts[5 : 5 + N]
+    fd = consts[5 + N]
+    c = np.empty(K + 1)
+    work = scratch(K + 1)
+    x = x0.copy()
+    y = np.empty(N)
+    branch = branch0
+    npts = acc.size
+    n_ev = 0
+    row = 0
+    for i in range(N):
+        X[0, i] = x[i]
+    BR[0] = branch
+    fresh = False
+    for k in range(npts - 1):
+        a = acc[k]
+        a1 = acc[k + 1]
+        slope = (a1 - a) / (substeps * h)
+        for r in range(substeps):
+            aa, ab = substep_inputs(a, a1, r, substeps)
+            t0 = (k * substeps + r) * h
+            s0 = 0.0
+            events_here = 0
+            while True:
+                m = mat_of[branch]
+                L = h - s0
+                a_s = aa + slope * s0
+                p = -x[N - 1] / kk if branch == ELASTIC else 0.0
+                lo = EVENT_GAP * h if fresh else 0.0
+                te, kind = _event(
+                    branch, RR[m], BB[m], ER[m], EB[m], x, a_s, slope, L, K, p, dy, musW, lo, c,
+                    work,
+                )  # fmt: skip
+                fresh = False
+                if te == NO_EVENT:
+                    _peaks(OR[m], OB[m], x, a_s, slope, L, K, peak, t_peak, t0 + s0, c, work)
+                    if events_here == 0:
+                        foh_step(PHI[m], PP[m], QQ[m], x, aa, ab, y)
+                    else:
+                        _state_at(RR[m], BB[m], x, a_s, slope, L, K, y, c)
+                    for i in range(N):
+                        x[i] = y[i]
+                    break
+                _peaks(OR[m], OB[m], x, a_s, slope, te, K, peak, t_peak, t0 + s0, c, work)
+                _state_at(RR[m], BB[m], x, a_s, slope, te, K, y, c)
+                for i in range(N):
+                    x[i] = y[i]
+                a_e = a_s + slope * te
+                if branch == ELASTIC:
+                    if kind > 0:
+                        branch = PLASTIC_POS
+                        x[N - 1] = Q
+                    else:
+                        branch = PLASTIC_NEG
+                        x[N - 1] = -Q
+                elif branch == PLASTIC_POS or branch == PLASTIC_NEG:
+                    pl = x[0] - dy if branch == PLASTIC_POS else x[0] + dy
+                    x[n] = 0.0
+                    x[N - 1] = -kk * pl
+                    branch = ELASTIC
+                elif branch == SLIP_POS or branch == SLIP_NEG:
+                    x[n] = 0.0
+                    F = _needed_friction(fr, fd, x, a_e)
+                    if abs(F) <= musW:
+                        branch = STICK
+                    elif F > 0.0:
+                        branch = SLIP_POS
+                        x[N - 1] = muW
+                    else:
+                        branch = SLIP_NEG
+                        x[N - 1] = -muW
+                else:  # STICK: breakaway in the direction of the demand
+                    if kind > 0:
+                        branch = SLIP_POS
+                        x[N - 1] = muW
+                    else:
+                        branch = SLIP_NEG
+                        x[N - 1] = -muW
+                s0 = s0 + te
+                fresh = True
+                if n_ev < ev_row.size:
+                    ev_row[n_ev] = row
+                    ev_tau[n_ev] = s0
+                    ev_branch[n_ev] = branch
+                n_ev += 1
+                events_here += 1
+                if events_here > max_events:
+                    return -1 - row
+                if s0 >= h:
+                    break
+            row += 1
+            for i in range(N):
+                X[row, i] = x[i]
+            BR[row] = branch
+    return n_ev

@@ -1,0 +1,192 @@
+"""Nonlinear isolation layers: lead-rubber (bilinear) and friction-pendulum bearings.
+
+A base-isolated building is the superstructure (a :class:`~floorslide.building.model.
+ShearBuilding`) on a base mat of mass ``m_b`` carried by an isolation layer whose force on the
+mat is ``f_iso``. In coordinates relative to the ground (``u_0`` the mat's displacement, the
+isolator's; ``u_i`` floor ``i``'s):
+
+.. math::
+
+    M u'' + C_s u' + K_s u + e_0 f_{iso} = -M \\mathbf{1} a_g(t),
+
+with ``K_s``, ``C_s`` the superstructure's matrices assembled on the mat (no isolator term). The
+layers here are piecewise linear, so between *events* the whole building is linear
+time-invariant and its response to a piecewise-linear record is known in closed form; the
+events are located inside steps (:mod:`floorslide.building.nonlinear`).
+
+``BilinearIsolator`` (Kelly 1996 ch. 4; Naeim & Kelly 1999 §4; the model of OpenSees'
+``elastomericBearingPlasticity``): ``f = k_2 u_0 + c u_0' + q`` with ``q`` an elastic–perfectly
+plastic element of stiffness ``k_1 − k_2`` and strength ``Q`` (the characteristic strength, the
+force at zero displacement on the yield branch); yield displacement ``D_y = Q/(k_1 − k_2)``.
+Given as ``q_ratio = Q/W``, ``yield_disp = D_y`` (or ``alpha = k_2/k_1``) and the post-yield
+period ``T_d = 2π√(M/k_2)`` (``M`` the total mass above the ground, ``W = M g``).
+
+``FrictionPendulum`` (single concave surface; Zayas, Low & Mahin 1990; the model of OpenSees'
+``singleFPBearing`` with constant friction): ``f = (W/R) u_0 + c u_0' + F`` with Coulomb friction
+``F = mu·W·sign(u_0')`` while sliding; while stuck the mat moves with the ground and
+``|F| ≤ mu_s·W``. Given as ``radius = R`` or ``period = 2π√(R/g)`` (independent of the mass).
+
+Optional viscous damping ``damping`` is a ratio at the layer's own period (``T_d``, or the
+pendulum period): ``c = 4π M ξ / T``.
+
+References
+----------
+Kelly, J. M. (1996). *Earthquake-Resistant Design with Rubber*, 2nd ed., Springer.
+Naeim, F., Kelly, J. M. (1999). *Design of Seismic Isolated Structures*, Wiley.
+Zayas, V. A., Low, S. S., Mahin, S. A. (1990). A simple pendulum technique for achieving
+seismic isolation. *Earthquake Spectra* 6(2), 317–333.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from floorslide.constants import G
+from floorslide.errors import ModelError
+
+# Branches of the piecewise-linear isolation layer (the kernel's codes).
+LINEAR, ELASTIC, PLASTIC_POS, PLASTIC_NEG, SLIP_POS, SLIP_NEG, STICK = range(7)
+BRANCH_NAMES = ("linear", "elastic", "yield+", "yield-", "slip+", "slip-", "stick")
+
+
+def _positive(value, key: str) -> float:
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        raise ModelError(f"{value!r} is not a number", key) from None
+    if not math.isfinite(x) or x <= 0:
+        raise ModelError(f"must be > 0, got {value!r}", key)
+    return x
+
+
+def _ratio(value, key: str) -> float:
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        raise ModelError(f"{value!r} is not a number", key) from None
+    if not math.isfinite(x) or not 0 <= x < 1:
+        raise ModelError(f"must be in [0, 1), got {value!r}", key)
+    return x
+
+
+@dataclass(frozen=True)
+class BilinearIsolator:
+    """A lead-rubber (bilinear hysteretic) isolation layer (module notes).
+
+    Parameters
+    ----------
+    q_ratio
+        Characteristic strength over weight, ``Q/W`` (> 0).
+    period
+        Post-yield period ``T_d = 2π√(M/k_2)``, s.
+    yield_disp
+        Yield displacement ``D_y``, m; or give ``alpha``.
+    alpha
+        Post-yield over elastic stiffness ``k_2/k_1`` in (0, 1); ``D_y = Q (1/k_2 − ...)``
+        follows as ``Q/(k_1 − k_2)``.
+    damping
+        Viscous damping ratio at ``T_d`` (default 0).
+    """
+
+    q_ratio: float
+    period: float
+    yield_disp: float | None = None
+    alpha: float | None = None
+    damping: float = 0.0
+
+    def __post_init__(self):
+        _positive(self.q_ratio, "isolator.q_ratio")
+        _positive(self.period, "isolator.period")
+        _ratio(self.damping, "isolator.damping")
+        if (self.yield_disp is None) == (self.alpha is None):
+            raise ModelError("give one of yield_disp and alpha", "isolator.yield_disp")
+        if self.yield_disp is not None:
+            _positive(self.yield_disp, "isolator.yield_disp")
+        else:
+            a = float(self.alpha)
+            if not 0 < a < 1:
+                raise ModelError(
+                    f"alpha = k2/k1 must be in (0, 1), got {self.alpha!r}", "isolator.alpha"
+                )
+
+    def constants(self, total_mass: float) -> dict:
+        """``k1, k2, Q, D_y, c, W`` for a building of total mass `total_mass` (kg)."""
+        W = total_mass * G
+        k2 = total_mass * (2 * np.pi / self.period) ** 2
+        Q = self.q_ratio * W
+        if self.yield_disp is not None:
+            dy = float(self.yield_disp)
+            k1 = k2 + Q / dy
+        else:
+            k1 = k2 / float(self.alpha)
+            dy = Q / (k1 - k2)
+        c = 4 * np.pi * total_mass * self.damping / self.period
+        return dict(k1=k1, k2=k2, Q=Q, D_y=dy, c=c, W=W)
+
+
+@dataclass(frozen=True)
+class FrictionPendulum:
+    """A single concave friction-pendulum isolation layer (module notes).
+
+    Parameters
+    ----------
+    mu
+        Kinetic (sliding) friction coefficient, ≥ 0.
+    radius
+        Radius of curvature R, m; or give ``period = 2π√(R/g)``.
+    period
+        Pendulum period, s.
+    mu_s
+        Static coefficient (default ``mu``); sliding starts when the friction needed exceeds
+        ``max(mu_s, mu)·W``.
+    damping
+        Viscous damping ratio at the pendulum period (default 0).
+    """
+
+    mu: float
+    radius: float | None = None
+    period: float | None = None
+    mu_s: float | None = None
+    damping: float = 0.0
+
+    def __post_init__(self):
+        try:
+            mu = float(self.mu)
+        except (TypeError, ValueError):
+            raise ModelError(f"{self.mu!r} is not a number", "isolator.mu") from None
+        if not math.isfinite(mu) or mu < 0:
+            raise ModelError(f"must be ≥ 0, got {self.mu!r}", "isolator.mu")
+        if self.mu_s is not None:
+            ms = float(self.mu_s)
+            if not math.isfinite(ms) or ms < 0:
+                raise ModelError(f"must be ≥ 0, got {self.mu_s!r}", "isolator.mu_s")
+        if (self.radius is None) == (self.period is None):
+            raise ModelError("give one of radius and period", "isolator.radius")
+        if self.radius is not None:
+            _positive(self.radius, "isolator.radius")
+        else:
+            _positive(self.period, "isolator.period")
+        _ratio(self.damping, "isolator.damping")
+
+    @property
+    def R(self) -> float:
+        """Radius of curvature, m."""
+        if self.radius is not None:
+            return float(self.radius)
+        return G * (float(self.period) / (2 * np.pi)) ** 2
+
+    @property
+    def T(self) -> float:
+        """Pendulum period ``2π√(R/g)``, s."""
+        return 2 * np.pi * math.sqrt(self.R / G)
+
+    def constants(self, total_mass: float) -> dict:
+        """``k (= W/R), mu, mu_s, c, W`` for a building of total mass `total_mass` (kg)."""
+        W = total_mass * G
+        mu = float(self.mu)
+        mu_s = max(mu, float(self.mu_s)) if self.mu_s is not None else mu
+        c = 4 * np.pi * total_mass * self.damping / self.T
+        return dict(k=W / self.R, mu=mu, mu_s=mu_s, c=c, W=W, R=self.R)

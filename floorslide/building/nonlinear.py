@@ -1,0 +1,386 @@
+"""Buildings on nonlinear (piecewise-linear) isolation, integrated exactly, events inside steps.
+
+:class:`NonlinearIsolatedBuilding` is a superstructure on a base mat over a
+:class:`~floorslide.building.isolators.BilinearIsolator` or
+:class:`~floorslide.building.isolators.FrictionPendulum` layer. :func:`isolator_response`
+integrates it under a piecewise-linear ground record with the compiled event-driven kernel
+(:mod:`floorslide.building._nonlinear_kernel`): on each sub-step the active branch is linear
+time-invariant and stepped exactly; yield, unloading, breakaway, stop and reversal are located
+inside sub-steps as first crossings of the branch's in-step polynomials. The result holds the
+floors' absolute accelerations and the isolator's displacement and force at the samples, their
+true peaks (inside steps), the residual isolator displacement, the branch history and the
+events.
+
+Status: the building alone. Sliding contents and floor spectra on such a building (the exact
+chain of issue 14) read its motion in a later step.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from floorslide.building import _nonlinear_kernel as kern
+from floorslide.building.exact import ExactStepper, spectral_radius, substeps_for
+from floorslide.building.isolators import (
+    BRANCH_NAMES,
+    ELASTIC,
+    PLASTIC_NEG,
+    PLASTIC_POS,
+    SLIP_NEG,
+    SLIP_POS,
+    STICK,
+    BilinearIsolator,
+    FrictionPendulum,
+)
+from floorslide.building.model import ShearBuilding
+from floorslide.constants import G
+from floorslide.errors import ModelError, SolverLimitError
+from floorslide.inputs import as_record
+
+MAX_EVENTS_PER_SUBSTEP = 64
+
+
+class NonlinearIsolatedBuilding:
+    """A superstructure on a base mat over a nonlinear isolation layer.
+
+    Parameters
+    ----------
+    superstructure
+        The fixed-base building.
+    base_mass_ratio
+        ``m_b / m`` (> 0), ``m`` the superstructure's mass.
+    isolator
+        A :class:`BilinearIsolator` or :class:`FrictionPendulum`.
+    """
+
+    def __init__(self, superstructure: ShearBuilding, base_mass_ratio: float, isolator):
+        if not isinstance(superstructure, ShearBuilding):
+            raise ModelError("superstructure must be a ShearBuilding", "superstructure")
+        if not isinstance(isolator, BilinearIsolator | FrictionPendulum):
+            raise ModelError(
+                "isolator must be a BilinearIsolator or a FrictionPendulum", "isolator"
+            )
+        ratio = float(base_mass_ratio)
+        if not np.isfinite(ratio) or ratio <= 0:
+            raise ModelError(f"must be > 0, got {base_mass_ratio!r}", "base_mass_ratio")
+        ms = superstructure.mass
+        self.superstructure = superstructure
+        self.isolator = isolator
+        self.base_mass_ratio = ratio
+        self.mass = np.concatenate([[ratio * ms.sum()], ms])
+        n = self.mass.size
+        iota = np.ones(ms.size)
+
+        def assemble(sup: np.ndarray) -> np.ndarray:
+            out = np.zeros((n, n))
+            out[0, 0] = iota @ sup @ iota
+            out[0, 1:] = -iota @ sup
+            out[1:, 0] = -sup @ iota
+            out[1:, 1:] = sup
+            return out
+
+        self.stiffness_matrix = assemble(superstructure.stiffness_matrix)
+        self.damping_matrix = assemble(superstructure.damping_matrix)
+        self.constants = isolator.constants(self.total_mass)
+
+    @property
+    def n_dof(self) -> int:
+        return self.mass.size
+
+    @property
+    def stories(self) -> int:
+        return self.n_dof - 1
+
+    @property
+    def floors(self) -> tuple[int, ...]:
+        return tuple(range(self.n_dof))
+
+    @property
+    def total_mass(self) -> float:
+        return float(self.mass.sum())
+
+    @property
+    def weight(self) -> float:
+        """``W = M g``, N."""
+        return self.total_mass * G
+
+    @property
+    def kind(self) -> str:
+        return "bilinear" if isinstance(self.isolator, BilinearIsolator) else "friction_pendulum"
+
+    def branches(self) -> tuple[int, ...]:
+        """The branches this layer can be on."""
+        if self.kind == "bilinear":
+            return (ELASTIC, PLASTIC_POS, PLASTIC_NEG)
+        return (SLIP_POS, SLIP_NEG, STICK)
+
+    def branch_system(self, branch: int) -> tuple[np.ndarray, np.ndarray]:
+        """``A`` (N × N) and ``b`` of the augmented state ``[u; u'; F0]`` on `branch`."""
+        n = self.n_dof
+        N = 2 * n + 1
+        c = self.constants
+        if branch == ELASTIC:
+            k, cv = c["k1"], c["c"]
+        elif branch in (PLASTIC_POS, PLASTIC_NEG):
+            k, cv = c["k2"], c["c"]
+        else:
+            k, cv = c["k"], c["c"]
+        Minv = 1.0 / self.mass
+        Kt = self.stiffness_matrix.copy()
+        Ct = self.damping_matrix.copy()
+        Kt[0, 0] += k
+        Ct[0, 0] += cv
+        A = np.zeros((N, N))
+        A[:n, n : 2 * n] = np.eye(n)
+        A[n : 2 * n, :n] = -Minv[:, None] * Kt
+        A[n : 2 * n, n : 2 * n] = -Minv[:, None] * Ct
+        A[n, 2 * n] = -Minv[0]
+        b = np.zeros(N)
+        b[n : 2 * n] = -1.0
+        if branch == STICK:  # the mat moves with the ground
+            A[0, :] = 0.0
+            A[n, :] = 0.0
+            b[n] = 0.0
+        return A, b
+
+    def needed_friction_row(self) -> tuple[np.ndarray, float]:
+        """``(r, d)`` with the friction a stuck pendulum needs ``F = r·x + d·a_g``."""
+        n = self.n_dof
+        N = 2 * n + 1
+        r = np.zeros(N)
+        r[:n] = -self.stiffness_matrix[0]
+        r[n : 2 * n] = -self.damping_matrix[0]
+        r[0] -= self.constants.get("k", 0.0)
+        return r, -float(self.mass[0])
+
+    def output_rows(self, branch: int, floors) -> tuple[np.ndarray, np.ndarray]:
+        """Rows ``C, D`` of the absolute accelerations of `floors`, then the isolator force,
+        then the isolator displacement."""
+        A, b = self.branch_system(branch)
+        n = self.n_dof
+        N = 2 * n + 1
+        C = np.zeros((len(floors) + 2, N))
+        D = np.zeros(len(floors) + 2)
+        C[-1, 0] = 1.0
+        for j, f in enumerate(floors):
+            C[j] = A[n + f]
+            D[j] = b[n + f] + 1.0
+        c = self.constants
+        if branch == STICK:
+            r, d = self.needed_friction_row()
+            C[-2] = r
+            C[-2, 0] += c["k"]
+            D[-2] = d
+        else:
+            # f = k u0 + c u0' + F0 = −m_b (u0'' + a_g) + (storey force on the mat)
+            C[-2] = -self.mass[0] * A[n]
+            C[-2, :n] -= self.stiffness_matrix[0]
+            C[-2, n : 2 * n] -= self.damping_matrix[0]
+            D[-2] = -self.mass[0] * (b[n] + 1.0)
+        return C, D
+
+
+@dataclass(frozen=True)
+class IsolatorResponse:
+    """The response of a :class:`NonlinearIsolatedBuilding` to one record.
+
+    Attributes
+    ----------
+    dt, substeps
+        Record step and sub-steps per step.
+    floors
+        Floors of ``floor_acceleration`` (0 = the base mat).
+    floor_acceleration
+        Absolute accelerations at the samples, ``(len(floors), npts)``, m/s².
+    pfa
+        True peak absolute acceleration per floor (inside steps), m/s².
+    isolator_displacement, isolator_force
+        At the samples (m, N); the force is the layer's on the mat.
+    peak_displacement
+        ``max |u_0|`` inside steps, m.
+    residual_displacement
+        ``u_0`` at the end of the record, m.
+    peak_force_ratio
+        ``max |f_iso| / W`` (base shear over weight at the isolation level).
+    branch
+        Branch at each sample (see :data:`~floorslide.building.isolators.BRANCH_NAMES`).
+    event_times, event_branches
+        When the layer changed branch and into which.
+    """
+
+    dt: float
+    substeps: int
+    floors: tuple[int, ...]
+    floor_acceleration: np.ndarray
+    pfa: np.ndarray
+    isolator_displacement: np.ndarray
+    isolator_force: np.ndarray
+    peak_displacement: float
+    residual_displacement: float
+    peak_force_ratio: float
+    branch: np.ndarray
+    event_times: np.ndarray
+    event_branches: np.ndarray
+
+    def branch_names(self) -> list[str]:
+        return [BRANCH_NAMES[b] for b in self.branch]
+
+
+def _initial(building: NonlinearIsolatedBuilding, x0: np.ndarray, a0: float) -> int:
+    """The branch at t = 0 (the layer at rest unless `x0` strains it)."""
+    c = building.constants
+    n = building.n_dof
+    if building.kind == "bilinear":
+        u = x0[0]
+        pl = u - np.clip(u, -c["D_y"], c["D_y"])
+        x0[-1] = -(c["k1"] - c["k2"]) * pl
+        return ELASTIC
+    r, d = building.needed_friction_row()
+    x0[n] = 0.0
+    F = float(r @ x0 + d * a0)
+    if abs(F) <= c["mu_s"] * c["W"]:
+        return STICK
+    x0[-1] = np.sign(F) * c["mu"] * c["W"]
+    return SLIP_POS if F > 0 else SLIP_NEG
+
+
+def isolator_response(
+    building: NonlinearIsolatedBuilding,
+    acc,
+    dt: float | None = None,
+    *,
+    floors=None,
+    initial_displacement=None,
+) -> IsolatorResponse:
+    """Exact response of a building on nonlinear isolation to a piecewise-linear record.
+
+    Parameters
+    ----------
+    building
+        The building.
+    acc, dt
+        Ground acceleration (m/s²) and its time step, or a Trace.
+    floors
+        Floors whose absolute accelerations are returned (default all).
+    initial_displacement
+        Displacements relative to the ground at t = 0 (one per floor, 0 = the mat; default
+        rest), for free-vibration checks.
+
+    Returns
+    -------
+    IsolatorResponse
+
+    Raises
+    ------
+    SolverLimitError
+        More than :data:`MAX_EVENTS_PER_SUBSTEP` branch changes inside one sub-step.
+    """
+    acc, dt, _notes = as_record(acc, dt)
+    n = building.n_dof
+    N = 2 * n + 1
+    floors = list(building.floors) if floors is None else [int(f) for f in floors]
+    for f in floors:
+        if not 0 <= f < n:
+            raise ModelError(f"floor {f} does not exist; floors are 0..{n - 1}", "floors")
+    branches = building.branches()
+    systems = {b: building.branch_system(b) for b in branches}
+    rho = max(spectral_radius(A) for A, _ in systems.values())
+    m = substeps_for(rho, dt)
+    steppers = {b: ExactStepper.build(A, bb, dt, m) for b, (A, bb) in systems.items()}
+    K = max(s.order for s in steppers.values())
+    mats = sorted(set(branches))
+    nb = len(mats)
+    mat_of = np.zeros(7, dtype=np.int64)
+    for j, b in enumerate(mats):
+        mat_of[b] = j
+    PHI = np.empty((nb, N, N))
+    PP = np.empty((nb, N))
+    QQ = np.empty((nb, N))
+    RR = np.empty((nb, N, K + 1, N))
+    BB = np.empty((nb, N, K + 1))
+    ER = np.zeros((nb, K + 1, N))
+    EB = np.zeros((nb, K + 1))
+    nout = len(floors) + 2
+    OR = np.empty((nb, nout, K + 1, N))
+    OB = np.empty((nb, nout, K + 1))
+    r_f, d_f = building.needed_friction_row()
+    for j, b in enumerate(mats):
+        st = steppers[b]
+        PHI[j] = st.phi
+        PP[j], QQ[j] = st.input_weights()
+        RR[j], BB[j] = st.taylor_rows(np.eye(N), order=K)
+        if b == STICK:
+            er, eb = st.taylor_rows(r_f[None, :], np.array([d_f]), order=K)
+            ER[j], EB[j] = er[0], eb[0]
+        C, D = building.output_rows(b, floors)
+        OR[j], OB[j] = st.taylor_rows(C, D, order=K)
+    c = building.constants
+    W = c["W"]
+    if building.kind == "bilinear":
+        consts = [c["k1"] - c["k2"], c["D_y"], c["Q"], 0.0, 0.0]
+    else:
+        consts = [1.0, 0.0, 0.0, c["mu"] * W, c["mu_s"] * W]
+    consts = np.array(consts + list(r_f) + [d_f])
+    x0 = np.zeros(N)
+    if initial_displacement is not None:
+        u = np.asarray(initial_displacement, dtype=float).ravel()
+        if u.size != n:
+            raise ModelError(f"give {n} displacements (floors 0..{n - 1})", "initial_displacement")
+        x0[:n] = u
+    branch0 = _initial(building, x0, float(acc[0]))
+    nsub = (acc.size - 1) * m
+    X = np.empty((nsub + 1, N))
+    BR = np.empty(nsub + 1, dtype=np.int64)
+    cap = max(64, acc.size)
+    peak = np.zeros(nout)
+    t_peak = np.zeros(nout)
+    while True:
+        ev_row = np.empty(cap, dtype=np.int64)
+        ev_tau = np.empty(cap)
+        ev_branch = np.empty(cap, dtype=np.int64)
+        peak[:] = 0.0
+        n_ev = kern.nonlinear_run(
+            mat_of, PHI, PP, QQ, RR, BB, ER, EB, OR, OB, K, consts, acc, m, dt / m,
+            x0, branch0, X, BR, ev_row, ev_tau, ev_branch, peak, t_peak, MAX_EVENTS_PER_SUBSTEP,
+        )  # fmt: skip
+        if n_ev < 0:
+            row = -1 - n_ev
+            raise SolverLimitError(
+                f"more than {MAX_EVENTS_PER_SUBSTEP} isolator events inside one sub-step at "
+                f"t = {row * dt / m:.6g} s: stick–slip chatter the exact solver cannot resolve",
+                "isolator",
+            )
+        if n_ev <= cap:
+            break
+        cap = n_ev
+    h = dt / m
+    samples = X[::m]
+    br = BR[::m]
+    acc_out = np.empty((len(floors), acc.size))
+    force = np.empty(acc.size)
+    for b in mats:
+        sel = br == b
+        if not sel.any():
+            continue
+        C, D = building.output_rows(b, floors)
+        vals = C @ samples[sel].T + D[:, None] * acc[sel][None, :]
+        acc_out[:, sel] = vals[:-2]
+        force[sel] = vals[-2]
+    times = ev_row[:n_ev] * h + ev_tau[:n_ev]
+    return IsolatorResponse(
+        dt=float(dt),
+        substeps=int(m),
+        floors=tuple(floors),
+        floor_acceleration=acc_out,
+        pfa=peak[:-2].copy(),
+        isolator_displacement=samples[:, 0].copy(),
+        isolator_force=force,
+        peak_displacement=float(peak[-1]),
+        residual_displacement=float(samples[-1, 0]),
+        peak_force_ratio=float(peak[-2] / W),
+        branch=br.copy(),
+        event_times=times,
+        event_branches=ev_branch[:n_ev].copy(),
+    )
