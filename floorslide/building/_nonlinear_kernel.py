@@ -132,9 +132,9 @@ def nonlinear_run(
     a stuck pendulum needs, as Taylor rows) and ``OR, OB`` (Taylor rows of the outputs whose
     true peaks are tracked in ``peak``/``t_peak``). ``consts = [k1 − k2, D_y, Q, mu·W,
     mu_s·W]`` and, from index 5, the linear functional of the needed friction (state
-    coefficients, then the ground's). ``X[j]``/``BR[j]`` receive the state and branch at the
-    start of every sub-step (the last row: the end); events: the sub-step, the time in it and
-    the branch after. Returns the number of events, or ``-1 − row`` when more than
+    coefficients, then the ground's). ``X[k]``/``BR[k]`` receive the state and branch at
+    record sample ``k`` (memory O(samples)); events: the sub-step, the time in it and the
+    branch after. Returns the number of events, or ``-1 − row`` when more than
     ``max_events`` happen in sub-step ``row``.
 
     Just after an event the search for the next one starts ``EVENT_GAP·h`` later: a branch
@@ -241,7 +241,7 @@ def nonlinear_run(
                 if s0 >= h:
                     break
             row += 1
-            for i in range(N):
-                X[row, i] = x[i]
-            BR[row] = branch
+        for i in range(N):
+            X[k + 1, i] = x[i]
+        BR[k + 1] = branch
     return n_ev

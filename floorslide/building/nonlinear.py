@@ -330,9 +330,8 @@ def isolator_response(
             raise ModelError(f"give {n} displacements (floors 0..{n - 1})", "initial_displacement")
         x0[:n] = u
     branch0 = _initial(building, x0, float(acc[0]))
-    nsub = (acc.size - 1) * m
-    X = np.empty((nsub + 1, N))
-    BR = np.empty(nsub + 1, dtype=np.int64)
+    X = np.empty((acc.size, N))
+    BR = np.empty(acc.size, dtype=np.int64)
     cap = max(64, acc.size)
     peak = np.zeros(nout)
     t_peak = np.zeros(nout)
@@ -356,8 +355,8 @@ def isolator_response(
             break
         cap = n_ev
     h = dt / m
-    samples = X[::m]
-    br = BR[::m]
+    samples = X
+    br = BR
     acc_out = np.empty((len(floors), acc.size))
     force = np.empty(acc.size)
     for b in mats:
