@@ -89,6 +89,9 @@ class BilinearIsolator:
         follows as ``Q/(k_1 − k_2)``.
     damping
         Viscous damping ratio at ``T_d`` (default 0).
+    capacity
+        Displacement capacity of the layer (m, optional): a response beyond it is reported
+        (the impact with the moat wall that would follow is not modelled).
     """
 
     q_ratio: float
@@ -96,9 +99,12 @@ class BilinearIsolator:
     yield_disp: float | None = None
     alpha: float | None = None
     damping: float = 0.0
+    capacity: float | None = None
 
     def __post_init__(self):
         _positive(self.q_ratio, "isolator.q_ratio")
+        if self.capacity is not None:
+            _positive(self.capacity, "isolator.capacity")
         _positive(self.period, "isolator.period")
         _ratio(self.damping, "isolator.damping")
         if (self.yield_disp is None) == (self.alpha is None):
@@ -144,6 +150,9 @@ class FrictionPendulum:
         ``max(mu_s, mu)·W``.
     damping
         Viscous damping ratio at the pendulum period (default 0).
+    capacity
+        Displacement capacity of the bearing (m, optional): a response beyond it is reported
+        (the impact with the bearing's rim or the moat wall is not modelled).
     """
 
     mu: float
@@ -151,8 +160,11 @@ class FrictionPendulum:
     period: float | None = None
     mu_s: float | None = None
     damping: float = 0.0
+    capacity: float | None = None
 
     def __post_init__(self):
+        if self.capacity is not None:
+            _positive(self.capacity, "isolator.capacity")
         try:
             mu = float(self.mu)
         except (TypeError, ValueError):

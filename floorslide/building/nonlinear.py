@@ -223,6 +223,9 @@ class IsolatorResponse:
     branch: np.ndarray
     event_times: np.ndarray
     event_branches: np.ndarray
+    capacity_exceeded: bool = False
+    """The isolator displacement went beyond the layer's ``capacity`` (when one is given)."""
+    notes: tuple[str, ...] = ()
 
     def branch_names(self) -> list[str]:
         return [BRANCH_NAMES[b] for b in self.branch]
@@ -368,6 +371,15 @@ def isolator_response(
         acc_out[:, sel] = vals[:-2]
         force[sel] = vals[-2]
     times = ev_row[:n_ev] * h + ev_tau[:n_ev]
+    cap_m = building.isolator.capacity
+    exceeded = cap_m is not None and float(peak[-1]) > cap_m
+    notes = ()
+    if exceeded:
+        notes = (
+            f"isolator displacement {float(peak[-1]):.4g} m exceeds its capacity {cap_m:g} m: "
+            "the impact that would follow (moat wall, bearing rim) is not modelled; the response "
+            "after it is that of an unlimited layer",
+        )
     return IsolatorResponse(
         dt=float(dt),
         substeps=int(m),
@@ -382,4 +394,6 @@ def isolator_response(
         branch=br.copy(),
         event_times=times,
         event_branches=ev_branch[:n_ev].copy(),
+        capacity_exceeded=exceeded,
+        notes=notes,
     )
