@@ -8,14 +8,19 @@ from importlib.metadata import PackageNotFoundError
 from importlib.metadata import version as _version
 
 from floorslide.building import (
+    BilinearIsolator,
     BuildingMotion,
     FloorMotion,
+    FrictionPendulum,
     IsolatedBuilding,
+    IsolatorResponse,
+    NonlinearIsolatedBuilding,
     Rayleigh,
     ShearBuilding,
     building_motion,
     floor_motion,
     floor_motions,
+    isolator_response,
     peak_floor_acceleration,
 )
 from floorslide.constants import G
@@ -49,10 +54,15 @@ except PackageNotFoundError:  # pragma: no cover - running from a source tree
     __version__ = "0+unknown"
 
 __all__ = [
+    "BilinearIsolator",
     "BuildingMotion",
     "FloorMotion",
+    "FrictionPendulum",
     "G",
     "IsolatedBuilding",
+    "IsolatorResponse",
+    "NonlinearIsolatedBuilding",
+    "isolator_response",
     "Rayleigh",
     "ShearBuilding",
     "OscillatorResult",

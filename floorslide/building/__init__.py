@@ -7,6 +7,7 @@ from floorslide.building.exact_motion import (
     building_motion,
     floor_motion,
 )
+from floorslide.building.isolators import BilinearIsolator, FrictionPendulum
 from floorslide.building.model import (
     IsolatedBuilding,
     LinearBuilding,
@@ -15,11 +16,21 @@ from floorslide.building.model import (
     ShearBuilding,
 )
 from floorslide.building.motions import Peaks, floor_motions, peak_floor_acceleration
+from floorslide.building.nonlinear import (
+    IsolatorResponse,
+    NonlinearIsolatedBuilding,
+    isolator_response,
+)
 
 __all__ = [
+    "BilinearIsolator",
     "BuildingMotion",
     "ExactStepper",
     "FloorMotion",
+    "FrictionPendulum",
+    "IsolatorResponse",
+    "NonlinearIsolatedBuilding",
+    "isolator_response",
     "building_motion",
     "floor_motion",
     "IsolatedBuilding",
