@@ -202,3 +202,37 @@ class FrictionPendulum:
         mu_s = max(mu, float(self.mu_s)) if self.mu_s is not None else mu
         c = 4 * np.pi * total_mass * self.damping / self.T
         return dict(k=W / self.R, mu=mu, mu_s=mu_s, c=c, W=W, R=self.R)
+
+
+def equivalent_linear(isolator, total_mass: float, displacement: float) -> tuple[float, float]:
+    """Effective period and damping ratio of a nonlinear layer at a design displacement.
+
+    The secant stiffness at ``D`` and the damping ratio that dissipates the loop's energy per
+    cycle at that stiffness, ``β = E_loop / (2π K_eff D²)`` — the equivalent-linear model of
+    ASCE 7-22 ch. 17 and of the AASHTO *Guide Specifications for Seismic Isolation Design*
+    (Naeim & Kelly 1999 §4): for the bilinear layer ``K_eff = k₂ + Q/D``,
+    ``E_loop = 4Q(D − D_y)`` (``D ≥ D_y``; below yield the layer is linear in ``k₁``, no
+    hysteresis); for the pendulum ``K_eff = W/R + mu·W/D``, ``E_loop = 4 mu W D``, so
+    ``β = 2 mu / (π (mu + D/R))``. A viscous ratio of the layer adds at its own stiffness,
+    ``c/(2 √(K_eff M))``.
+
+    Returns
+    -------
+    (period, damping)
+        ``T_eff = 2π√(M/K_eff)`` (s) and ``β_eff``.
+    """
+    D = _positive(displacement, "displacement")
+    c = isolator.constants(total_mass)
+    if isinstance(isolator, BilinearIsolator):
+        if D <= c["D_y"]:
+            k_eff, energy = c["k1"], 0.0
+        else:
+            k_eff = c["k2"] + c["Q"] / D
+            energy = 4.0 * c["Q"] * (D - c["D_y"])
+    elif isinstance(isolator, FrictionPendulum):
+        k_eff = c["W"] / c["R"] + c["mu"] * c["W"] / D
+        energy = 4.0 * c["mu"] * c["W"] * D
+    else:
+        raise ModelError("isolator must be a BilinearIsolator or a FrictionPendulum", "isolator")
+    beta = energy / (2 * np.pi * k_eff * D * D) + c["c"] / (2 * math.sqrt(k_eff * total_mass))
+    return 2 * np.pi * math.sqrt(total_mass / k_eff), float(beta)

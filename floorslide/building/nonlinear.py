@@ -110,6 +110,21 @@ class NonlinearIsolatedBuilding:
     def kind(self) -> str:
         return "bilinear" if isinstance(self.isolator, BilinearIsolator) else "friction_pendulum"
 
+    def equivalent_linear(self, displacement: float):
+        """The equivalent-linear isolated building at a design isolator displacement (m): the
+        same superstructure and mat on a linear layer with the effective period and damping
+        of :func:`~floorslide.building.isolators.equivalent_linear` — what a linear analysis
+        would use, to compare with the nonlinear response."""
+        from floorslide.building.isolators import equivalent_linear
+        from floorslide.building.model import IsolatedBuilding
+
+        period, damping = equivalent_linear(self.isolator, self.total_mass, displacement)
+        if damping >= 1:
+            raise ModelError(
+                f"effective damping {damping:.3g} ≥ 1 at {displacement:g} m", "displacement"
+            )
+        return IsolatedBuilding(self.superstructure, self.base_mass_ratio, period, damping)
+
     def branches(self) -> tuple[int, ...]:
         """The branches this layer can be on."""
         if self.kind == "bilinear":

@@ -132,3 +132,42 @@ def test_bad_isolator_parameters_name_their_key():
         BilinearIsolator(q_ratio=0.0, period=2.5, yield_disp=0.01)
     with pytest.raises(ModelError, match="one of yield_disp and alpha"):
         BilinearIsolator(q_ratio=0.05, period=2.5)
+
+
+def _loop_energy(k1, k2, Q, D, n=200_000):
+    """∮ f du of the bilinear element over the cycle 0 → D → −D → D (the last two legs: one
+    closed loop), by hand: the elastic–plastic part stepped on a fine path, trapezoid rule."""
+    path = np.concatenate(
+        [np.linspace(0, D, n), np.linspace(D, -D, 2 * n)[1:], np.linspace(-D, D, 2 * n)[1:]]
+    )
+    q = np.zeros(path.size)
+    for i in range(1, path.size):
+        q[i] = np.clip(q[i - 1] + (k1 - k2) * (path[i] - path[i - 1]), -Q, Q)
+    f = k2 * path + q
+    loop = slice(n - 1, None)
+    u, f = path[loop], f[loop]
+    return float(np.sum(0.5 * (f[1:] + f[:-1]) * np.diff(u)))
+
+
+def test_equivalent_linear_dissipates_the_loop_energy():
+    from floorslide.building.isolators import equivalent_linear
+
+    iso = BilinearIsolator(q_ratio=0.06, period=2.5, yield_disp=0.02)
+    M = 2e5
+    c = iso.constants(M)
+    for D in (0.06, 0.2):
+        T, beta = equivalent_linear(iso, M, D)
+        k_eff = M * (2 * np.pi / T) ** 2
+        assert k_eff == pytest.approx(c["k2"] + c["Q"] / D, rel=1e-12)
+        energy = _loop_energy(c["k1"], c["k2"], c["Q"], D)
+        assert energy == pytest.approx(4 * c["Q"] * (D - c["D_y"]), rel=1e-4)
+        assert 2 * np.pi * beta * k_eff * D * D == pytest.approx(energy, rel=1e-4)
+    fps = FrictionPendulum(mu=0.05, radius=2.0)
+    T, beta = equivalent_linear(fps, M, 0.2)
+    assert beta == pytest.approx(2 * 0.05 / (np.pi * (0.05 + 0.2 / 2.0)), rel=1e-12)
+    assert T < fps.T  # friction stiffens the secant
+    T0, beta0 = equivalent_linear(FrictionPendulum(mu=0.0, radius=2.0), M, 0.2)
+    assert T0 == pytest.approx(fps.T, rel=1e-12) and beta0 == 0.0
+    sup = fs.ShearBuilding.from_period(stories=1, period=0.3, damping=0.03)
+    lin = NonlinearIsolatedBuilding(sup, 1.0, iso).equivalent_linear(0.2)
+    assert isinstance(lin, fs.IsolatedBuilding) and lin.isolation_damping > 0.1
