@@ -36,6 +36,18 @@ def _state_at(R, B, x, a0, slope, s, K, out, c):
         out[i] = poly_val(c, K, s)
 
 
+@njit(cache=True, inline="always")
+def _rise(c, K, lo, L, level, work):
+    """:func:`first_rise` of ``p`` above `level` on ``(lo, L]``, skipped (−1) when the bound
+    ``p(0) + Σ_{j≥1} |c_j| L^j`` shows that ``p`` stays at or below `level` there."""
+    reach = 0.0
+    for j in range(K, 0, -1):
+        reach = (reach + abs(c[j])) * L
+    if c[0] + reach <= level:
+        return -1.0
+    return first_rise(c, K, lo, L, level, work)
+
+
 @njit(cache=True)
 def _event(branch, R, B, ER, EB, x, a0, slope, L, K, p, dy, limit, lo, c, work):
     """First event of `branch` in ``(lo, L]`` from state `x`: ``(time, kind)`` with kind +1 or
@@ -48,26 +60,26 @@ def _event(branch, R, B, ER, EB, x, a0, slope, L, K, p, dy, limit, lo, c, work):
         return NO_EVENT, 0
     if branch == ELASTIC:
         taylor_coefficients(R[0], B[0], x, a0, slope, c)
-        t_up = first_rise(c, K, lo, L, p + dy, work)
+        t_up = _rise(c, K, lo, L, p + dy, work)
         for j in range(K + 1):
             c[j] = -c[j]
-        t_dn = first_rise(c, K, lo, L, -(p - dy), work)
+        t_dn = _rise(c, K, lo, L, -(p - dy), work)
     elif branch == STICK:
         taylor_coefficients(ER, EB, x, a0, slope, c)
-        t_up = first_rise(c, K, lo, L, limit, work)
+        t_up = _rise(c, K, lo, L, limit, work)
         for j in range(K + 1):
             c[j] = -c[j]
-        t_dn = first_rise(c, K, lo, L, limit, work)
+        t_dn = _rise(c, K, lo, L, limit, work)
     else:
         taylor_coefficients(R[n], B[n], x, a0, slope, c)
         t_up = -1.0
         if branch == PLASTIC_POS or branch == SLIP_POS:  # velocity falls through 0
             for j in range(K + 1):
                 c[j] = -c[j]
-            t_dn = first_rise(c, K, lo, L, 0.0, work)
+            t_dn = _rise(c, K, lo, L, 0.0, work)
         else:  # velocity rises through 0
             t_dn = -1.0
-            t_up = first_rise(c, K, lo, L, 0.0, work)
+            t_up = _rise(c, K, lo, L, 0.0, work)
     best, kind = NO_EVENT, 0
     if t_up >= 0.0:
         best, kind = t_up, 1
