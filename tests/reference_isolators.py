@@ -44,6 +44,11 @@ Modelling decisions (documented here, relied on by the tests):
   elastically, or yields at once if the base accelerates outwards.
 * A velocity zero in the plastic branch at which the base keeps accelerating in the loading
   direction (a touch) does not unload.
+* At a velocity zero ("stick", "reverse", "unload") ``u0'`` is set to exactly 0 (a change at
+  rounding level), and an event function of the new phase that starts from an exact zero (the
+  stop event after a breakaway or reversal, the reload event after an unload) is divided by
+  ``(t - t0)`` or ``(t - t0)²`` (``_from_zero``): ``solve_ivp`` otherwise reports a later
+  crossing inside its first step at ``t0`` itself, which chatters.
 * ``peak_isolator``: max ``|u0|`` over the segment ends and the roots of ``u0'`` located by
   ``solve_ivp`` as (non-terminal) events on the dense output — exact to the integration
   accuracy, not a sampled maximum. In plastic / sliding / stuck phases ``u0`` is monotone, so
