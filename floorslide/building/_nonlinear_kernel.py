@@ -19,11 +19,14 @@ import numpy as np
 
 from floorslide._jit import njit
 from floorslide.building._instep import foh_step, substep_inputs, taylor_coefficients
+from floorslide.contents._kernels import _general
 from floorslide.numerics.polynomial import first_rise, max_abs_on, poly_val, scratch
 
 # branch codes: as floorslide.building.isolators
 LINEAR, ELASTIC, PLASTIC_POS, PLASTIC_NEG, SLIP_POS, SLIP_NEG, STICK = 0, 1, 2, 3, 4, 5, 6
 NO_EVENT = 1e300
+BLOCK_MAX_EVENTS = 10000
+"""Most friction events of a block in one segment (as ``floorslide.contents.events``)."""
 EVENT_GAP = 1e-12
 """Shortest time between two events, in sub-steps (see :func:`nonlinear_run`)."""
 
@@ -110,6 +113,26 @@ def _peaks(branch_rows, branch_beta, x, a0, slope, L, K, peak, t_peak, t0, c, wo
 
 
 @njit(cache=True)
+def _blocks(OR, OB, x, a_s, slope, L, K, t_abs, blk_out, mub, muk, allow_pos, allow_neg, g,
+            states, st, c, bwork, rw, max_events):  # fmt: skip
+    """Advance the rigid blocks through a segment ``[0, L]`` of one branch: each stands on the
+    floor whose absolute acceleration is output row ``blk_out[i]``; its exact event-driven
+    step is the rigid-block kernel's (:func:`floorslide.contents._kernels._general`)."""
+    last = -1
+    for i in range(muk.size):
+        o = blk_out[i]
+        if o != last:
+            taylor_coefficients(OR[o], OB[o], x, a_s, slope, c)
+            last = o
+        for j in range(st.size):
+            st[j] = states[i, j]
+        _general(c, K, L, g, 0.0, False, g, mub[i], muk[i], allow_pos, allow_neg, t_abs, st,
+                 bwork, rw, max_events)  # fmt: skip
+        for j in range(st.size):
+            states[i, j] = st[j]
+
+
+@njit(cache=True)
 def nonlinear_run(
     mat_of,
     PHI,
@@ -136,6 +159,13 @@ def nonlinear_run(
     peak,
     t_peak,
     max_events,
+    blk_out,
+    mub,
+    muk,
+    allow_pos,
+    allow_neg,
+    g,
+    bstates,
 ):
     """Integrate the building over the record.
 
@@ -148,6 +178,10 @@ def nonlinear_run(
     record sample ``k`` (memory O(samples)); events: the sub-step, the time in it and the
     branch after. Returns the number of events, or ``-1 − row`` when more than
     ``max_events`` happen in sub-step ``row``.
+
+    Rigid blocks ride along (none when ``muk`` is empty): block ``i`` stands on the floor of
+    output row ``blk_out[i]`` (sorted), friction ``mub``/``muk``, state ``bstates[i]`` (the
+    columns of :mod:`floorslide.contents._kernels`), advanced exactly through every segment.
 
     Just after an event the search for the next one starts ``EVENT_GAP·h`` later: a branch
     entered at a level crossing (a breakaway at exactly the friction limit, a stop at exactly
@@ -166,6 +200,11 @@ def nonlinear_run(
     fd = consts[5 + N]
     c = np.empty(K + 1)
     work = scratch(K + 1)
+    nblk = muk.size
+    cb = np.empty(K + 1)
+    bwork = np.empty(4 * K + 16)
+    rw = scratch(K + 3)
+    st = np.empty(bstates.shape[1])
     x = x0.copy()
     y = np.empty(N)
     branch = branch0
@@ -198,6 +237,10 @@ def nonlinear_run(
                 fresh = False
                 if te == NO_EVENT:
                     _peaks(OR[m], OB[m], x, a_s, slope, L, K, peak, t_peak, t0 + s0, c, work)
+                    if nblk > 0:
+                        _blocks(OR[m], OB[m], x, a_s, slope, L, K, t0 + s0, blk_out, mub, muk,
+                                allow_pos, allow_neg, g, bstates, st, cb, bwork, rw,
+                                BLOCK_MAX_EVENTS)  # fmt: skip
                     if events_here == 0:
                         foh_step(PHI[m], PP[m], QQ[m], x, aa, ab, y)
                     else:
@@ -206,6 +249,10 @@ def nonlinear_run(
                         x[i] = y[i]
                     break
                 _peaks(OR[m], OB[m], x, a_s, slope, te, K, peak, t_peak, t0 + s0, c, work)
+                if nblk > 0:
+                    _blocks(OR[m], OB[m], x, a_s, slope, te, K, t0 + s0, blk_out, mub, muk,
+                            allow_pos, allow_neg, g, bstates, st, cb, bwork, rw,
+                            BLOCK_MAX_EVENTS)  # fmt: skip
                 _state_at(RR[m], BB[m], x, a_s, slope, te, K, y, c)
                 for i in range(N):
                     x[i] = y[i]

@@ -241,6 +241,8 @@ class IsolatorResponse:
     capacity_exceeded: bool = False
     """The isolator displacement went beyond the layer's ``capacity`` (when one is given)."""
     notes: tuple[str, ...] = ()
+    block_states: np.ndarray | None = None
+    """Final states of the rigid blocks asked for (columns of ``floorslide.contents._kernels``)."""
 
     def branch_names(self) -> list[str]:
         return [BRANCH_NAMES[b] for b in self.branch]
@@ -271,6 +273,7 @@ def isolator_response(
     *,
     floors=None,
     initial_displacement=None,
+    blocks=None,
 ) -> IsolatorResponse:
     """Exact response of a building on nonlinear isolation to a piecewise-linear record.
 
@@ -285,6 +288,12 @@ def isolator_response(
     initial_displacement
         Displacements relative to the ground at t = 0 (one per floor, 0 = the mat; default
         rest), for free-vibration checks.
+    blocks
+        Rigid blocks riding along, ``(floor, mu_b, mu_k, direction)`` each (``mu_b`` the
+        breakaway coefficient ``max(mu_s, mu_k)``; direction ``"both"``, ``"positive"`` or
+        ``"negative"``): each advanced exactly, segment by segment, by the rigid-block kernel
+        on the floor's exact in-step acceleration (:func:`slide_on_isolation` wraps this).
+        Their final states are in ``block_states``.
 
     Returns
     -------
@@ -353,15 +362,38 @@ def isolator_response(
     cap = max(64, acc.size)
     peak = np.zeros(nout)
     t_peak = np.zeros(nout)
+    from floorslide.contents._kernels import LIMIT_AT, NCOL
+    from floorslide.contents.events import SLIDE_MAX_EVENTS
+
+    blocks = [] if blocks is None else list(blocks)
+    blk_out = np.array([floors.index(int(b[0])) for b in blocks], dtype=np.int64)
+    order = np.argsort(blk_out, kind="stable")
+    blk_out = blk_out[order]
+    mub = np.array([float(blocks[i][1]) for i in order])
+    muk = np.array([float(blocks[i][2]) for i in order])
+    dirs = {str(b[3]) for b in blocks} or {"both"}
+    if len(dirs) > 1:
+        raise ModelError("blocks of one call slide in one direction setting", "direction")
+    (direction,) = dirs
     while True:
         ev_row = np.empty(cap, dtype=np.int64)
         ev_tau = np.empty(cap)
         ev_branch = np.empty(cap, dtype=np.int64)
         peak[:] = 0.0
+        bstates = np.zeros((len(blocks), NCOL))
+        bstates[:, LIMIT_AT] = -1.0
         n_ev = kern.nonlinear_run(
             mat_of, PHI, PP, QQ, RR, BB, ER, EB, OR, OB, K, consts, acc, m, dt / m,
             x0, branch0, X, BR, ev_row, ev_tau, ev_branch, peak, t_peak, MAX_EVENTS_PER_SUBSTEP,
+            blk_out, mub, muk, direction != "negative", direction != "positive", G, bstates,
         )  # fmt: skip
+        if len(blocks) and (bstates[:, LIMIT_AT] >= 0).any():
+            t = float(bstates[bstates[:, LIMIT_AT] >= 0, LIMIT_AT].min())
+            raise SolverLimitError(
+                f"more than {SLIDE_MAX_EVENTS} friction events of a block inside one segment at "
+                f"t = {t:.6g} s: stick-slip chatter the exact solver cannot resolve",
+                "blocks",
+            )
         if n_ev < 0:
             row = -1 - n_ev
             raise SolverLimitError(
@@ -411,4 +443,62 @@ def isolator_response(
         event_branches=ev_branch[:n_ev].copy(),
         capacity_exceeded=exceeded,
         notes=notes,
+        block_states=bstates[np.argsort(order, kind="stable")] if len(blocks) else None,
+    )
+
+
+def slide_on_isolation(
+    building: NonlinearIsolatedBuilding,
+    acc,
+    dt: float | None = None,
+    mu_k=None,
+    mu_s=None,
+    *,
+    floor: int,
+    direction: str = "both",
+):
+    """Rigid blocks (Coulomb friction) on a floor of a building on nonlinear isolation, exact
+    end to end: ground → nonlinear building (events located inside steps) → block (the
+    rigid-block kernel on the floor's exact in-step acceleration, segment by segment).
+
+    Parameters as :func:`floorslide.slide` (``mu_k``, ``mu_s`` one value or one per object;
+    breakaway at ``max(mu_s, mu_k)·g``); no vertical shaking.
+
+    Returns
+    -------
+    SlideResult
+        With the isolator's response in ``notes``-free form (see :func:`isolator_response` for
+        the building itself).
+    """
+    from floorslide.contents._kernels import DISP as DISP_COL
+    from floorslide.contents._kernels import PEAK_ACC, PEAK_DISP, SLIDE_TIME, SLIPS, T_PEAK
+    from floorslide.contents.sliding import SlideResult
+
+    acc, dt, notes = as_record(acc, dt)
+    if direction not in ("both", "positive", "negative"):
+        raise ModelError(f"direction must be both, positive or negative, got {direction!r}")
+    mk = np.atleast_1d(np.asarray(mu_k, dtype=float))
+    ms = mk.copy() if mu_s is None else np.broadcast_to(np.asarray(mu_s, dtype=float), mk.shape)
+    if mk.size == 0 or np.any(~np.isfinite(mk)) or np.any(mk < 0) or np.any(ms < 0):
+        raise ModelError("friction coefficients must be finite and ≥ 0", "mu_k")
+    mb = np.maximum(mk, ms)
+    blocks = [(floor, mb[i], mk[i], direction) for i in range(mk.size)]
+    r = isolator_response(building, acc, dt, floors=[floor], blocks=blocks)
+    S = r.block_states
+    duration = (acc.size - 1) * dt
+    return SlideResult(
+        mu_k=mk,
+        mu_s=np.asarray(ms, dtype=float).copy(),
+        peak_slide=S[:, PEAK_DISP].copy(),
+        residual_slide=S[:, DISP_COL].copy(),
+        peak_abs_accel=S[:, PEAK_ACC].copy(),
+        slide_fraction=S[:, SLIDE_TIME] / duration if duration > 0 else np.zeros(mk.size),
+        slip_phases=S[:, SLIPS].astype(np.int64),
+        time_of_peak=S[:, T_PEAK].copy(),
+        liftoff_time=0.0,
+        liftoff_count=0,
+        duration=duration,
+        method="exact",
+        direction=direction,
+        notes=tuple(notes),
     )

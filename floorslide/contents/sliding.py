@@ -214,6 +214,26 @@ def slide(
     Jibson, R. W. (1993). Predicting earthquake-induced landslide displacements using Newmark's
     sliding block analysis. *Transportation Research Record* 1411, 9–17.
     """
+    from floorslide.building.nonlinear import NonlinearIsolatedBuilding, slide_on_isolation
+
+    if isinstance(building, NonlinearIsolatedBuilding):
+        # a building on nonlinear isolation: its own exact event-driven chain
+        if mu_k is None:
+            raise ModelError("mu_k (the kinetic friction coefficient or coefficients) is required")
+        if floor is None:
+            raise ModelError("floor is required with building=", "floor")
+        for name, value, default in (
+            ("vertical", vertical, None),
+            ("method", method, "exact"),
+            ("histories", histories, False),
+        ):
+            if value != default:
+                raise ModelError(
+                    f"{name}={value!r} is not available yet on a building on nonlinear "
+                    "isolation (exact sliding without vertical shaking or histories is)",
+                    name,
+                )
+        return slide_on_isolation(building, acc, dt, mu_k, mu_s, floor=floor, direction=direction)
     fm, a, dt, notes = unwrap(acc, dt, building, floor)
     if fm is not None:
         building, floor = fm.building, fm.floor
