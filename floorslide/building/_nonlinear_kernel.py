@@ -52,11 +52,11 @@ def _rise(c, K, lo, L, level, work):
 
 
 @njit(cache=True)
-def _event(branch, R, B, ER, EB, x, a0, slope, L, K, p, dy, limit, lo, c, work):
+def _event(branch, R, B, ER, EB, x, a0, slope, L, K, p, dy, limit, lo, n, c, work):
     """First event of `branch` in ``(lo, L]`` from state `x`: ``(time, kind)`` with kind +1 or
     −1 (the level crossed upward or downward), ``(NO_EVENT, 0)`` if none. Just after an event
-    ``lo`` is a rounding-level time (see :func:`nonlinear_run`), else 0."""
-    n = (x.size - 1) // 2
+    ``lo`` is a rounding-level time (see :func:`nonlinear_run`), else 0. ``n``: the
+    building's degrees of freedom (``x[0]`` the isolator displacement, ``x[n]`` its velocity)."""
     if lo >= L:
         return NO_EVENT, 0
     if branch == LINEAR:
@@ -166,6 +166,7 @@ def nonlinear_run(
     allow_neg,
     g,
     bstates,
+    n,
 ):
     """Integrate the building over the record.
 
@@ -177,7 +178,9 @@ def nonlinear_run(
     coefficients, then the ground's). ``X[k]``/``BR[k]`` receive the state and branch at
     record sample ``k`` (memory O(samples)); events: the sub-step, the time in it and the
     branch after. Returns the number of events, or ``-1 − row`` when more than
-    ``max_events`` happen in sub-step ``row``.
+    ``max_events`` happen in sub-step ``row``. The state is ``[u (n); u' (n); F0; extra]``:
+    ``n`` degrees of freedom of the building, the layer's constant force, then states that
+    ride along without acting back (response-spectrum oscillators on a floor).
 
     Rigid blocks ride along (none when ``muk`` is empty): block ``i`` stands on the floor of
     output row ``blk_out[i]`` (sorted), friction ``mub``/``muk``, state ``bstates[i]`` (the
@@ -190,7 +193,7 @@ def nonlinear_run(
     one is seen as ``EVENT_GAP·h`` later, a rounding-level shift.
     """
     N = x0.size
-    n = (N - 1) // 2
+    iF = 2 * n  # the layer's constant force on the branch
     kk = consts[0]
     dy = consts[1]
     Q = consts[2]
@@ -228,11 +231,11 @@ def nonlinear_run(
                 m = mat_of[branch]
                 L = h - s0
                 a_s = aa + slope * s0
-                p = -x[N - 1] / kk if branch == ELASTIC else 0.0
+                p = -x[iF] / kk if branch == ELASTIC else 0.0
                 lo = EVENT_GAP * h if fresh else 0.0
                 te, kind = _event(
-                    branch, RR[m], BB[m], ER[m], EB[m], x, a_s, slope, L, K, p, dy, musW, lo, c,
-                    work,
+                    branch, RR[m], BB[m], ER[m], EB[m], x, a_s, slope, L, K, p, dy, musW, lo, n,
+                    c, work,
                 )  # fmt: skip
                 fresh = False
                 if te == NO_EVENT:
@@ -260,14 +263,14 @@ def nonlinear_run(
                 if branch == ELASTIC:
                     if kind > 0:
                         branch = PLASTIC_POS
-                        x[N - 1] = Q
+                        x[iF] = Q
                     else:
                         branch = PLASTIC_NEG
-                        x[N - 1] = -Q
+                        x[iF] = -Q
                 elif branch == PLASTIC_POS or branch == PLASTIC_NEG:
                     pl = x[0] - dy if branch == PLASTIC_POS else x[0] + dy
                     x[n] = 0.0
-                    x[N - 1] = -kk * pl
+                    x[iF] = -kk * pl
                     branch = ELASTIC
                 elif branch == SLIP_POS or branch == SLIP_NEG:
                     x[n] = 0.0
@@ -276,17 +279,17 @@ def nonlinear_run(
                         branch = STICK
                     elif F > 0.0:
                         branch = SLIP_POS
-                        x[N - 1] = muW
+                        x[iF] = muW
                     else:
                         branch = SLIP_NEG
-                        x[N - 1] = -muW
+                        x[iF] = -muW
                 else:  # STICK: breakaway in the direction of the demand
                     if kind > 0:
                         branch = SLIP_POS
-                        x[N - 1] = muW
+                        x[iF] = muW
                     else:
                         branch = SLIP_NEG
-                        x[N - 1] = -muW
+                        x[iF] = -muW
                 s0 = s0 + te
                 fresh = True
                 if n_ev < ev_row.size:

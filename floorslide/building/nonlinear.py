@@ -248,6 +248,41 @@ class IsolatorResponse:
         return [BRANCH_NAMES[b] for b in self.branch]
 
 
+def _augmented(building: NonlinearIsolatedBuilding, branch: int, oscillator):
+    """The branch's ``(A, b)``, with an oscillator ``(floor, ω, ξ)`` on a floor appended as
+    states ``[q, q']`` driven by the floor's absolute acceleration:
+    ``q'' = −ω² q − 2ξω q' − a_f``."""
+    A, b = building.branch_system(branch)
+    if oscillator is None:
+        return A, b
+    floor, w, xi = oscillator
+    n = building.n_dof
+    N = A.shape[0]
+    Aa = np.zeros((N + 2, N + 2))
+    Aa[:N, :N] = A
+    ba = np.concatenate([b, [0.0, 0.0]])
+    Aa[N, N + 1] = 1.0
+    Aa[N + 1, N] = -w * w
+    Aa[N + 1, N + 1] = -2.0 * xi * w
+    Aa[N + 1, :N] = -A[n + floor]  # −a_f = −(A[n+f]·x + (b[n+f] + 1)·a_g)
+    ba[N + 1] = -(b[n + floor] + 1.0)
+    return Aa, ba
+
+
+def _outputs(building, branch, floors, oscillator, N):
+    """Output rows of a run: the floors' absolute accelerations, the isolator force and
+    displacement; or, with an oscillator, its ``q``, ``q'`` and absolute acceleration."""
+    if oscillator is None:
+        return building.output_rows(branch, floors)
+    _floor, w, xi = oscillator
+    C = np.zeros((3, N))
+    C[0, N - 2] = 1.0
+    C[1, N - 1] = 1.0
+    C[2, N - 2] = -w * w
+    C[2, N - 1] = -2.0 * xi * w
+    return C, np.zeros(3)
+
+
 def _initial(building: NonlinearIsolatedBuilding, x0: np.ndarray, a0: float) -> int:
     """The branch at t = 0 (the layer at rest unless `x0` strains it)."""
     c = building.constants
@@ -255,14 +290,14 @@ def _initial(building: NonlinearIsolatedBuilding, x0: np.ndarray, a0: float) -> 
     if building.kind == "bilinear":
         u = x0[0]
         pl = u - np.clip(u, -c["D_y"], c["D_y"])
-        x0[-1] = -(c["k1"] - c["k2"]) * pl
+        x0[2 * n] = -(c["k1"] - c["k2"]) * pl
         return ELASTIC
     r, d = building.needed_friction_row()
     x0[n] = 0.0
-    F = float(r @ x0 + d * a0)
+    F = float(r @ x0[: r.size] + d * a0)
     if abs(F) <= c["mu_s"] * c["W"]:
         return STICK
-    x0[-1] = np.sign(F) * c["mu"] * c["W"]
+    x0[2 * n] = np.sign(F) * c["mu"] * c["W"]
     return SLIP_POS if F > 0 else SLIP_NEG
 
 
@@ -274,6 +309,7 @@ def isolator_response(
     floors=None,
     initial_displacement=None,
     blocks=None,
+    oscillator=None,
 ) -> IsolatorResponse:
     """Exact response of a building on nonlinear isolation to a piecewise-linear record.
 
@@ -294,6 +330,11 @@ def isolator_response(
         ``"negative"``): each advanced exactly, segment by segment, by the rigid-block kernel
         on the floor's exact in-step acceleration (:func:`slide_on_isolation` wraps this).
         Their final states are in ``block_states``.
+    oscillator
+        ``(floor, ω, ξ)``: a linear oscillator on `floor` riding along (it does not act
+        back), integrated with the building as two more states of every branch; its peaks
+        ``max|q|, max|q'|, max|ω²q + 2ξωq'|`` (SD, SV, SA) are then ``pfa`` instead of the
+        floors' (:func:`floor_spectrum_on_isolation` wraps this).
 
     Returns
     -------
@@ -312,7 +353,8 @@ def isolator_response(
         if not 0 <= f < n:
             raise ModelError(f"floor {f} does not exist; floors are 0..{n - 1}", "floors")
     branches = building.branches()
-    systems = {b: building.branch_system(b) for b in branches}
+    systems = {b: _augmented(building, b, oscillator) for b in branches}
+    N = next(iter(systems.values()))[0].shape[0]
     rho = max(spectral_radius(A) for A, _ in systems.values())
     m = substeps_for(rho, dt)
     steppers = {b: ExactStepper.build(A, bb, dt, m) for b, (A, bb) in systems.items()}
@@ -329,10 +371,11 @@ def isolator_response(
     BB = np.empty((nb, N, K + 1))
     ER = np.zeros((nb, K + 1, N))
     EB = np.zeros((nb, K + 1))
-    nout = len(floors) + 2
+    nout = 3 if oscillator is not None else len(floors) + 2
     OR = np.empty((nb, nout, K + 1, N))
     OB = np.empty((nb, nout, K + 1))
     r_f, d_f = building.needed_friction_row()
+    r_f = np.concatenate([r_f, np.zeros(N - r_f.size)])
     for j, b in enumerate(mats):
         st = steppers[b]
         PHI[j] = st.phi
@@ -341,7 +384,7 @@ def isolator_response(
         if b == STICK:
             er, eb = st.taylor_rows(r_f[None, :], np.array([d_f]), order=K)
             ER[j], EB[j] = er[0], eb[0]
-        C, D = building.output_rows(b, floors)
+        C, D = _outputs(building, b, floors, oscillator, N)
         OR[j], OB[j] = st.taylor_rows(C, D, order=K)
     c = building.constants
     W = c["W"]
@@ -385,7 +428,7 @@ def isolator_response(
         n_ev = kern.nonlinear_run(
             mat_of, PHI, PP, QQ, RR, BB, ER, EB, OR, OB, K, consts, acc, m, dt / m,
             x0, branch0, X, BR, ev_row, ev_tau, ev_branch, peak, t_peak, MAX_EVENTS_PER_SUBSTEP,
-            blk_out, mub, muk, direction != "negative", direction != "positive", G, bstates,
+            blk_out, mub, muk, direction != "negative", direction != "positive", G, bstates, n,
         )  # fmt: skip
         if len(blocks) and (bstates[:, LIMIT_AT] >= 0).any():
             t = float(bstates[bstates[:, LIMIT_AT] >= 0, LIMIT_AT].min())
@@ -414,7 +457,7 @@ def isolator_response(
         if not sel.any():
             continue
         C, D = building.output_rows(b, floors)
-        vals = C @ samples[sel].T + D[:, None] * acc[sel][None, :]
+        vals = C @ samples[sel, : 2 * n + 1].T + D[:, None] * acc[sel][None, :]
         acc_out[:, sel] = vals[:-2]
         force[sel] = vals[-2]
     times = ev_row[:n_ev] * h + ev_tau[:n_ev]
@@ -432,12 +475,12 @@ def isolator_response(
         substeps=int(m),
         floors=tuple(floors),
         floor_acceleration=acc_out,
-        pfa=peak[:-2].copy(),
+        pfa=peak.copy() if oscillator is not None else peak[:-2].copy(),
         isolator_displacement=samples[:, 0].copy(),
         isolator_force=force,
-        peak_displacement=float(peak[-1]),
+        peak_displacement=float("nan") if oscillator is not None else float(peak[-1]),
         residual_displacement=float(samples[-1, 0]),
-        peak_force_ratio=float(peak[-2] / W),
+        peak_force_ratio=float("nan") if oscillator is not None else float(peak[-2] / W),
         branch=br.copy(),
         event_times=times,
         event_branches=ev_branch[:n_ev].copy(),
@@ -502,3 +545,49 @@ def slide_on_isolation(
         direction=direction,
         notes=tuple(notes),
     )
+
+
+def floor_spectrum_on_isolation(
+    building: NonlinearIsolatedBuilding,
+    acc,
+    dt: float | None = None,
+    periods=None,
+    damping=(0.05,),
+    *,
+    floor: int,
+):
+    """Floor response spectra of a building on nonlinear isolation, exact end to end.
+
+    Each oscillator ``(T, ξ)`` is integrated with the building as two more states of every
+    branch of the layer (it does not act back), so its response inside every segment between
+    the layer's events is exact and its peaks are found inside steps (:func:`isolator_response`
+    with ``oscillator=``). One building integration per oscillator: correct, not yet fast.
+
+    Returns
+    -------
+    Spectrum
+        ``psa = ω²·SD``, ``sa``, ``sv``, ``sd``, ``psv = ω·SD``; a period of 0 gives the
+        floor's true peak acceleration.
+    """
+    from floorslide.spectra.core import Spectrum, check_oscillators, damping_ratios, period_grid
+
+    acc, dt, notes = as_record(acc, dt)
+    T = period_grid([0.1, 0.5, 1.0] if periods is None else periods)
+    Z = damping_ratios(damping)
+    check_oscillators(T, Z, dt)
+    shape = (Z.size, T.size)
+    sd, sv, sa = np.zeros(shape), np.zeros(shape), np.zeros(shape)
+    pfa = None
+    for i, xi in enumerate(Z):
+        for j, t in enumerate(T):
+            if t == 0:
+                if pfa is None:
+                    pfa = isolator_response(building, acc, dt, floors=[floor]).pfa[0]
+                sa[i, j] = pfa
+                continue
+            w = 2 * np.pi / t
+            r = isolator_response(building, acc, dt, floors=[floor], oscillator=(floor, w, xi))
+            sd[i, j], sv[i, j], sa[i, j] = r.pfa
+    w = np.where(T > 0, 2 * np.pi / np.where(T > 0, T, 1.0), 0.0)
+    psa = np.where(T > 0, w * w * sd, sa)
+    return Spectrum(T, Z, psa, sa, sv, sd, w * sd, method="exact", notes=tuple(notes))

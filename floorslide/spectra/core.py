@@ -537,6 +537,24 @@ def response_spectrum(
     earthquake records. *Bull. Seismol. Soc. Am.* 59(2), 909–922.
     Van Loan (1978), Theorem 1 (the augmented matrix exponential).
     """
+    from floorslide.building.nonlinear import (
+        NonlinearIsolatedBuilding,
+        floor_spectrum_on_isolation,
+    )
+
+    if isinstance(building, NonlinearIsolatedBuilding):
+        # a building on nonlinear isolation: each oscillator integrated with it, exactly
+        if method != "exact":
+            raise ModelError(
+                f"method={method!r} is not available yet on a building on nonlinear isolation "
+                "(the exact method is)",
+                "method",
+            )
+        if floor is None:
+            raise ModelError("floor is required with building=", "floor")
+        if periods is None:
+            raise ModelError("periods are required: a list in s or {min, max, n}", "periods")
+        return floor_spectrum_on_isolation(building, acc, dt, periods, damping, floor=floor)
     fm, a, dt, notes = unwrap(acc, dt, building, floor)
     if fm is not None:
         building, floor = fm.building, fm.floor
