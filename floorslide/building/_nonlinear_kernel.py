@@ -167,6 +167,7 @@ def nonlinear_run(
     g,
     bstates,
     n,
+    hist_u,
 ):
     """Integrate the building over the record.
 
@@ -184,7 +185,8 @@ def nonlinear_run(
 
     Rigid blocks ride along (none when ``muk`` is empty): block ``i`` stands on the floor of
     output row ``blk_out[i]`` (sorted), friction ``mub``/``muk``, state ``bstates[i]`` (the
-    columns of :mod:`floorslide.contents._kernels`), advanced exactly through every segment.
+    columns of :mod:`floorslide.contents._kernels`), advanced exactly through every segment;
+    when ``hist_u`` has a row per block, their slides at the samples are written there.
 
     Just after an event the search for the next one starts ``EVENT_GAP·h`` later: a branch
     entered at a level crossing (a breakaway at exactly the friction limit, a stop at exactly
@@ -306,4 +308,7 @@ def nonlinear_run(
         for i in range(N):
             X[k + 1, i] = x[i]
         BR[k + 1] = branch
+        if hist_u.shape[0] == nblk and nblk > 0:
+            for i in range(nblk):
+                hist_u[i, k + 1] = bstates[i, 2]
     return n_ev

@@ -243,6 +243,8 @@ class IsolatorResponse:
     notes: tuple[str, ...] = ()
     block_states: np.ndarray | None = None
     """Final states of the rigid blocks asked for (columns of ``floorslide.contents._kernels``)."""
+    block_slides: np.ndarray | None = None
+    """Their slides at the samples (with ``block_histories=True``), m."""
 
     def branch_names(self) -> list[str]:
         return [BRANCH_NAMES[b] for b in self.branch]
@@ -310,6 +312,7 @@ def isolator_response(
     initial_displacement=None,
     blocks=None,
     oscillator=None,
+    block_histories: bool = False,
 ) -> IsolatorResponse:
     """Exact response of a building on nonlinear isolation to a piecewise-linear record.
 
@@ -425,10 +428,12 @@ def isolator_response(
         peak[:] = 0.0
         bstates = np.zeros((len(blocks), NCOL))
         bstates[:, LIMIT_AT] = -1.0
+        hist_u = np.zeros((len(blocks), acc.size) if block_histories else (0, 0))
         n_ev = kern.nonlinear_run(
             mat_of, PHI, PP, QQ, RR, BB, ER, EB, OR, OB, K, consts, acc, m, dt / m,
             x0, branch0, X, BR, ev_row, ev_tau, ev_branch, peak, t_peak, MAX_EVENTS_PER_SUBSTEP,
             blk_out, mub, muk, direction != "negative", direction != "positive", G, bstates, n,
+            hist_u,
         )  # fmt: skip
         if len(blocks) and (bstates[:, LIMIT_AT] >= 0).any():
             t = float(bstates[bstates[:, LIMIT_AT] >= 0, LIMIT_AT].min())
@@ -487,6 +492,7 @@ def isolator_response(
         capacity_exceeded=exceeded,
         notes=notes,
         block_states=bstates[np.argsort(order, kind="stable")] if len(blocks) else None,
+        block_slides=hist_u[np.argsort(order, kind="stable")] if block_histories else None,
     )
 
 
@@ -499,6 +505,7 @@ def slide_on_isolation(
     *,
     floor: int,
     direction: str = "both",
+    histories: bool = False,
 ):
     """Rigid blocks (Coulomb friction) on a floor of a building on nonlinear isolation, exact
     end to end: ground → nonlinear building (events located inside steps) → block (the
@@ -526,7 +533,9 @@ def slide_on_isolation(
         raise ModelError("friction coefficients must be finite and ≥ 0", "mu_k")
     mb = np.maximum(mk, ms)
     blocks = [(floor, mb[i], mk[i], direction) for i in range(mk.size)]
-    r = isolator_response(building, acc, dt, floors=[floor], blocks=blocks)
+    r = isolator_response(
+        building, acc, dt, floors=[floor], blocks=blocks, block_histories=histories
+    )
     S = r.block_states
     duration = (acc.size - 1) * dt
     return SlideResult(
@@ -543,6 +552,7 @@ def slide_on_isolation(
         duration=duration,
         method="exact",
         direction=direction,
+        u=r.block_slides,
         notes=tuple(notes),
     )
 

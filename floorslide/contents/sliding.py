@@ -222,18 +222,16 @@ def slide(
             raise ModelError("mu_k (the kinetic friction coefficient or coefficients) is required")
         if floor is None:
             raise ModelError("floor is required with building=", "floor")
-        for name, value, default in (
-            ("vertical", vertical, None),
-            ("method", method, "exact"),
-            ("histories", histories, False),
-        ):
-            if value != default:
+        for name, value, default in (("vertical", vertical, None), ("method", method, "exact")):
+            if value is not default and value != default:
                 raise ModelError(
                     f"{name}={value!r} is not available yet on a building on nonlinear "
-                    "isolation (exact sliding without vertical shaking or histories is)",
+                    "isolation (exact sliding without vertical shaking is)",
                     name,
                 )
-        return slide_on_isolation(building, acc, dt, mu_k, mu_s, floor=floor, direction=direction)
+        return slide_on_isolation(
+            building, acc, dt, mu_k, mu_s, floor=floor, direction=direction, histories=histories
+        )
     fm, a, dt, notes = unwrap(acc, dt, building, floor)
     if fm is not None:
         building, floor = fm.building, fm.floor
