@@ -50,6 +50,8 @@ def run_task(task: Task, force: bool = False) -> TaskResult:
     rec = task.record
     acc, dt = rec.acc, rec.dt
     model = task.building.build()
+    if task.building.isolator_model not in ("", "linear"):
+        return _run_nonlinear(task, model, force, t0)
     floors = np.array(task.floors, dtype=np.int64)
     # the building integrated once for this record: every floor peak, content, spectrum and
     # history below reads this motion
@@ -165,5 +167,126 @@ def run_task(task: Task, force: bool = False) -> TaskResult:
         fl = np.array(task.floors, dtype=np.int64)
         motions = motion.samples(list(task.floors)) if fl.size else np.zeros((0, acc.size))
         result.histories = Histories(dt, fl, motions, hist_slides, hist_mu, hist_deform, hist_top)
+    result.seconds = time.perf_counter() - t0
+    return result
+
+
+def _run_nonlinear(task: Task, model, force: bool, t0: float) -> TaskResult:
+    """A task on a building on nonlinear isolation (:mod:`floorslide.building.nonlinear`): the
+    building with every rigid block riding along in one exact integration, then each floor
+    spectrum (its oscillators integrated with the building)."""
+    from floorslide.building.nonlinear import floor_spectrum_on_isolation, isolator_response
+
+    rec = task.record
+    acc, dt = rec.acc, rec.dt
+    floors = list(task.floors)
+    # the floors' peaks first (the objects integrated depend on them, as on any building)
+    base = isolator_response(model, acc, dt, floors=floors)
+    pfa_of = dict(zip(floors, base.pfa, strict=True))
+    meta = _meta(task)
+    meta.update(
+        isolator=task.building.isolator_model,
+        isolator_peak_displacement=base.peak_displacement,
+        isolator_residual_displacement=base.residual_displacement,
+        isolator_peak_force_ratio=base.peak_force_ratio,
+        isolator_capacity_exceeded=int(base.capacity_exceeded),
+    )
+    result = TaskResult(
+        task.task_id, meta, np.array(floors, dtype=np.int64), np.asarray(base.pfa, dtype=float)
+    )
+    plans = []
+    blocks = []
+    for content, floor in task.contents:
+        mu = np.asarray(content.mu, dtype=float)
+        mu_s = np.asarray(content.mu_s if content.mu_s else content.mu, dtype=float)
+        modes, integrate, reasons = decide(content, pfa_of[floor], force)
+        idx = np.nonzero(integrate)[0]
+        first = len(blocks)
+        blocks += [(floor, max(mu_s[i], mu[i]), mu[i], content.direction) for i in idx]
+        plans.append((content, floor, mu, mu_s, modes, reasons, idx, first))
+    by_direction: dict[str, list[int]] = {}
+    for j, b in enumerate(blocks):
+        by_direction.setdefault(b[3], []).append(j)
+    states = [None] * len(blocks)
+    slides = [None] * len(blocks)
+    for _direction, js in by_direction.items():
+        r = isolator_response(
+            model,
+            acc,
+            dt,
+            floors=floors,
+            blocks=[blocks[j] for j in js],
+            block_histories=task.histories,
+        )
+        for k, j in enumerate(js):
+            states[j] = r.block_states[k]
+            slides[j] = None if r.block_slides is None else r.block_slides[k]
+    from floorslide.contents._kernels import DISP, PEAK_ACC, PEAK_DISP, SLIDE_TIME, SLIPS
+
+    duration = (acc.size - 1) * dt
+    hist_slides, hist_mu = {}, {}
+    for content, floor, mu, mu_s, modes, reasons, idx, first in plans:
+        n = mu.size
+        peak = np.zeros(n)
+        resid = np.zeros(n)
+        acc_obj = np.full(n, pfa_of[floor])
+        frac = np.zeros(n)
+        slips = np.zeros(n, dtype=np.int64)
+        rock = np.array([m == "rock" for m in modes])
+        for arr in (peak, resid, acc_obj, frac):
+            arr[rock] = np.nan
+        slips[rock] = -1
+        for k, i in enumerate(idx):
+            st = states[first + k]
+            peak[i], resid[i], acc_obj[i] = st[PEAK_DISP], st[DISP], st[PEAK_ACC]
+            frac[i] = st[SLIDE_TIME] / duration if duration > 0 else 0.0
+            slips[i] = int(st[SLIPS])
+        summary = modes[0] if len(set(modes)) == 1 else "mixed"
+        result.contents.append(
+            ContentResult(
+                content=content.id,
+                floor=floor,
+                model=content.model,
+                mode=summary,
+                skipped="; ".join(f"{k} ({v})" for k, v in reasons.items()),
+                mu_k=mu,
+                mu_s=mu_s,
+                peak_slide=peak,
+                residual_slide=resid,
+                peak_abs_accel=acc_obj,
+                slide_fraction=frac,
+                slip_phases=slips,
+                vertical=content.vertical,
+                peak_deformation=None,
+                peak_top_accel=None,
+                modes=np.array(modes),
+            )
+        )
+        if task.histories:
+            pick = np.unique(np.linspace(0, n - 1, min(HISTORY_MU, n)).round().astype(int))
+            key = f"{content.id}/floor_{floor}"
+            u = np.zeros((pick.size, acc.size))
+            where = {int(i): first + k for k, i in enumerate(idx)}
+            for row, i in enumerate(pick):
+                if int(i) in where and slides[where[int(i)]] is not None:
+                    u[row] = slides[where[int(i)]]
+                if rock[i]:
+                    u[row] = np.nan
+            hist_slides[key], hist_mu[key] = u, mu[pick]
+    sc = task.spectra
+    for floor in task.spectra_floors:
+        sp = floor_spectrum_on_isolation(
+            model, acc, dt, np.asarray(sc.periods), list(sc.damping), floor=floor
+        )
+        out = SpectrumResult(floor, sp.periods, sp.damping, sp.psa, sp.sa, sp.sv, sp.sd)
+        if sc.broadening:
+            wide = broaden(sp, sc.broadening)
+            out.broadening = float(sc.broadening)
+            out.psa_broadened, out.sa_broadened = wide.psa, wide.sa
+            out.sv_broadened, out.sd_broadened = wide.sv, wide.sd
+        result.spectra.append(out)
+    if task.histories:
+        fl = np.array(floors, dtype=np.int64)
+        result.histories = Histories(dt, fl, base.floor_acceleration, hist_slides, hist_mu, {}, {})
     result.seconds = time.perf_counter() - t0
     return result

@@ -125,6 +125,11 @@ class Plan:
                 if b.kind == "isolated"
                 else f", T = {b.period:g} s, ξ = {b.damping:g}"
             )
+            if b.isolator_model not in ("", "linear"):
+                params = ", ".join(f"{k} = {v:g}" for k, v in b.isolator if k != "model")
+                extra += (
+                    f", {b.isolator_model.replace('_', ' ')} ({params}; exact, events inside steps)"
+                )
             lines.append(f"  building {b.id!r}: {b.kind}, {b.stories} storeys{extra}")
         if self.scene.warnings:
             lines.append("warnings (valid, but almost surely a mistake):")
@@ -390,8 +395,14 @@ def plan(scene: Scene, *, force: bool = False, evaluate: bool = True) -> Plan:
                 continue
             floors = sorted({f for _, f in t.contents})
             model = t.building.build()
-            pk = peak_floor_acceleration(model, t.record.acc, t.record.dt, floors=floors)
-            pfa = dict(zip(floors, pk.peak, strict=True))
+            if t.building.isolator_model not in ("", "linear"):
+                from floorslide.building.nonlinear import isolator_response
+
+                peaks = isolator_response(model, t.record.acc, t.record.dt, floors=floors).pfa
+            else:
+                pk = peak_floor_acceleration(model, t.record.acc, t.record.dt, floors=floors)
+                peaks = pk.peak
+            pfa = dict(zip(floors, peaks, strict=True))
             for c, f in t.contents:
                 _modes, integrate, reasons = decide(c, pfa[f], force)
                 p.skipped.update(reasons)

@@ -52,7 +52,17 @@ PROCESSING_KEYS = {
     "scale",
 }
 FIXED_KEYS = {"id", "kind", "stories", "period", "damping", "mass", "stiffness", "profile"}
-ISOLATED_KEYS = {"id", "kind", "superstructure", "base_mass_ratio", "period", "damping"}
+ISOLATED_KEYS = {"id", "kind", "superstructure", "base_mass_ratio", "period", "damping", "isolator"}
+ISOLATOR_KEYS = {
+    "linear": {"model"},
+    "bilinear": {"model", "q_ratio", "yield_disp", "alpha", "capacity"},
+    "friction_pendulum": {"model", "mu", "mu_s", "capacity"},
+}
+"""Keys of an isolated building's ``isolator`` table per ``model`` (``period`` and ``damping``
+stay on the building: the isolation period — post-yield ``T_d`` of a bilinear layer, the
+pendulum period — and a viscous ratio)."""
+ISOLATOR_SWEEPS = {"q_ratio": "Q", "yield_disp": "Dy", "alpha": "alpha", "mu": "mu"}
+"""Isolator keys a list sweeps, and their tag in variant ids (``fps@mu=0.04``)."""
 CONTENT_KEYS = {
     "id",
     "floors",
@@ -114,6 +124,16 @@ class BuildingSpec:
     base_mass_ratio: float = math.nan
     masses: tuple[float, ...] = ()
     stiffnesses: tuple[float, ...] = ()
+    isolator: tuple[tuple[str, object], ...] = ()
+    """A nonlinear isolation layer: ``(("model", "bilinear" | "friction_pendulum"), (key,
+    value) …)``; empty for the linear isolator."""
+
+    @property
+    def isolator_model(self) -> str:
+        """``linear``, ``bilinear`` or ``friction_pendulum`` (``""`` for a fixed base)."""
+        if self.kind != "isolated":
+            return ""
+        return str(dict(self.isolator).get("model", "linear"))
 
     def _shear_building(self, period: float, damping: float):
         from floorslide.building.model import ShearBuilding
@@ -134,6 +154,14 @@ class BuildingSpec:
         if self.kind == "fixed":
             return self._shear_building(self.period, self.damping)
         sup = self._shear_building(self.super_period, self.super_damping)
+        if self.isolator_model != "linear":
+            from floorslide.building.isolators import BilinearIsolator, FrictionPendulum
+            from floorslide.building.nonlinear import NonlinearIsolatedBuilding
+
+            params = {k: v for k, v in self.isolator if k != "model"}
+            cls = BilinearIsolator if self.isolator_model == "bilinear" else FrictionPendulum
+            layer = cls(period=self.period, damping=self.damping, **params)
+            return NonlinearIsolatedBuilding(sup, self.base_mass_ratio, layer)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", ModelWarning)
             return IsolatedBuilding(sup, self.base_mass_ratio, self.period, self.damping)
@@ -325,6 +353,17 @@ def parse_scene(text: str, path: str | Path = "scene.toml") -> Scene:
     report = _report(
         doc.get("report", {}), ck, building_ids, buildings, record_ids, spectra=spectra
     )
+    nonlinear = [b.id for b in buildings if b.isolator_model not in ("", "linear")]
+    if nonlinear:
+        for i, c in enumerate(contents):
+            for key, bad in (("model", c.model == "oscillator"), ("vertical", c.vertical)):
+                if bad:
+                    ck.add(
+                        f"contents[{i}].{key}",
+                        f"{'the 2-DOF oscillator' if key == 'model' else 'vertical shaking'} "
+                        f"on a building on nonlinear isolation ({nonlinear[0]}) is not "
+                        "available yet (rigid blocks are)",
+                    )
     if not contents and spectra is None:
         ck.add("contents", "the scene asks for nothing: give [[contents]] or [spectra]")
     if ck.problems:
@@ -711,7 +750,11 @@ def _buildings(value, ck: _Checker) -> tuple[tuple[BuildingSpec, ...], set[str]]
         )
         if "period" not in b:
             ck.add(f"{w}.period", "missing: the isolation period, s")
-        damps = ck.numbers(b.get("damping", 0.1), f"{w}.damping", lo=0, hi=1, hi_open=True)
+        layers = _isolator(b.get("isolator"), f"{w}.isolator", ck)
+        nonlinear = bool(layers) and dict(layers[0][0]).get("model", "linear") != "linear"
+        damps = ck.numbers(
+            b.get("damping", 0.0 if nonlinear else 0.1), f"{w}.damping", lo=0, hi=1, hi_open=True
+        )
         if isinstance(sup, str) and sup in unknown_kind:
             continue  # the superstructure's kind is invalid: reported there
         if not isinstance(sup, str) or sup not in declared_fixed:
@@ -735,7 +778,9 @@ def _buildings(value, ck: _Checker) -> tuple[tuple[BuildingSpec, ...], set[str]]
                 )
         if not bid:
             continue
-        for R, T, z in itertools.product(ratios, periods, damps):
+        for R, T, z, (layer, layer_tags) in itertools.product(
+            ratios, periods, damps, layers or [((), [])]
+        ):
             tags = []
             if len(ratios) > 1:
                 tags.append(f"mb={_fmt(R)}")
@@ -743,6 +788,7 @@ def _buildings(value, ck: _Checker) -> tuple[tuple[BuildingSpec, ...], set[str]]
                 tags.append(f"T={_fmt(T)}")
             if len(damps) > 1:
                 tags.append(f"xi={_fmt(z)}")
+            tags += layer_tags
             vid = bid + ("@" + ",".join(tags) if tags else "")
             out.append(
                 BuildingSpec(
@@ -760,9 +806,65 @@ def _buildings(value, ck: _Checker) -> tuple[tuple[BuildingSpec, ...], set[str]]
                     R,
                     masses=s.masses,
                     stiffnesses=s.stiffnesses,
+                    isolator=layer,
                 )
             )
     return tuple(out), ids
+
+
+def _isolator(value, where: str, ck: _Checker) -> list:
+    """The variants of an ``isolator`` table: ``[(layer, tags)]`` with ``layer`` the
+    :attr:`BuildingSpec.isolator` tuple and ``tags`` the swept values' id tags; ``[]`` for the
+    linear isolator (no table, or ``model = "linear"``)."""
+    if value is None:
+        return []
+    if not isinstance(value, dict):
+        ck.add(where, 'must be a table, e.g. { model = "friction_pendulum", mu = 0.05 }')
+        return []
+    model = value.get("model")
+    if model not in ISOLATOR_KEYS:
+        ck.add(
+            f"{where}.model",
+            f"must be one of {', '.join(map(repr, ISOLATOR_KEYS))}, got {model!r}",
+        )
+        return []
+    ck.keys(value, ISOLATOR_KEYS[model], where)
+    if model == "linear":
+        return [((("model", "linear"),), [])]
+    swept: dict[str, tuple[float, ...]] = {}
+    fixed: dict[str, float] = {}
+    for key in sorted(ISOLATOR_KEYS[model] - {"model"}):
+        if key not in value:
+            continue
+        if key in ISOLATOR_SWEEPS:
+            vals = ck.numbers(value[key], f"{where}.{key}", lo=0, lo_open=key != "mu")
+            if vals:
+                swept[key] = vals
+        else:
+            got = ck.number(value[key], f"{where}.{key}", lo=0, lo_open=True)
+            if got is not None:
+                fixed[key] = got
+    need = {"bilinear": ("q_ratio",), "friction_pendulum": ("mu",)}[model]
+    for key in need:
+        if key not in value:
+            ck.add(f"{where}.{key}", "missing")
+    if model == "bilinear" and ("yield_disp" in value) == ("alpha" in value):
+        ck.add(f"{where}.yield_disp", "give one of yield_disp and alpha")
+    if model == "bilinear" and "alpha" in swept and max(swept["alpha"]) >= 1:
+        ck.add(f"{where}.alpha", "alpha = k2/k1 must be < 1")
+    if ck.problems and any(p.startswith(where) for p in ck.problems):
+        return []
+    keys = sorted(swept)
+    out = []
+    for combo in itertools.product(*(swept[k] for k in keys)):
+        layer = (("model", model), *sorted(fixed.items()), *zip(keys, combo, strict=True))
+        tags = [
+            f"{ISOLATOR_SWEEPS[k]}={_fmt(v)}"
+            for k, v in zip(keys, combo, strict=True)
+            if len(swept[k]) > 1
+        ]
+        out.append((tuple(layer), tags))
+    return out
 
 
 def _floor_spec(value, where, ck: _Checker, stories: set[int]):

@@ -1,0 +1,122 @@
+"""Scenes with buildings on nonlinear isolation (issue 14): the `isolator` table, its sweeps
+and checks, and runs whose results equal the Python API's."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import floorslide as fs
+from floorslide.building.nonlinear import floor_spectrum_on_isolation, isolator_response
+from floorslide.errors import SceneError
+from floorslide.report import design_tables
+from floorslide.run.execute import execute
+from floorslide.run.store import ResultFile
+from floorslide.scene.planner import plan
+from floorslide.scene.schema import load_scene, parse_scene
+from tests.conftest import ROOT
+
+CATALOG = (ROOT / "data" / "records" / "slammer" / "index.csv").as_posix()
+
+
+def scene(isolator: str, contents: str = "") -> str:
+    return f"""
+[scene]
+name = "nonlinear"
+
+[[records]]
+set = "s"
+catalog = "{CATALOG}"
+where = {{ station_id = ["ELC-180", "TAF-021"] }}
+
+[[buildings]]
+id = "fixed"
+kind = "fixed"
+stories = 2
+period = 0.3
+damping = 0.03
+
+[[buildings]]
+id = "iso"
+kind = "isolated"
+superstructure = "fixed"
+period = 3.0
+isolator = {isolator}
+
+[[contents]]
+id = "box"
+floors = "roof"
+mu = [0.03, 0.1]
+{contents}
+
+[spectra]
+floors = [0, 2]
+periods = [0.0, 0.2, 1.0]
+damping = [0.05]
+"""
+
+
+def test_isolator_tables_sweep_and_name_variants():
+    sc = parse_scene(scene('{ model = "friction_pendulum", mu = [0.04, 0.06], mu_s = 0.08 }'))
+    fps = [b for b in sc.buildings if b.base == "iso"]
+    assert [b.id for b in fps] == ["iso@mu=0.04", "iso@mu=0.06"]
+    assert all(b.isolator_model == "friction_pendulum" and b.damping == 0.0 for b in fps)
+    model = fps[1].build()
+    assert isinstance(model, fs.NonlinearIsolatedBuilding)
+    assert model.constants["mu"] == 0.06 and model.constants["mu_s"] == 0.08
+    assert model.isolator.T == pytest.approx(3.0)
+    sc = parse_scene(scene('{ model = "bilinear", q_ratio = [0.05, 0.08], yield_disp = 0.02 }'))
+    assert [b.id for b in sc.buildings if b.base == "iso"] == ["iso@Q=0.05", "iso@Q=0.08"]
+    linear = parse_scene(scene('{ model = "linear" }'))
+    assert isinstance(linear.buildings[-1].build(), fs.IsolatedBuilding)
+
+
+@pytest.mark.parametrize(
+    ("isolator", "contents", "message"),
+    [
+        ('{ model = "lead" }', "", "iso.*model: must be one of"),
+        ('{ model = "friction_pendulum" }', "", r"isolator\.mu: missing"),
+        ('{ model = "friction_pendulum", mu = -0.1 }', "", r"isolator\.mu: must be ≥ 0"),
+        ('{ model = "bilinear", q_ratio = 0.05 }', "", "give one of yield_disp and alpha"),
+        ('{ model = "bilinear", q_ratio = 0.05, alpha = 1.5, yield_disp = 0.01 }', "", "one of"),
+        ('{ model = "bilinear", q_ratio = 0.0, yield_disp = 0.01 }', "", r"q_ratio: must be > 0"),
+        ('{ model = "friction_pendulum", mu = 0.05, radius = 2 }', "", "unknown key"),
+        (
+            '{ model = "friction_pendulum", mu = 0.05 }',
+            'model = "oscillator"\nfrequency = 5.0',
+            r"contents\[0\]\.model: the 2-DOF oscillator on a building on nonlinear isolation",
+        ),
+    ],
+)
+def test_bad_isolators_are_refused_by_key_path(isolator, contents, message):
+    with pytest.raises(SceneError, match=message):
+        parse_scene(scene(isolator, contents))
+
+
+def test_a_run_on_a_friction_pendulum_equals_the_api(tmp_path):
+    path = tmp_path / "s.toml"
+    path.write_text(scene('{ model = "friction_pendulum", mu = 0.05 }'))
+    p = plan(load_scene(path))
+    out = tmp_path / "out.h5"
+    execute(p, str(out), workers=1)
+    tasks = {(t.meta["record"], t.meta["building"]): t for t in ResultFile(out).tasks()}
+    rec = next(r for r in p.records if r.record == "ImperialValley_1940_ELC-180")
+    t = tasks[(rec.record, "iso")]
+    model = p.scene.buildings[-1].build()
+    direct = isolator_response(model, rec.acc, rec.dt, floors=[0, 2])
+    np.testing.assert_array_equal(t.pfa, direct.pfa)
+    assert t.meta["isolator"] == "friction_pendulum"
+    assert t.meta["isolator_peak_displacement"] == direct.peak_displacement
+    assert t.meta["isolator_residual_displacement"] == direct.residual_displacement
+    (c,) = t.contents
+    s = fs.slide(rec.acc, rec.dt, [0.03, 0.1], building=model, floor=2)
+    integrated = c.skipped == ""
+    np.testing.assert_allclose(c.peak_slide, s.peak_slide, rtol=1e-12, atol=1e-15)
+    assert integrated or np.all(c.peak_slide == 0)
+    sp = floor_spectrum_on_isolation(model, rec.acc, rec.dt, [0.0, 0.2, 1.0], [0.05], floor=2)
+    roof = next(x for x in t.spectra if x.floor == 2)
+    np.testing.assert_array_equal(roof.psa, sp.psa)
+    # the history record keeps the floors' accelerations and the slides
+    assert t.histories is not None and t.histories.floor_acceleration.shape[0] == 2
+    tables = design_tables(out)
+    assert {r["building"] for r in tables["pfa"]} == {"fixed", "iso"}
