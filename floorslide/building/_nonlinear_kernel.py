@@ -133,6 +133,47 @@ def _blocks(OR, OB, x, a_s, slope, L, K, t_abs, blk_out, mub, muk, allow_pos, al
 
 
 @njit(cache=True)
+def _oscillators(OR, OB, x, a_s, slope, L, K, osc_out, osc_w, osc_xi, S, P, D, c, d, dv, da,
+                 work):  # fmt: skip
+    """Advance linear oscillators through a segment ``[0, L]`` on the floors of output rows
+    ``osc_out``: ``q'' + 2ξω q' + ω² q = −a_f(τ)`` with ``a_f`` the floor's Taylor polynomial
+    (degree ``K``), so ``q`` is the series ``Σ d_j τ^j`` with ``d_0 = q, d_1 = q'`` and
+    ``d_{k+2} = −(c_k + 2ξω(k+1) d_{k+1} + ω² d_k)/((k+1)(k+2))`` (exact to rounding at degree
+    ``D`` for ``ωL ≤ 0.5``). ``S[i] = (q, q')`` in/out; ``P[i]`` the peaks of ``|q|``, ``|q'|``
+    and of the absolute acceleration ``|ω² q + 2ξω q'|``, inside the segment."""
+    last = -1
+    for i in range(osc_w.size):
+        o = osc_out[i]
+        if o != last:
+            taylor_coefficients(OR[o], OB[o], x, a_s, slope, c)
+            last = o
+        w = osc_w[i]
+        z2w = 2.0 * osc_xi[i] * w
+        w2 = w * w
+        d[0] = S[i, 0]
+        d[1] = S[i, 1]
+        for k in range(D - 1):
+            ck = c[k] if k <= K else 0.0
+            d[k + 2] = -(ck + z2w * (k + 1) * d[k + 1] + w2 * d[k]) / ((k + 1) * (k + 2))
+        for j in range(D):
+            dv[j] = (j + 1) * d[j + 1]
+        dv[D] = 0.0
+        for j in range(D + 1):
+            da[j] = -(w2 * d[j] + z2w * dv[j])
+        v, _ = max_abs_on(d, D, L, P[i, 0], work)
+        if v > P[i, 0]:
+            P[i, 0] = v
+        v, _ = max_abs_on(dv, D - 1, L, P[i, 1], work)
+        if v > P[i, 1]:
+            P[i, 1] = v
+        v, _ = max_abs_on(da, D, L, P[i, 2], work)
+        if v > P[i, 2]:
+            P[i, 2] = v
+        S[i, 0] = poly_val(d, D, L)
+        S[i, 1] = poly_val(dv, D - 1, L)
+
+
+@njit(cache=True)
 def nonlinear_run(
     mat_of,
     PHI,
@@ -168,6 +209,12 @@ def nonlinear_run(
     bstates,
     n,
     hist_u,
+    osc_out,
+    osc_w,
+    osc_xi,
+    osc_S,
+    osc_P,
+    D,
 ):
     """Integrate the building over the record.
 
@@ -187,6 +234,8 @@ def nonlinear_run(
     output row ``blk_out[i]`` (sorted), friction ``mub``/``muk``, state ``bstates[i]`` (the
     columns of :mod:`floorslide.contents._kernels`), advanced exactly through every segment;
     when ``hist_u`` has a row per block, their slides at the samples are written there.
+    Linear oscillators ride along the same way (none when ``osc_w`` is empty; see
+    :func:`_oscillators`): the floor response spectra of the floors of rows ``osc_out``.
 
     Just after an event the search for the next one starts ``EVENT_GAP·h`` later: a branch
     entered at a level crossing (a breakaway at exactly the friction limit, a stop at exactly
@@ -210,6 +259,12 @@ def nonlinear_run(
     bwork = np.empty(4 * K + 16)
     rw = scratch(K + 3)
     st = np.empty(bstates.shape[1])
+    nosc = osc_w.size
+    co = np.empty(max(K, D) + 2)
+    d = np.empty(D + 2)
+    dv = np.empty(D + 2)
+    da = np.empty(D + 2)
+    ow = scratch(D + 1)
     x = x0.copy()
     y = np.empty(N)
     branch = branch0
@@ -246,6 +301,9 @@ def nonlinear_run(
                         _blocks(OR[m], OB[m], x, a_s, slope, L, K, t0 + s0, blk_out, mub, muk,
                                 allow_pos, allow_neg, g, bstates, st, cb, bwork, rw,
                                 BLOCK_MAX_EVENTS)  # fmt: skip
+                    if nosc > 0:
+                        _oscillators(OR[m], OB[m], x, a_s, slope, L, K, osc_out, osc_w, osc_xi,
+                                     osc_S, osc_P, D, co, d, dv, da, ow)  # fmt: skip
                     if events_here == 0:
                         foh_step(PHI[m], PP[m], QQ[m], x, aa, ab, y)
                     else:
@@ -258,6 +316,9 @@ def nonlinear_run(
                     _blocks(OR[m], OB[m], x, a_s, slope, te, K, t0 + s0, blk_out, mub, muk,
                             allow_pos, allow_neg, g, bstates, st, cb, bwork, rw,
                             BLOCK_MAX_EVENTS)  # fmt: skip
+                if nosc > 0:
+                    _oscillators(OR[m], OB[m], x, a_s, slope, te, K, osc_out, osc_w, osc_xi,
+                                 osc_S, osc_P, D, co, d, dv, da, ow)  # fmt: skip
                 _state_at(RR[m], BB[m], x, a_s, slope, te, K, y, c)
                 for i in range(N):
                     x[i] = y[i]

@@ -245,6 +245,8 @@ class IsolatorResponse:
     """Final states of the rigid blocks asked for (columns of ``floorslide.contents._kernels``)."""
     block_slides: np.ndarray | None = None
     """Their slides at the samples (with ``block_histories=True``), m."""
+    oscillator_peaks: np.ndarray | None = None
+    """Peaks ``max|q|, max|q'|, max|ω²q + 2ξωq'|`` of the oscillators asked for."""
 
     def branch_names(self) -> list[str]:
         return [BRANCH_NAMES[b] for b in self.branch]
@@ -313,6 +315,7 @@ def isolator_response(
     blocks=None,
     oscillator=None,
     block_histories: bool = False,
+    oscillators=None,
 ) -> IsolatorResponse:
     """Exact response of a building on nonlinear isolation to a piecewise-linear record.
 
@@ -337,7 +340,12 @@ def isolator_response(
         ``(floor, ω, ξ)``: a linear oscillator on `floor` riding along (it does not act
         back), integrated with the building as two more states of every branch; its peaks
         ``max|q|, max|q'|, max|ω²q + 2ξωq'|`` (SD, SV, SA) are then ``pfa`` instead of the
-        floors' (:func:`floor_spectrum_on_isolation` wraps this).
+        floors' (the augmented form; a reference for the next).
+    oscillators
+        ``[(floor, ω, ξ), …]``: linear oscillators riding along (they do not act back), each
+        advanced through every segment by the Taylor series of its exact response to the
+        floor's in-step polynomial; their peaks ``(SD, SV, SA)`` are in
+        ``oscillator_peaks`` (:func:`floor_spectrum_on_isolation` wraps this).
 
     Returns
     -------
@@ -359,6 +367,9 @@ def isolator_response(
     systems = {b: _augmented(building, b, oscillator) for b in branches}
     N = next(iter(systems.values()))[0].shape[0]
     rho = max(spectral_radius(A) for A, _ in systems.values())
+    oscillators = [] if oscillators is None else list(oscillators)
+    if oscillators:
+        rho = max(rho, max(float(o[1]) for o in oscillators))
     m = substeps_for(rho, dt)
     steppers = {b: ExactStepper.build(A, bb, dt, m) for b, (A, bb) in systems.items()}
     K = max(s.order for s in steppers.values())
@@ -412,6 +423,12 @@ def isolator_response(
     from floorslide.contents.events import SLIDE_MAX_EVENTS
 
     blocks = [] if blocks is None else list(blocks)
+    osc_out = np.array([floors.index(int(o[0])) for o in oscillators], dtype=np.int64)
+    osc_w = np.array([float(o[1]) for o in oscillators])
+    osc_xi = np.array([float(o[2]) for o in oscillators])
+    from floorslide.building.exact import taylor_degree
+
+    D = max(K, taylor_degree(float(osc_w.max()) * dt / m) if oscillators else 0) + 2
     blk_out = np.array([floors.index(int(b[0])) for b in blocks], dtype=np.int64)
     order = np.argsort(blk_out, kind="stable")
     blk_out = blk_out[order]
@@ -429,11 +446,13 @@ def isolator_response(
         bstates = np.zeros((len(blocks), NCOL))
         bstates[:, LIMIT_AT] = -1.0
         hist_u = np.zeros((len(blocks), acc.size) if block_histories else (0, 0))
+        osc_S = np.zeros((len(oscillators), 2))
+        osc_P = np.zeros((len(oscillators), 3))
         n_ev = kern.nonlinear_run(
             mat_of, PHI, PP, QQ, RR, BB, ER, EB, OR, OB, K, consts, acc, m, dt / m,
             x0, branch0, X, BR, ev_row, ev_tau, ev_branch, peak, t_peak, MAX_EVENTS_PER_SUBSTEP,
             blk_out, mub, muk, direction != "negative", direction != "positive", G, bstates, n,
-            hist_u,
+            hist_u, osc_out, osc_w, osc_xi, osc_S, osc_P, D,
         )  # fmt: skip
         if len(blocks) and (bstates[:, LIMIT_AT] >= 0).any():
             t = float(bstates[bstates[:, LIMIT_AT] >= 0, LIMIT_AT].min())
@@ -493,6 +512,7 @@ def isolator_response(
         notes=notes,
         block_states=bstates[np.argsort(order, kind="stable")] if len(blocks) else None,
         block_slides=hist_u[np.argsort(order, kind="stable")] if block_histories else None,
+        oscillator_peaks=osc_P if oscillators else None,
     )
 
 
@@ -568,10 +588,11 @@ def floor_spectrum_on_isolation(
 ):
     """Floor response spectra of a building on nonlinear isolation, exact end to end.
 
-    Each oscillator ``(T, ξ)`` is integrated with the building as two more states of every
-    branch of the layer (it does not act back), so its response inside every segment between
-    the layer's events is exact and its peaks are found inside steps (:func:`isolator_response`
-    with ``oscillator=``). One building integration per oscillator: correct, not yet fast.
+    Every oscillator ``(T, ξ)`` rides along one integration of the building (it does not act
+    back): through each segment between the layer's events it is advanced by the Taylor series
+    of its exact response to the floor's in-step polynomial, and its peaks are found inside
+    steps (:func:`isolator_response` with ``oscillators=``). The sub-steps are short for the
+    stiffest oscillator too (``ω h ≤ 0.5``).
 
     Returns
     -------
@@ -587,17 +608,12 @@ def floor_spectrum_on_isolation(
     check_oscillators(T, Z, dt)
     shape = (Z.size, T.size)
     sd, sv, sa = np.zeros(shape), np.zeros(shape), np.zeros(shape)
-    pfa = None
-    for i, xi in enumerate(Z):
-        for j, t in enumerate(T):
-            if t == 0:
-                if pfa is None:
-                    pfa = isolator_response(building, acc, dt, floors=[floor]).pfa[0]
-                sa[i, j] = pfa
-                continue
-            w = 2 * np.pi / t
-            r = isolator_response(building, acc, dt, floors=[floor], oscillator=(floor, w, xi))
-            sd[i, j], sv[i, j], sa[i, j] = r.pfa
+    cells = [(i, j) for i in range(Z.size) for j in range(T.size) if T[j] > 0]
+    oscs = [(floor, 2 * np.pi / T[j], Z[i]) for i, j in cells]
+    r = isolator_response(building, acc, dt, floors=[floor], oscillators=oscs or None)
+    for (i, j), (q, v, a) in zip(cells, r.oscillator_peaks if oscs else [], strict=True):
+        sd[i, j], sv[i, j], sa[i, j] = q, v, a
+    sa[:, T == 0] = r.pfa[0]
     w = np.where(T > 0, 2 * np.pi / np.where(T > 0, T, 1.0), 0.0)
     psa = np.where(T > 0, w * w * sd, sa)
     return Spectrum(T, Z, psa, sa, sv, sd, w * sd, method="exact", notes=tuple(notes))
