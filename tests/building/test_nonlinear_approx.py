@@ -1,5 +1,6 @@
-"""The approximate nonlinear-isolation solver (Newmark + Newton–Raphson as OpenSees) against
-the exact event-driven solver, on El Centro (first 10 s) with a 2-storey superstructure.
+"""The approximate nonlinear-isolation solvers (Newmark + Newton–Raphson as OpenSees, a smooth
+model through solve_ivp) against the exact event-driven solver, on El Centro (first 10 s) with
+a 2-storey superstructure.
 
 Measured (El Centro ELC-180 unscaled, 10 s; errors are max over samples over the exact peak):
 
@@ -10,10 +11,16 @@ Newmark, bilinear             dt/1         3.29e-3     3.86e-2       8.1e-3
 Newmark, bilinear             dt/4         2.20e-4     2.61e-3       4.9e-4
 Newmark, bilinear             dt/16        1.24e-5     1.66e-4       3.3e-5
 Newmark, pendulum (0.25 mm)   dt/16        1.89e-1     (rings)       1.5e-1
+smooth, bilinear              ν = 5        8.2e-2      1.0e-1        3.3e-2
+smooth, bilinear              ν = 20       1.4e-2      2.6e-2        3.6e-3
+smooth, bilinear              ν = 50       2.6e-3      9.2e-3        6.2e-4
+smooth, pendulum              eps = 1e-2   1.6e-1      —             1.7e-1
+smooth, pendulum              eps = 1e-3   2.1e-2      —             8.5e-3
+smooth, pendulum              eps = 1e-4   2.7e-3      —             1.3e-3
 ============================  ===========  ==========  ============  =========
 
-The pendulum's floor accelerations jump at a stop (the friction force changes at once); an
-elastic friction spreads the jump over a short time, so their sample-wise error
+The pendulum's floor accelerations jump at a stop (the friction force changes at once); any
+smooth or elastic friction spreads the jump over a short time, so their sample-wise error
 is O(1) at a sample just after a stop, whatever the setting — the PFA is compared instead.
 """
 
@@ -28,6 +35,7 @@ from floorslide.building.nonlinear import NonlinearIsolatedBuilding, isolator_re
 from floorslide.building.nonlinear_approx import (
     ApproxIsolatorResponse,
     newmark_isolator_response,
+    smooth_isolator_response,
 )
 from floorslide.errors import ModelError
 from tests.conftest import SLAMMER, G
@@ -209,3 +217,62 @@ def test_newmark_floors_and_arguments(cases, elc):
     )
     with pytest.raises(ModelError, match="one friction coefficient"):
         newmark_isolator_response(static, elc[:10], DT)
+    with pytest.raises(ModelError, match="one friction coefficient"):
+        smooth_isolator_response(static, elc[:10], DT)
+
+
+# --------------------------------------------------------------------------------------------
+# smooth model
+# --------------------------------------------------------------------------------------------
+
+
+def test_smooth_bilinear_approaches_the_exact_loop_as_it_sharpens(cases, elc):
+    """Wen's hysteresis with the exact layer's k1, k2, Q: its error falls as the exponent grows
+    (measured u 8.2e-2, 1.4e-2, 2.6e-3 and floor acc. 1.0e-1, 2.6e-2, 9.2e-3 at ν = 5, 20, 50)."""
+    b, exact = cases["bilinear"]
+    errs = [errors(smooth_isolator_response(b, elc, DT, sharpness=nu), exact) for nu in (5, 20, 50)]
+    for key in ("u", "a", "pfa", "peak"):
+        e = [x[key] for x in errs]
+        assert e[0] > 2 * e[1] > 4 * e[2], (key, e)
+    assert errs[-1]["u"] < 8e-3 and errs[-1]["a"] < 3e-2 and errs[-1]["pfa"] < 2e-3
+
+
+def test_smooth_pendulum_approaches_the_exact_one_as_eps_shrinks(cases, elc):
+    """tanh friction: the isolator displacement's error falls about as eps (measured 1.6e-1,
+    2.1e-2, 2.7e-3 at 1e-2, 1e-3, 1e-4 m/s), and the PFA's (1.7e-1, 8.5e-3, 1.3e-3)."""
+    b, exact = cases["pendulum"]
+    runs = [smooth_isolator_response(b, elc, DT, eps=e) for e in (1e-2, 1e-3, 1e-4)]
+    errs = [errors(r, exact) for r in runs]
+    for key in ("u", "pfa", "peak", "residual"):
+        e = [x[key] for x in errs]
+        assert e[0] > 3 * e[1] > 9 * e[2], (key, e)
+    assert errs[-1]["u"] < 8e-3 and errs[-1]["pfa"] < 4e-3
+    # away from the jumps at stops the floor accelerations agree too
+    d = np.abs(runs[-1].floor_acceleration - exact.floor_acceleration).max(axis=0)
+    assert np.quantile(d, 0.99) < 0.01 * np.abs(exact.floor_acceleration).max()
+
+
+def test_smooth_frictionless_pendulum_is_the_linear_isolator(elc):
+    sup = superstructure()
+    b = NonlinearIsolatedBuilding(sup, 1.0, FrictionPendulum(mu=0.0, period=3.0))
+    lin = fs.IsolatedBuilding(sup, base_mass_ratio=1.0, period=3.0, damping=0.0)
+    ref = fs.floor_motions(lin, elc[:300], DT)
+    r = smooth_isolator_response(b, elc[:300], DT, rtol=1e-10)
+    assert np.abs(r.floor_acceleration - ref).max() < 1e-6 * np.abs(ref).max()
+
+
+def test_smooth_methods_agree_and_arguments(cases, elc):
+    b, _ = cases["bilinear"]
+    a = smooth_isolator_response(b, elc[:150], DT, method="LSODA", rtol=1e-9)
+    r = smooth_isolator_response(b, elc[:150], DT, method="Radau", rtol=1e-9, floors=[1])
+    assert r.floors == (1,)
+    scale = np.abs(a.floor_acceleration).max()
+    assert np.abs(r.floor_acceleration[0] - a.floor_acceleration[1]).max() < 1e-5 * scale
+    assert r.peak_displacement >= np.abs(r.isolator_displacement).max()
+    with pytest.raises(ModelError):
+        smooth_isolator_response(b, elc[:10], DT, method="Euler")
+    with pytest.raises(ModelError):
+        smooth_isolator_response(b, elc[:10], DT, sharpness=0.5)
+    p, _ = cases["pendulum"]
+    with pytest.raises(ModelError):
+        smooth_isolator_response(p, elc[:10], DT, eps=0.0)
