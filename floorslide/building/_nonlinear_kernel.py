@@ -20,12 +20,16 @@ import numpy as np
 from floorslide._jit import njit
 from floorslide.building._instep import foh_step, substep_inputs, taylor_coefficients
 from floorslide.contents._kernels import _general
+from floorslide.contents._oscillator_kernel import _advance_part
 from floorslide.numerics.polynomial import first_rise, max_abs_on, poly_val, scratch
 
 # branch codes: as floorslide.building.isolators
 LINEAR, ELASTIC, PLASTIC_POS, PLASTIC_NEG, SLIP_POS, SLIP_NEG, STICK = 0, 1, 2, 3, 4, 5, 6
 NO_EVENT = 1e300
 BLOCK_MAX_EVENTS = 10000
+FLEX_MAX_EVENTS = 1000
+"""Most friction events of a block / a 2-DOF oscillator in one segment or part (as
+``floorslide.contents.events``)."""
 """Most friction events of a block in one segment (as ``floorslide.contents.events``)."""
 EVENT_GAP = 1e-12
 """Shortest time between two events, in sub-steps (see :func:`nonlinear_run`)."""
@@ -174,6 +178,26 @@ def _oscillators(OR, OB, x, a_s, slope, L, K, osc_out, osc_w, osc_xi, S, P, D, c
 
 
 @njit(cache=True)
+def _flexible(OR, OB, x, a_s, slope, L, K, t_abs, o2, w2, xi2, r2, g, mub2, muk2, S2, ho2, K2,
+              c2, cs, Y, poly, y, pk, work2):  # fmt: skip
+    """Advance 2-DOF sliding oscillators (one kind, many friction pairs) through a segment
+    ``[0, L]`` on the floor of output row ``o2``: in parts no longer than ``ho2`` (where the
+    oscillator's phases have ``ρ·h ≤ 0.5``), each by the 2-DOF kernel's own exact event-driven
+    step (:func:`floorslide.contents._oscillator_kernel._advance_part`)."""
+    kr = OR.shape[1] - 1
+    for j in range(K2 + 1):
+        c2[j] = 0.0
+    taylor_coefficients(OR[o2], OB[o2], x, a_s, slope, c2[: kr + 1])
+    parts = max(1, int(np.ceil(L / ho2 - 1e-12)))
+    hp = L / parts
+    for sp in range(parts):
+        base = sp * hp
+        for o in range(muk2.size):
+            _advance_part(c2, K2, base, hp, o, w2, xi2, r2, g, mub2, muk2, S2, t_abs + base,
+                          FLEX_MAX_EVENTS, cs, Y, poly, y, pk, work2)  # fmt: skip
+
+
+@njit(cache=True)
 def nonlinear_run(
     mat_of,
     PHI,
@@ -215,6 +239,10 @@ def nonlinear_run(
     osc_S,
     osc_P,
     D,
+    flex,
+    mub2,
+    muk2,
+    S2,
 ):
     """Integrate the building over the record.
 
@@ -236,6 +264,9 @@ def nonlinear_run(
     when ``hist_u`` has a row per block, their slides at the samples are written there.
     Linear oscillators ride along the same way (none when ``osc_w`` is empty; see
     :func:`_oscillators`): the floor response spectra of the floors of rows ``osc_out``.
+    2-DOF sliding oscillators too (none when ``muk2`` is empty): ``flex = [row, ω, ξ, r,
+    part length, degree]``, friction ``mub2``/``muk2``, states ``S2`` (the columns of
+    :mod:`floorslide.contents._oscillator_kernel`).
 
     Just after an event the search for the next one starts ``EVENT_GAP·h`` later: a branch
     entered at a level crossing (a breakaway at exactly the friction limit, a stop at exactly
@@ -265,6 +296,16 @@ def nonlinear_run(
     dv = np.empty(D + 2)
     da = np.empty(D + 2)
     ow = scratch(D + 1)
+    n2 = muk2.size
+    o2 = int(flex[0])
+    K2 = int(flex[5])
+    c2 = np.zeros(K2 + 1)
+    cs2 = np.zeros(K2 + 1)
+    Y2 = np.zeros((4, K2 + 1))
+    poly2 = np.zeros(K2 + 1)
+    y2 = np.zeros(4)
+    pk2 = np.zeros(4)
+    work2 = scratch(K2 + 1)
     x = x0.copy()
     y = np.empty(N)
     branch = branch0
@@ -304,6 +345,10 @@ def nonlinear_run(
                     if nosc > 0:
                         _oscillators(OR[m], OB[m], x, a_s, slope, L, K, osc_out, osc_w, osc_xi,
                                      osc_S, osc_P, D, co, d, dv, da, ow)  # fmt: skip
+                    if n2 > 0:
+                        _flexible(OR[m], OB[m], x, a_s, slope, L, K, t0 + s0, o2, flex[1],
+                                  flex[2], flex[3], g, mub2, muk2, S2, flex[4], K2, c2, cs2, Y2,
+                                  poly2, y2, pk2, work2)  # fmt: skip
                     if events_here == 0:
                         foh_step(PHI[m], PP[m], QQ[m], x, aa, ab, y)
                     else:
@@ -319,6 +364,10 @@ def nonlinear_run(
                 if nosc > 0:
                     _oscillators(OR[m], OB[m], x, a_s, slope, te, K, osc_out, osc_w, osc_xi,
                                  osc_S, osc_P, D, co, d, dv, da, ow)  # fmt: skip
+                if n2 > 0:
+                    _flexible(OR[m], OB[m], x, a_s, slope, te, K, t0 + s0, o2, flex[1],
+                              flex[2], flex[3], g, mub2, muk2, S2, flex[4], K2, c2, cs2, Y2,
+                              poly2, y2, pk2, work2)  # fmt: skip
                 _state_at(RR[m], BB[m], x, a_s, slope, te, K, y, c)
                 for i in range(N):
                     x[i] = y[i]

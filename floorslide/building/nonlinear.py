@@ -247,6 +247,9 @@ class IsolatorResponse:
     """Their slides at the samples (with ``block_histories=True``), m."""
     oscillator_peaks: np.ndarray | None = None
     """Peaks ``max|q|, max|q'|, max|ω²q + 2ξωq'|`` of the oscillators asked for."""
+    flexible_states: np.ndarray | None = None
+    """Final states of the 2-DOF sliding oscillators asked for (columns of
+    ``floorslide.contents._oscillator_kernel``)."""
 
     def branch_names(self) -> list[str]:
         return [BRANCH_NAMES[b] for b in self.branch]
@@ -316,6 +319,7 @@ def isolator_response(
     oscillator=None,
     block_histories: bool = False,
     oscillators=None,
+    flexible=None,
 ) -> IsolatorResponse:
     """Exact response of a building on nonlinear isolation to a piecewise-linear record.
 
@@ -346,6 +350,11 @@ def isolator_response(
         advanced through every segment by the Taylor series of its exact response to the
         floor's in-step polynomial; their peaks ``(SD, SV, SA)`` are in
         ``oscillator_peaks`` (:func:`floor_spectrum_on_isolation` wraps this).
+    flexible
+        ``(floor, f, ξ, r, mu_b, mu_k)``: 2-DOF sliding oscillators (frequency ``f`` Hz, damping
+        ξ, mass ratio ``r``; breakaway and kinetic friction arrays) riding along, advanced by
+        the 2-DOF kernel's exact step (:func:`slide_oscillator_on_isolation` wraps this);
+        final states in ``flexible_states``.
 
     Returns
     -------
@@ -371,6 +380,14 @@ def isolator_response(
     if oscillators:
         rho = max(rho, max(float(o[1]) for o in oscillators))
     m = substeps_for(rho, dt)
+    from floorslide.contents.oscillator import phase_radius
+
+    if flexible is not None:
+        f_floor, f_hz, f_xi, f_r, f_mub, f_muk = flexible
+        w2 = 2 * np.pi * float(f_hz)
+        rho_obj = phase_radius(w2, float(f_xi), float(f_r))
+        h_b = dt / m
+        ho2 = h_b / substeps_for(rho_obj, h_b)
     steppers = {b: ExactStepper.build(A, bb, dt, m) for b, (A, bb) in systems.items()}
     K = max(s.order for s in steppers.values())
     mats = sorted(set(branches))
@@ -429,6 +446,17 @@ def isolator_response(
     from floorslide.building.exact import taylor_degree
 
     D = max(K, taylor_degree(float(osc_w.max()) * dt / m) if oscillators else 0) + 2
+    from floorslide.contents._oscillator_kernel import O_LIMIT_AT, O_NCOL
+
+    if flexible is not None:
+        K2 = max(K, taylor_degree(max(rho, rho_obj) * ho2))
+        flex = np.array([floors.index(int(f_floor)), w2, float(f_xi), float(f_r), ho2, K2])
+        mub2 = np.ascontiguousarray(f_mub, dtype=float)
+        muk2 = np.ascontiguousarray(f_muk, dtype=float)
+    else:
+        flex = np.array([0.0, 1.0, 0.0, 1.0, 1.0, 3.0])
+        mub2 = np.zeros(0)
+        muk2 = np.zeros(0)
     blk_out = np.array([floors.index(int(b[0])) for b in blocks], dtype=np.int64)
     order = np.argsort(blk_out, kind="stable")
     blk_out = blk_out[order]
@@ -448,11 +476,13 @@ def isolator_response(
         hist_u = np.zeros((len(blocks), acc.size) if block_histories else (0, 0))
         osc_S = np.zeros((len(oscillators), 2))
         osc_P = np.zeros((len(oscillators), 3))
+        S2 = np.zeros((muk2.size, O_NCOL))
+        S2[:, O_LIMIT_AT] = -1.0
         n_ev = kern.nonlinear_run(
             mat_of, PHI, PP, QQ, RR, BB, ER, EB, OR, OB, K, consts, acc, m, dt / m,
             x0, branch0, X, BR, ev_row, ev_tau, ev_branch, peak, t_peak, MAX_EVENTS_PER_SUBSTEP,
             blk_out, mub, muk, direction != "negative", direction != "positive", G, bstates, n,
-            hist_u, osc_out, osc_w, osc_xi, osc_S, osc_P, D,
+            hist_u, osc_out, osc_w, osc_xi, osc_S, osc_P, D, flex, mub2, muk2, S2,
         )  # fmt: skip
         if len(blocks) and (bstates[:, LIMIT_AT] >= 0).any():
             t = float(bstates[bstates[:, LIMIT_AT] >= 0, LIMIT_AT].min())
@@ -513,6 +543,7 @@ def isolator_response(
         block_states=bstates[np.argsort(order, kind="stable")] if len(blocks) else None,
         block_slides=hist_u[np.argsort(order, kind="stable")] if block_histories else None,
         oscillator_peaks=osc_P if oscillators else None,
+        flexible_states=S2 if flexible is not None else None,
     )
 
 
@@ -617,3 +648,67 @@ def floor_spectrum_on_isolation(
     w = np.where(T > 0, 2 * np.pi / np.where(T > 0, T, 1.0), 0.0)
     psa = np.where(T > 0, w * w * sd, sa)
     return Spectrum(T, Z, psa, sa, sv, sd, w * sd, method="exact", notes=tuple(notes))
+
+
+def slide_oscillator_on_isolation(
+    building: NonlinearIsolatedBuilding,
+    acc,
+    dt: float | None = None,
+    mu=None,
+    frequency: float | None = None,
+    damping: float = 0.02,
+    mass_ratio: float = 1.0,
+    *,
+    mu_s=None,
+    floor: int,
+):
+    """2-DOF sliding oscillators (flexible equipment) on a floor of a building on nonlinear
+    isolation, exact end to end: the 2-DOF kernel's event-driven step runs on the floor's exact
+    in-step acceleration, segment by segment, inside the building's integration.
+
+    Parameters as :func:`floorslide.slide_oscillator`.
+
+    Returns
+    -------
+    OscillatorResult
+    """
+    from floorslide.contents import _oscillator_kernel as cols
+    from floorslide.contents.events import OSCILLATOR_MAX_EVENTS
+    from floorslide.contents.oscillator import OscillatorResult
+
+    acc, dt, notes = as_record(acc, dt)
+    mk = np.atleast_1d(np.asarray(mu, dtype=float))
+    ms = mk.copy() if mu_s is None else np.broadcast_to(np.asarray(mu_s, dtype=float), mk.shape)
+    if mk.size == 0 or np.any(~np.isfinite(mk)) or np.any(mk < 0) or np.any(ms < 0):
+        raise ModelError("friction coefficients must be finite and ≥ 0", "mu")
+    f = float(frequency) if frequency is not None else float("nan")
+    if not (np.isfinite(f) and f > 0):
+        raise ModelError(f"frequency must be > 0 Hz, got {frequency}", "frequency")
+    mb = np.maximum(mk, ms)
+    r = isolator_response(
+        building,
+        acc,
+        dt,
+        floors=[floor],
+        flexible=(floor, f, float(damping), float(mass_ratio), mb, mk),
+    )
+    S = r.flexible_states
+    if (S[:, cols.O_LIMIT_AT] >= 0).any():
+        raise SolverLimitError(
+            f"more than {OSCILLATOR_MAX_EVENTS} friction events of a 2-DOF oscillator inside one "
+            "part: stick-slip chatter the exact solver cannot resolve",
+            "slide_oscillator",
+        )
+    duration = (acc.size - 1) * dt
+    return OscillatorResult(
+        mu_k=mk,
+        mu_s=np.asarray(ms, dtype=float).copy(),
+        peak_slide=S[:, cols.O_PEAK_U].copy(),
+        residual_slide=S[:, cols.O_U].copy(),
+        peak_deformation=S[:, cols.O_PEAK_Z].copy(),
+        peak_top_accel=S[:, cols.O_PEAK_TOP].copy(),
+        peak_base_accel=S[:, cols.O_PEAK_BASE].copy(),
+        slide_fraction=S[:, cols.O_SLIDE_TIME] / duration if duration > 0 else np.zeros(mk.size),
+        slip_phases=S[:, cols.O_SLIPS].astype(int),
+        notes=tuple(notes),
+    )

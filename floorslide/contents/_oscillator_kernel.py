@@ -95,6 +95,117 @@ def _update_peak(poly, K, lo, hi, peaks, idx, work):
 
 
 @njit(cache=True)
+def _advance_part(c, K, base, ho, o, w, xi, r, g, mub, muk, states, t_part, max_events, cs, Y,
+                  poly, y, pk, work):  # fmt: skip
+    """Advance oscillator ``o`` through one part ``[base, base + ho]`` of a piece on which the
+    floor's absolute acceleration is the polynomial ``c`` (degree ``K``, origin at the piece's
+    start), by events: the phase's Taylor series, breakaway, stop and reversal as first
+    crossings, peaks inside. ``t_part``: the part's start in the record (for the event limit).
+    Shared by :func:`oscillator_kernel` and the nonlinear-isolation kernel."""
+    c2 = 2.0 * xi * w
+    w2 = w * w
+    mode = int(states[o, O_MODE])
+    for i in range(4):
+        y[i] = states[o, O_U + i]
+    for i in range(4):
+        pk[i] = states[o, O_PEAK_U + i]
+    fb = mub[o] * (1.0 + r) * g
+    fk = muk[o]
+    tau = 0.0
+    guard = 0
+    start = False
+    while tau < ho:
+        if guard >= max_events:
+            if states[o, O_LIMIT_AT] < 0.0:
+                states[o, O_LIMIT_AT] = t_part
+            break
+        guard += 1
+        _shift(c, K, base + tau, cs)
+        _phase_series(y, mode, cs, K, w, xi, r, fk * g, start, Y)
+        start = False
+        span = ho - tau
+        t_ev = -1.0
+        new_mode = mode
+        if mode == 0:
+            # F(σ) = r a_f − 2ξw z' − w² z; beyond ±fb already when the stick phase
+            # begins (a record that starts mid-motion): the base moves at once
+            f_now = r * cs[0] - c2 * Y[3, 0] - w2 * Y[2, 0]
+            t_up = -1.0
+            t_lo = -1.0
+            if f_now > fb:
+                t_up = 0.0
+            elif f_now < -fb:
+                t_lo = 0.0
+            else:
+                for j in range(K + 1):
+                    poly[j] = r * cs[j] - c2 * Y[3, j] - w2 * Y[2, j]
+                poly[0] -= fb
+                t_up = first_rise(poly, K, 0.0, span, 0.0, work)
+                for j in range(K + 1):
+                    poly[j] = -(r * cs[j] - c2 * Y[3, j] - w2 * Y[2, j])
+                poly[0] -= fb
+                t_lo = first_rise(poly, K, 0.0, span, 0.0, work)
+            if t_up >= 0.0 and (t_lo < 0.0 or t_up <= t_lo):
+                t_ev, new_mode = t_up, -1
+            elif t_lo >= 0.0:
+                t_ev, new_mode = t_lo, 1
+        else:
+            sgn = float(mode)
+            for j in range(K + 1):
+                poly[j] = -sgn * Y[1, j]
+            t_ev = first_rise(poly, K, 0.0, span, 0.0, work)
+        t_end = span if t_ev < 0.0 else t_ev
+        # peaks on [0, t_end]
+        for j in range(K + 1):
+            poly[j] = Y[0, j]
+        _update_peak(poly, K, 0.0, t_end, pk, 0, work)
+        for j in range(K + 1):
+            poly[j] = Y[2, j]
+        _update_peak(poly, K, 0.0, t_end, pk, 1, work)
+        for j in range(K + 1):
+            poly[j] = -(c2 * Y[3, j] + w2 * Y[2, j])
+        _update_peak(poly, K, 0.0, t_end, pk, 2, work)
+        if mode == 0 and t_end > 0.0:
+            for j in range(K + 1):
+                poly[j] = cs[j]
+            _update_peak(poly, K, 0.0, t_end, pk, 3, work)
+        elif mode != 0:
+            sgn = float(mode)
+            for j in range(K + 1):
+                poly[j] = (c2 * Y[3, j] + w2 * Y[2, j]) / r
+            poly[0] -= sgn * fk * g * (1.0 + r) / r
+            _update_peak(poly, K, 0.0, t_end, pk, 3, work)
+            states[o, O_SLIDE_TIME] += t_end
+        for i in range(4):
+            y[i] = poly_val(Y[i], K, t_end)
+        tau += t_end
+        if t_ev < 0.0:
+            break
+        if mode != 0:
+            y[1] = 0.0
+            # stop: stick, or reverse at once if friction cannot hold the base
+            fnow = r * poly_val(cs, K, t_end) - c2 * y[3] - w2 * y[2]
+            if fnow > fb:
+                new_mode = -1
+            elif fnow < -fb:
+                new_mode = 1
+            else:
+                new_mode = 0
+        else:
+            y[1] = 0.0
+        if new_mode != 0:
+            states[o, O_SLIPS] += 1
+            start = True
+        mode = new_mode
+    states[o, O_MODE] = mode
+    for i in range(4):
+        states[o, O_U + i] = y[i]
+    for i in range(4):
+        states[o, O_PEAK_U + i] = pk[i]
+    return mode
+
+
+@njit(cache=True)
 def oscillator_kernel(
     X,
     k0,
@@ -154,104 +265,10 @@ def oscillator_kernel(
             for so in range(m_o):
                 base = so * ho
                 for o in range(nobj):
-                    mode = int(states[o, O_MODE])
-                    for i in range(4):
-                        y[i] = states[o, O_U + i]
-                    for i in range(4):
-                        pk[i] = states[o, O_PEAK_U + i]
-                    fb = mub[o] * (1.0 + r) * g
+                    t_part = (k * substeps + sub) * h + base
+                    mode = _advance_part(c, K, base, ho, o, w, xi, r, g, mub, muk, states,
+                                         t_part, max_events, cs, Y, poly, y, pk, work)  # fmt: skip
                     fk = muk[o]
-                    tau = 0.0
-                    guard = 0
-                    start = False
-                    while tau < ho:
-                        if guard >= max_events:
-                            if states[o, O_LIMIT_AT] < 0.0:
-                                states[o, O_LIMIT_AT] = (k * substeps + sub) * h + base
-                            break
-                        guard += 1
-                        _shift(c, K, base + tau, cs)
-                        _phase_series(y, mode, cs, K, w, xi, r, fk * g, start, Y)
-                        start = False
-                        span = ho - tau
-                        t_ev = -1.0
-                        new_mode = mode
-                        if mode == 0:
-                            # F(σ) = r a_f − 2ξw z' − w² z; beyond ±fb already when the stick phase
-                            # begins (a record that starts mid-motion): the base moves at once
-                            f_now = r * cs[0] - c2 * Y[3, 0] - w2 * Y[2, 0]
-                            t_up = -1.0
-                            t_lo = -1.0
-                            if f_now > fb:
-                                t_up = 0.0
-                            elif f_now < -fb:
-                                t_lo = 0.0
-                            else:
-                                for j in range(K + 1):
-                                    poly[j] = r * cs[j] - c2 * Y[3, j] - w2 * Y[2, j]
-                                poly[0] -= fb
-                                t_up = first_rise(poly, K, 0.0, span, 0.0, work)
-                                for j in range(K + 1):
-                                    poly[j] = -(r * cs[j] - c2 * Y[3, j] - w2 * Y[2, j])
-                                poly[0] -= fb
-                                t_lo = first_rise(poly, K, 0.0, span, 0.0, work)
-                            if t_up >= 0.0 and (t_lo < 0.0 or t_up <= t_lo):
-                                t_ev, new_mode = t_up, -1
-                            elif t_lo >= 0.0:
-                                t_ev, new_mode = t_lo, 1
-                        else:
-                            sgn = float(mode)
-                            for j in range(K + 1):
-                                poly[j] = -sgn * Y[1, j]
-                            t_ev = first_rise(poly, K, 0.0, span, 0.0, work)
-                        t_end = span if t_ev < 0.0 else t_ev
-                        # peaks on [0, t_end]
-                        for j in range(K + 1):
-                            poly[j] = Y[0, j]
-                        _update_peak(poly, K, 0.0, t_end, pk, 0, work)
-                        for j in range(K + 1):
-                            poly[j] = Y[2, j]
-                        _update_peak(poly, K, 0.0, t_end, pk, 1, work)
-                        for j in range(K + 1):
-                            poly[j] = -(c2 * Y[3, j] + w2 * Y[2, j])
-                        _update_peak(poly, K, 0.0, t_end, pk, 2, work)
-                        if mode == 0 and t_end > 0.0:
-                            for j in range(K + 1):
-                                poly[j] = cs[j]
-                            _update_peak(poly, K, 0.0, t_end, pk, 3, work)
-                        elif mode != 0:
-                            sgn = float(mode)
-                            for j in range(K + 1):
-                                poly[j] = (c2 * Y[3, j] + w2 * Y[2, j]) / r
-                            poly[0] -= sgn * fk * g * (1.0 + r) / r
-                            _update_peak(poly, K, 0.0, t_end, pk, 3, work)
-                            states[o, O_SLIDE_TIME] += t_end
-                        for i in range(4):
-                            y[i] = poly_val(Y[i], K, t_end)
-                        tau += t_end
-                        if t_ev < 0.0:
-                            break
-                        if mode != 0:
-                            y[1] = 0.0
-                            # stop: stick, or reverse at once if friction cannot hold the base
-                            fnow = r * poly_val(cs, K, t_end) - c2 * y[3] - w2 * y[2]
-                            if fnow > fb:
-                                new_mode = -1
-                            elif fnow < -fb:
-                                new_mode = 1
-                            else:
-                                new_mode = 0
-                        else:
-                            y[1] = 0.0
-                        if new_mode != 0:
-                            states[o, O_SLIPS] += 1
-                            start = True
-                        mode = new_mode
-                    states[o, O_MODE] = mode
-                    for i in range(4):
-                        states[o, O_U + i] = y[i]
-                    for i in range(4):
-                        states[o, O_PEAK_U + i] = pk[i]
                     if want_hist and sub == substeps - 1 and so == m_o - 1:
                         af_end = poly_val(c, K, h)
                         q_ = c2 * y[3] + w2 * y[2]

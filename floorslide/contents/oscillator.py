@@ -145,6 +145,27 @@ def slide_oscillator(
     Brochard, D., Gantenbein, F. (1989). Seismic response of a sliding structure. *Transactions
     SMiRT 10*, vol. K2, 1147–1152.
     """
+    from floorslide.building.nonlinear import (
+        NonlinearIsolatedBuilding,
+        slide_oscillator_on_isolation,
+    )
+
+    if isinstance(building, NonlinearIsolatedBuilding):
+        # a building on nonlinear isolation: its own exact event-driven chain
+        if method != "exact" or histories:
+            raise ModelError(
+                "only the exact method without histories is available yet on a building on "
+                "nonlinear isolation",
+                "method",
+            )
+        if floor is None:
+            raise ModelError("floor is required with building=", "floor")
+        if mu is None or frequency is None:
+            missing = "mu" if mu is None else "frequency"
+            raise ModelError(f"slide_oscillator needs {missing}", missing)
+        return slide_oscillator_on_isolation(
+            building, acc, dt, mu, frequency, damping, mass_ratio, mu_s=mu_s, floor=floor
+        )
     fm, a, dt, notes = unwrap(acc, dt, building, floor)
     if fm is not None:
         building, floor = fm.building, fm.floor

@@ -175,7 +175,11 @@ def _run_nonlinear(task: Task, model, force: bool, t0: float) -> TaskResult:
     """A task on a building on nonlinear isolation (:mod:`floorslide.building.nonlinear`): the
     building with every rigid block riding along in one exact integration, then each floor
     spectrum (its oscillators integrated with the building)."""
-    from floorslide.building.nonlinear import floor_spectrum_on_isolation, isolator_response
+    from floorslide.building.nonlinear import (
+        floor_spectrum_on_isolation,
+        isolator_response,
+        slide_oscillator_on_isolation,
+    )
 
     rec = task.record
     acc, dt = rec.acc, rec.dt
@@ -196,11 +200,20 @@ def _run_nonlinear(task: Task, model, force: bool, t0: float) -> TaskResult:
     )
     plans = []
     blocks = []
+    flex_results = {}
     for content, floor in task.contents:
         mu = np.asarray(content.mu, dtype=float)
         mu_s = np.asarray(content.mu_s if content.mu_s else content.mu, dtype=float)
         modes, integrate, reasons = decide(content, pfa_of[floor], force)
         idx = np.nonzero(integrate)[0]
+        if content.model == "oscillator":
+            if idx.size:
+                flex_results[(content.id, floor)] = slide_oscillator_on_isolation(
+                    model, acc, dt, mu[idx], content.frequency, content.damping,
+                    content.mass_ratio, mu_s=mu_s[idx], floor=floor,
+                )  # fmt: skip
+            plans.append((content, floor, mu, mu_s, modes, reasons, idx, -1))
+            continue
         first = len(blocks)
         blocks += [(floor, max(mu_s[i], mu[i]), mu[i], content.direction) for i in idx]
         plans.append((content, floor, mu, mu_s, modes, reasons, idx, first))
@@ -236,7 +249,20 @@ def _run_nonlinear(task: Task, model, force: bool, t0: float) -> TaskResult:
         for arr in (peak, resid, acc_obj, frac):
             arr[rock] = np.nan
         slips[rock] = -1
-        for k, i in enumerate(idx):
+        deform = top = None
+        if first < 0:  # 2-DOF oscillators
+            deform = np.full(n, np.nan)
+            top = np.full(n, np.nan)
+            fr = flex_results.get((content.id, floor))
+            if fr is not None:
+                peak[idx], resid[idx] = fr.peak_slide, fr.residual_slide
+                acc_obj[idx], frac[idx], slips[idx] = (
+                    fr.peak_base_accel,
+                    fr.slide_fraction,
+                    fr.slip_phases,
+                )
+                deform[idx], top[idx] = fr.peak_deformation, fr.peak_top_accel
+        for k, i in enumerate(idx if first >= 0 else ()):
             st = states[first + k]
             peak[i], resid[i], acc_obj[i] = st[PEAK_DISP], st[DISP], st[PEAK_ACC]
             frac[i] = st[SLIDE_TIME] / duration if duration > 0 else 0.0
@@ -257,12 +283,12 @@ def _run_nonlinear(task: Task, model, force: bool, t0: float) -> TaskResult:
                 slide_fraction=frac,
                 slip_phases=slips,
                 vertical=content.vertical,
-                peak_deformation=None,
-                peak_top_accel=None,
+                peak_deformation=deform,
+                peak_top_accel=top,
                 modes=np.array(modes),
             )
         )
-        if task.histories:
+        if task.histories and first >= 0:
             pick = np.unique(np.linspace(0, n - 1, min(HISTORY_MU, n)).round().astype(int))
             key = f"{content.id}/floor_{floor}"
             u = np.zeros((pick.size, acc.size))

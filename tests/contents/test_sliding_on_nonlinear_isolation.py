@@ -83,3 +83,17 @@ def test_fs_slide_takes_a_building_on_nonlinear_isolation(elc):
     np.testing.assert_array_equal(via_slide.peak_slide, direct.peak_slide)
     with pytest.raises(fs.ModelError, match="not available yet"):
         fs.slide(elc[:600], 0.01, 0.1, building=b, floor=2, method="newmark")
+
+
+def test_flexible_equipment_on_a_frictionless_pendulum_equals_the_linear_isolated_roof(elc):
+    """The 2-DOF sliding oscillator (6 Hz, 2 %, r = 0.5) riding along: with mu = 0 it equals
+    fs.slide_oscillator on the linear isolated building."""
+    b = building(fs.FrictionPendulum(mu=0.0, period=3.0))
+    lin = fs.IsolatedBuilding(b.superstructure, 1.0, 3.0, 0.0)
+    mus = [0.02, 0.05, 0.1]
+    r = fs.slide_oscillator(elc, 0.01, mus, 6.0, 0.02, 0.5, building=b, floor=2)
+    ref = fs.slide_oscillator(elc, 0.01, mus, 6.0, 0.02, 0.5, building=lin, floor=2)
+    for name in ("peak_slide", "residual_slide", "peak_deformation", "peak_top_accel"):
+        a, c = getattr(r, name), getattr(ref, name)
+        assert np.abs(a - c).max() <= 1e-11 * np.abs(c).max(), name
+    np.testing.assert_array_equal(r.slip_phases, ref.slip_phases)

@@ -83,8 +83,8 @@ def test_isolator_tables_sweep_and_name_variants():
         ('{ model = "friction_pendulum", mu = 0.05, radius = 2 }', "", "unknown key"),
         (
             '{ model = "friction_pendulum", mu = 0.05 }',
-            'model = "oscillator"\nfrequency = 5.0',
-            r"contents\[0\]\.model: the 2-DOF oscillator on a building on nonlinear isolation",
+            "vertical = true",
+            r"contents\[0\]\.vertical: vertical shaking on a building on nonlinear isolation",
         ),
     ],
 )
@@ -120,3 +120,24 @@ def test_a_run_on_a_friction_pendulum_equals_the_api(tmp_path):
     assert t.histories is not None and t.histories.floor_acceleration.shape[0] == 2
     tables = design_tables(out)
     assert {r["building"] for r in tables["pfa"]} == {"fixed", "iso"}
+
+
+def test_a_run_with_flexible_equipment_on_a_bilinear_layer_equals_the_api(tmp_path):
+    path = tmp_path / "s.toml"
+    flex = 'model = "oscillator"\nfrequency = 5.0\ndamping = 0.02\nmass_ratio = 0.5'
+    path.write_text(scene('{ model = "bilinear", q_ratio = 0.05, yield_disp = 0.02 }', flex))
+    p = plan(load_scene(path))
+    out = tmp_path / "out.h5"
+    execute(p, str(out), workers=1)
+    rec = p.records[0]
+    t = next(
+        t for t in ResultFile(out).tasks()
+        if t.meta["record"] == rec.record and t.meta["building"] == "iso"
+    )  # fmt: skip
+    (c,) = t.contents
+    model = p.scene.buildings[-1].build()
+    r = fs.slide_oscillator(rec.acc, rec.dt, [0.03, 0.1], 5.0, 0.02, 0.5, building=model, floor=2)
+    done = np.isfinite(c.peak_deformation)
+    assert done.any()
+    np.testing.assert_array_equal(c.peak_slide[done], r.peak_slide[done])
+    np.testing.assert_array_equal(c.peak_deformation[done], r.peak_deformation[done])
