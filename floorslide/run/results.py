@@ -71,6 +71,12 @@ class Histories:
     for a 2-DOF oscillator), NaN for a friction value under which the object rocks (it is not
     simulated as a slider); ``deformation`` (spring deformation z, m) and ``top_accel`` (the
     top mass's absolute acceleration, m/s²) are kept for oscillators only.
+
+    On a building on nonlinear isolation ``isolator_displacement`` (the isolator's displacement
+    u₀ relative to the ground, m) and ``isolator_force_ratio`` (the isolation layer's force on
+    the base mat over the total weight W, the base shear ratio V/W) at the samples give its
+    hysteresis loop; both are None for every other building (and in files written before they
+    were kept).
     """
 
     dt: float
@@ -80,6 +86,8 @@ class Histories:
     mu_k: dict[str, np.ndarray] = field(default_factory=dict)
     deformation: dict[str, np.ndarray] = field(default_factory=dict)
     top_accel: dict[str, np.ndarray] = field(default_factory=dict)
+    isolator_displacement: np.ndarray | None = None  # (npts,), m
+    isolator_force_ratio: np.ndarray | None = None  # (npts,), V/W
 
 
 @dataclass

@@ -14,6 +14,13 @@ Layout (every dataset carries a ``units`` attribute; ``1`` means dimensionless):
                              isolation_period, isolation_damping (NaN when fixed),
                              superstructure, fixed_period, dt, npts, pga, scale, qa_flags
                              (the record's quality flags, comma-separated; "" none), seconds;
+                             on nonlinear isolation also isolator (bilinear |
+                             friction_pendulum), its parameters isolator_capacity (m, NaN:
+                             none), isolator_q_ratio, isolator_yield_disp (m), isolator_alpha
+                             (bilinear) or isolator_mu, isolator_mu_s, isolator_radius (m)
+                             (pendulum), and the results isolator_peak_displacement (m),
+                             isolator_residual_displacement (m), isolator_peak_force_ratio
+                             (peak base shear / W), isolator_capacity_exceeded (0/1);
                              sha256 (the task's digest, written with it); done = 1, set last
       floors                 floors output (0 = ground or base mat)
       pfa                    true peak floor acceleration per floor (m/s**2)
@@ -36,12 +43,17 @@ Layout (every dataset carries a ``units`` attribute; ``1`` means dimensionless):
                              floor_acceleration (m/s**2); slides/<content>/floor_<f>/ (attr
                              model): u (m; the sliding base's for an oscillator), mu_k (1)
                              [+ z (m, spring deformation), top_accel (m/s**2) for oscillators];
-                             rows of friction values under which the object rocks are NaN
+                             rows of friction values under which the object rocks are NaN;
+                             on nonlinear isolation also isolator_displacement (m, u0 relative
+                             to the ground) and isolator_force_ratio (1, the layer's force
+                             over W) at the samples: the hysteresis loop
 
 Reading stays backward compatible: a file written before the unbroadened spectra were kept
 has no ``broadening`` attr on ``spectra/floor_<f>``; if its scene asked for broadening, its
 ``psa`` … are the broadened spectra and are read as such (the unbroadened ones are NaN, lost).
-Histories without ``z``/``top_accel`` read as rigid-block histories.
+Histories without ``z``/``top_accel`` read as rigid-block histories; histories without
+``isolator_displacement``/``isolator_force_ratio`` (other buildings, older files) read with
+both None.
 
 The plan (``/plan``, attr-free JSON) holds ``tasks``, the number of tasks of the run: a file
 with fewer tasks done is incomplete (:attr:`ResultFile.complete`).
@@ -125,6 +137,8 @@ UNITS = {
     "u": "m",
     "z": "m",
     "top_accel": "m/s**2",
+    "isolator_displacement": "m",
+    "isolator_force_ratio": "1",
 }
 CONTENT_FIELDS = (
     "mu_k",
@@ -137,6 +151,8 @@ CONTENT_FIELDS = (
 )
 SPECTRUM_FIELDS = ("periods", "damping", "psa", "sa", "sv", "sd")
 ORDINATE_FIELDS = ("psa", "sa", "sv", "sd")
+ISOLATOR_HISTORIES = ("isolator_displacement", "isolator_force_ratio")
+"""Histories of a building on nonlinear isolation (absent for other buildings)."""
 
 DIGEST_ATTR = "sha256"
 """Attribute of a task group: the digest of the group (:func:`floorslide.run.snapshot.digest`)."""
@@ -236,6 +252,9 @@ def task_node(result: TaskResult) -> Node:
         hg.attrs["dt"] = hi.dt
         hg.children["floors"] = _data("floors", hi.floors)
         hg.children["floor_acceleration"] = _data("floor_acceleration", hi.floor_acceleration)
+        for name in ISOLATOR_HISTORIES:
+            if getattr(hi, name) is not None:
+                hg.children[name] = _data(name, getattr(hi, name))
         for key, u in hi.slides.items():
             sg = hg.group(f"slides/{key}")
             sg.children["u"] = _data("u", u)
@@ -949,6 +968,7 @@ def _read_task(g: Node, tid: str, legacy_broadening: float = 0.0) -> TaskResult:
             mus,
             deform,
             top,
+            **{n: _value(hg, n) if n in hg else None for n in ISOLATOR_HISTORIES},
         )
     return TaskResult(
         task_id=tid,

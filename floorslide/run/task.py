@@ -44,6 +44,41 @@ def _meta(task: Task) -> dict:
     )
 
 
+def isolator_parameters(model) -> dict[str, float]:
+    """The parameters of a nonlinear isolation layer as task attributes.
+
+    Parameters
+    ----------
+    model
+        A :class:`~floorslide.building.nonlinear.NonlinearIsolatedBuilding`.
+
+    Returns
+    -------
+    dict
+        ``isolator_capacity`` (m, NaN when none is given) and, for a lead-rubber layer,
+        ``isolator_q_ratio`` (Q/W), ``isolator_yield_disp`` (D_y, m) and ``isolator_alpha``
+        (k₂/k₁) — both of the last two whichever was given —, for a friction pendulum
+        ``isolator_mu``, ``isolator_mu_s`` (the breakaway coefficient used, ≥ mu) and
+        ``isolator_radius`` (R, m).
+    """
+    c = model.constants
+    cap = model.isolator.capacity
+    out = {"isolator_capacity": float("nan") if cap is None else float(cap)}
+    if model.kind == "bilinear":
+        out.update(
+            isolator_q_ratio=float(model.isolator.q_ratio),
+            isolator_yield_disp=float(c["D_y"]),
+            isolator_alpha=float(c["k2"] / c["k1"]),
+        )
+    else:
+        out.update(
+            isolator_mu=float(c["mu"]),
+            isolator_mu_s=float(c["mu_s"]),
+            isolator_radius=float(c["R"]),
+        )
+    return out
+
+
 def run_task(task: Task, force: bool = False) -> TaskResult:
     """Compute everything `task` asks for (see the planner for the skip rules)."""
     t0 = time.perf_counter()
@@ -190,6 +225,7 @@ def _run_nonlinear(task: Task, model, force: bool, t0: float) -> TaskResult:
     meta = _meta(task)
     meta.update(
         isolator=task.building.isolator_model,
+        **isolator_parameters(model),
         isolator_peak_displacement=base.peak_displacement,
         isolator_residual_displacement=base.residual_displacement,
         isolator_peak_force_ratio=base.peak_force_ratio,
@@ -313,6 +349,16 @@ def _run_nonlinear(task: Task, model, force: bool, t0: float) -> TaskResult:
         result.spectra.append(out)
     if task.histories:
         fl = np.array(floors, dtype=np.int64)
-        result.histories = Histories(dt, fl, base.floor_acceleration, hist_slides, hist_mu, {}, {})
+        result.histories = Histories(
+            dt,
+            fl,
+            base.floor_acceleration,
+            hist_slides,
+            hist_mu,
+            {},
+            {},
+            isolator_displacement=base.isolator_displacement,
+            isolator_force_ratio=base.isolator_force / model.weight,
+        )
     result.seconds = time.perf_counter() - t0
     return result

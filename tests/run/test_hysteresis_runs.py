@@ -1,0 +1,140 @@
+"""Issue 14: the hysteresis loop of a building on nonlinear isolation kept with the history
+record (isolator displacement and force / W at the samples), through the result file and back,
+equal to the API; files written before it was kept still load."""
+
+from __future__ import annotations
+
+import h5py
+import numpy as np
+import pytest
+
+from floorslide.building.nonlinear import isolator_response
+from floorslide.run.execute import execute
+from floorslide.run.store import ResultFile
+from floorslide.scene.planner import plan
+from floorslide.scene.schema import load_scene
+
+DT = 0.01
+
+
+def write_records(folder, n: int = 2) -> None:
+    """`n` short synthetic records (g, single column): damped sine bursts, 3 s."""
+    t = np.arange(0.0, 3.0, DT)
+    for k in range(n):
+        acc = (0.35 + 0.1 * k) * np.sin(2 * np.pi * (0.8 + 0.3 * k) * t) * np.exp(-0.4 * t)
+        np.savetxt(folder / f"rec{k + 1}.txt", acc)
+
+
+def scene_text(isolator: str | None, history: str = "rec1") -> str:
+    iso = (
+        ""
+        if isolator is None
+        else f"""
+[[buildings]]
+id = "iso"
+kind = "isolated"
+superstructure = "fixed"
+period = 2.5
+isolator = {isolator}
+"""
+    )
+    return f"""
+[scene]
+name = "hysteresis"
+
+[[records]]
+set = "s"
+files = ["rec*.txt"]
+units = "g"
+dt = {DT}
+
+[[buildings]]
+id = "fixed"
+kind = "fixed"
+stories = 1
+period = 0.2
+{iso}
+[[contents]]
+id = "box"
+floors = "roof"
+mu = [0.1]
+
+[report]
+history_record = "{history}"
+"""
+
+
+def run(tmp_path, isolator: str | None, history: str = "rec1", n: int = 2):
+    """Run the scene in `tmp_path`: (plan, result file path)."""
+    write_records(tmp_path, n)
+    path = tmp_path / "scene.toml"
+    path.write_text(scene_text(isolator, history))
+    p = plan(load_scene(path))
+    out = tmp_path / "out.h5"
+    execute(p, str(out), workers=1)
+    return p, out
+
+
+FPS = '{ model = "friction_pendulum", mu = 0.04, capacity = 0.05 }'
+LRB = '{ model = "bilinear", q_ratio = 0.05, yield_disp = 0.01 }'
+
+
+@pytest.mark.parametrize("isolator", [FPS, LRB])
+def test_the_hysteresis_loop_round_trips_and_equals_the_api(tmp_path, isolator):
+    p, out = run(tmp_path, isolator)
+    tasks = {(t.meta["record"], t.meta["building"]): t for t in ResultFile(out).tasks()}
+    rec = next(r for r in p.records if r.record == "rec1")
+    model = next(b for b in p.scene.buildings if b.id == "iso").build()
+    direct = isolator_response(model, rec.acc, rec.dt, floors=[0, 1])
+    h = tasks[("rec1", "iso")].histories
+    assert h is not None
+    np.testing.assert_allclose(
+        h.isolator_displacement, direct.isolator_displacement, rtol=1e-12, atol=0
+    )
+    np.testing.assert_allclose(
+        h.isolator_force_ratio, direct.isolator_force / model.weight, rtol=1e-12, atol=0
+    )
+    assert h.isolator_displacement.shape == rec.acc.shape
+    # the loop's extremes are those of the samples: at most the true peaks inside steps
+    meta = tasks[("rec1", "iso")].meta
+    assert np.abs(h.isolator_displacement).max() <= meta["isolator_peak_displacement"]
+    assert np.abs(h.isolator_force_ratio).max() <= meta["isolator_peak_force_ratio"] * (1 + 1e-12)
+    # the other record and the fixed-base building keep no loop
+    assert tasks[("rec2", "iso")].histories is None
+    fixed = tasks[("rec1", "fixed")].histories
+    assert fixed.isolator_displacement is None and fixed.isolator_force_ratio is None
+    with h5py.File(out, "r") as f:
+        g = f[f"tasks/{tasks[('rec1', 'iso')].task_id}/histories"]
+        assert g["isolator_displacement"].attrs["units"] == "m"
+        assert g["isolator_force_ratio"].attrs["units"] == "1"
+        other = f[f"tasks/{tasks[('rec1', 'fixed')].task_id}/histories"]
+        assert "isolator_displacement" not in other
+
+
+def test_the_isolator_parameters_are_task_attributes(tmp_path):
+    p, out = run(tmp_path, FPS, n=1)
+    t = next(t for t in ResultFile(out).tasks() if t.meta["building"] == "iso")
+    model = next(b for b in p.scene.buildings if b.id == "iso").build()
+    assert t.meta["isolator"] == "friction_pendulum"
+    assert t.meta["isolator_mu"] == 0.04 and t.meta["isolator_mu_s"] == 0.04
+    assert t.meta["isolator_radius"] == pytest.approx(model.isolator.R, rel=1e-15)
+    assert t.meta["isolator_capacity"] == 0.05
+    assert "isolator_q_ratio" not in t.meta
+
+
+def test_a_file_without_the_loop_still_loads(tmp_path):
+    """A result file written before the loop was kept (no isolator datasets in histories/)
+    reads, with both histories None."""
+    from floorslide.run.snapshot import digest, snapshot
+    from floorslide.run.store import BOOKKEEPING
+
+    _, out = run(tmp_path, FPS, n=1)
+    tid = next(t.task_id for t in ResultFile(out).tasks() if t.meta["building"] == "iso")
+    with h5py.File(out, "r+") as f:
+        g = f[f"tasks/{tid}"]
+        del g["histories/isolator_displacement"]
+        del g["histories/isolator_force_ratio"]
+        g.attrs["sha256"] = digest(snapshot(g), BOOKKEEPING)  # as an older writer signed it
+    t = next(t for t in ResultFile(out).tasks() if t.task_id == tid)
+    assert t.histories is not None and t.histories.floor_acceleration.shape[0] == 1
+    assert t.histories.isolator_displacement is None and t.histories.isolator_force_ratio is None
