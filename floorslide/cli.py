@@ -838,7 +838,7 @@ def run(scene, out, dry_run, resume, overwrite, workers, scheduler, scheduler_ti
         sys.exit(EXIT_RECORD)
 
 
-REPORT_TABLES = ("slides", "pfa", "frs", "slide_ratios", "pfa_ratios", "records")
+REPORT_TABLES = ("slides", "pfa", "frs", "slide_ratios", "pfa_ratios", "records", "isolators")
 """The design tables, in output order (floorslide.report.tables.TABLE_NAMES)."""
 
 REPORT_EXIT_CODES = (
@@ -951,7 +951,9 @@ def table(result, fmt, as_json, compare, periods, damping, only, per_record, all
     numpy 'linear') of peak slide, |residual| slide and peak object acceleration (for 2-DOF
     oscillators also spring deformation and top-mass acceleration), and how many records made
     the object slide or rock; PFA per floor; FRS ordinates (unbroadened and broadened); ratios
-    between buildings (--compare A:B).
+    between buildings (--compare A:B); the records and their quality flags; per building on
+    nonlinear isolation the isolator's peak and residual displacement, peak force / W and the
+    records that exceed its capacity (table isolators).
 
     Rocking objects are not simulated as sliders and never count as 0 slide: each is its own
     outcome, ranked above every slide, and a statistic that falls on rocking records reads

@@ -35,7 +35,7 @@ rests under); a median or 84th percentile that falls on rocking records is the o
 OUTCOMES = ("rest", "slide", ROCK)
 """Outcome of a statistic of the peak slide: ``rest`` (0), ``slide`` (> 0) or ``rock``."""
 
-TABLE_NAMES = ("slides", "pfa", "frs", "slide_ratios", "pfa_ratios", "records")
+TABLE_NAMES = ("slides", "pfa", "frs", "slide_ratios", "pfa_ratios", "records", "isolators")
 """The tables, in output order."""
 
 
@@ -229,8 +229,51 @@ COLUMNS: dict[str, tuple[Column, ...]] = {
         Column("qa_flags", "", "quality checks that tripped (floorslide.records.quality)"),
         Column("qa", "", "what each check found, with its numbers and remedy"),
     ),
+    "isolators": (
+        Column("record_set", "", "record set (scaled sets are named set@PGAg)"),
+        Column("building", "", "building variant id (on nonlinear isolation)"),
+        Column("isolator", "", "bilinear (lead-rubber) or friction_pendulum"),
+        Column(
+            "isolation_period",
+            "s",
+            "post-yield period T_d (bilinear) or pendulum period 2π√(R/g)",
+        ),
+        Column("isolation_damping", "1", "viscous damping ratio of the layer"),
+        Column("q_ratio", "1", "characteristic strength Q/W (bilinear; else NaN)"),
+        Column("yield_disp", "m", "yield displacement D_y (bilinear; else NaN)"),
+        Column("alpha", "1", "post-yield over elastic stiffness k2/k1 (bilinear; else NaN)"),
+        Column("mu", "1", "sliding friction coefficient (pendulum; else NaN)"),
+        Column("mu_s", "1", "breakaway friction coefficient used, ≥ mu (pendulum; else NaN)"),
+        Column("radius", "m", "radius of curvature R (pendulum; else NaN)"),
+        Column("capacity", "m", "displacement capacity of the layer (NaN: none given)"),
+        _N_RECORDS,
+        _FEW,
+        Column("peak_disp_median", "m", "median of the peak isolator displacement max|u0|"),
+        Column("peak_disp_p84", "m", "84th percentile of the peak isolator displacement"),
+        Column("peak_disp_max", "m", "largest peak isolator displacement of the set"),
+        Column(
+            "residual_disp_median",
+            "m",
+            "median of the absolute residual isolator displacement |u0(end)|",
+        ),
+        Column(
+            "peak_force_ratio_median",
+            "1",
+            "median of the peak isolator force over the weight, max|V|/W (base shear ratio)",
+        ),
+        Column("peak_force_ratio_p84", "1", "84th percentile of the peak force ratio max|V|/W"),
+        Column(
+            "n_capacity_exceeded",
+            "1",
+            "records under which the isolator displacement exceeds the capacity",
+        ),
+        Column("note", "", "what the numbers do not include (the impact beyond the capacity)"),
+    ),
 }
 """Columns of every table, in order."""
+
+EMPTY_NOTES = {"isolators": "no building on nonlinear isolation in this study"}
+"""What an empty table means, stated where it is written (Markdown, CSV, notes)."""
 
 OSCILLATOR_COLUMNS = frozenset(
     c.name for c in COLUMNS["slides"] if c.name.startswith(("peak_deformation", "peak_top_accel"))
@@ -245,6 +288,7 @@ TITLES = {
     "slide_ratios": "Peak-slide ratios between buildings (A / B)",
     "pfa_ratios": "PFA ratios between buildings (A / B)",
     "records": "Records: quality flags (mean offset, trend, clipping, truncation, sampling)",
+    "isolators": "Nonlinear isolators: peak and residual displacement, peak force / W",
 }
 
 

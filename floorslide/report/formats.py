@@ -7,6 +7,10 @@ Markdown, a first line ``# INCOMPLETE: …`` in every CSV (``pandas.read_csv(pat
 comment="#")`` skips it), ``"status"`` and ``"complete": false`` in JSON, ``df.attrs["status"]``
 on DataFrames.
 
+An empty table whose emptiness means something (the ``isolators`` table of a study without
+nonlinear isolation) says so: ``_No rows: …_`` in Markdown, a line ``# …`` above the CSV
+header, a note in JSON and on DataFrames.
+
 Cells: NaN is ``—`` in Markdown, an empty cell in CSV and ``null`` in JSON; ``inf`` is ``∞``,
 ``inf`` and ``null``. A statistic that falls on rocking records is ``rocks`` in Markdown (its
 ``*_outcome`` column says ``rock`` in every format); in Markdown a p84 over fewer than
@@ -27,6 +31,7 @@ import numpy as np
 from floorslide.errors import FloorslideError
 from floorslide.report.columns import (
     COLUMNS,
+    EMPTY_NOTES,
     MIN_RECORDS,
     OSCILLATOR_COLUMNS,
     PERCENTILE,
@@ -38,7 +43,21 @@ from floorslide.report.columns import (
     DesignTables,
 )
 
-_PLAIN = ("mu_k", "mu_s", "period", "damping", "isolation_period", "broadening")
+_PLAIN = (
+    "mu_k",
+    "mu_s",
+    "period",
+    "damping",
+    "isolation_period",
+    "broadening",
+    "mu",
+    "q_ratio",
+    "alpha",
+    "yield_disp",
+    "capacity",
+    "isolation_damping",
+)
+_LAYER_PARAMETERS = ("q_ratio", "yield_disp", "alpha", "mu", "mu_s", "radius", "capacity")
 
 
 def _rocks(column: str, row: Mapping) -> bool:
@@ -79,12 +98,16 @@ def _md_heading(column: Column) -> str:
 
 def markdown_columns(name: str, rows: Sequence[Mapping]) -> tuple[Column, ...]:
     """The columns Markdown shows: all but those no row fills (the oscillator columns of a
-    study without oscillators, the broadened PSA of a study without broadening)."""
+    study without oscillators, the broadened PSA of a study without broadening, the
+    parameters of a kind of isolation layer the study does not have)."""
     cols = COLUMNS[name]
     if name == "slides" and not any(r.get("model") == "oscillator" for r in rows):
         cols = tuple(c for c in cols if c.name not in OSCILLATOR_COLUMNS)
     if name == "frs" and not any(r.get("broadening") for r in rows):
         cols = tuple(c for c in cols if not c.name.startswith("psa_broadened"))
+    if name == "isolators" and rows:
+        unused = {k for k in _LAYER_PARAMETERS if all(math.isnan(float(r[k])) for r in rows)}
+        cols = tuple(c for c in cols if c.name not in unused)
     return cols
 
 
@@ -123,7 +146,7 @@ def format_markdown(tables: DesignTables, names: Sequence[str] = TABLE_NAMES) ->
         out += ["", f"## {TITLES[name]}" + (" (INCOMPLETE)" if tables.status else ""), ""]
         rows = tables[name]
         if not rows:
-            out.append("_No rows._")
+            out.append(f"_No rows: {EMPTY_NOTES[name]}._" if name in EMPTY_NOTES else "_No rows._")
             continue
         out.append(format_markdown_table(name, rows))
     return "\n".join(out) + "\n"
@@ -153,8 +176,14 @@ def format_rows_csv(columns: Sequence[Column], rows: Sequence[Mapping], status: 
 
 
 def format_csv(name: str, rows: Sequence[Mapping], status: str = "") -> str:
-    """One design table as CSV (see :func:`format_rows_csv`)."""
-    return format_rows_csv(COLUMNS[name], rows, status)
+    """One design table as CSV (see :func:`format_rows_csv`); an empty table whose emptiness
+    means something (:data:`~floorslide.report.columns.EMPTY_NOTES`) says it in a line
+    ``# …`` above the header (``pandas.read_csv(path, comment="#")`` skips it)."""
+    text = format_rows_csv(COLUMNS[name], rows, status)
+    if rows or name not in EMPTY_NOTES:
+        return text
+    head, sep, rest = text.partition("\n") if status else ("", "", text)
+    return f"{head}{sep}# {EMPTY_NOTES[name]}\n{rest}"
 
 
 def format_csv_sections(tables: DesignTables, names: Sequence[str] = TABLE_NAMES) -> str:

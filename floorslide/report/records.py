@@ -53,6 +53,27 @@ RECORD_COLUMNS: tuple[Column, ...] = (
         "",
         "the record's quality flags (floorslide.records.quality; see the records table)",
     ),
+    Column(
+        "isolator_peak_disp_m",
+        "m",
+        "peak isolator displacement max|u0| under this record (nonlinear isolation; else NaN)",
+    ),
+    Column(
+        "isolator_residual_disp_m",
+        "m",
+        "residual isolator displacement u0(end), signed (nonlinear isolation; else NaN)",
+    ),
+    Column(
+        "isolator_peak_force_ratio",
+        "1",
+        "peak isolator force over the weight max|V|/W (nonlinear isolation; else NaN)",
+    ),
+    Column(
+        "isolator_capacity_exceeded",
+        "",
+        "the isolator displacement exceeds the layer's capacity (the impact that would follow "
+        "is not modelled); empty (NaN) without nonlinear isolation",
+    ),
 )
 """Columns of the per-record table, in order."""
 
@@ -76,6 +97,24 @@ def _modes(c) -> list[str]:
     ]
 
 
+def isolator_values(meta: dict) -> dict:
+    """The isolator's results of a task as per-record columns: NaN (all four) for a building
+    without nonlinear isolation, and for a task written before they were stored."""
+    if "isolator_peak_displacement" not in meta:
+        return {
+            "isolator_peak_disp_m": math.nan,
+            "isolator_residual_disp_m": math.nan,
+            "isolator_peak_force_ratio": math.nan,
+            "isolator_capacity_exceeded": math.nan,
+        }
+    return {
+        "isolator_peak_disp_m": _float(meta["isolator_peak_displacement"]),
+        "isolator_residual_disp_m": _float(meta.get("isolator_residual_displacement")),
+        "isolator_peak_force_ratio": _float(meta.get("isolator_peak_force_ratio")),
+        "isolator_capacity_exceeded": bool(_float(meta.get("isolator_capacity_exceeded"), 0)),
+    }
+
+
 def record_rows(study: Study) -> list[dict]:
     """The per-record rows of a study (dicts keyed by :data:`RECORD_COLUMNS`), in the tables'
     order: record sets, buildings and contents as in the scene, floors up, friction ascending,
@@ -86,6 +125,7 @@ def record_rows(study: Study) -> list[dict]:
         m = t.meta
         bid = str(m["building"])
         pfa_of = dict(zip(np.asarray(t.floors).tolist(), np.asarray(t.pfa).tolist(), strict=True))
+        isolator = isolator_values(m)
         for c in t.contents:
             modes = _modes(c)
             osc = c.peak_deformation is not None
@@ -124,6 +164,7 @@ def record_rows(study: Study) -> list[dict]:
                         "qa_flags": str(m.get("qa_flags", "") or ""),
                         "scale": _float(m.get("scale")),
                         "skipped": c.skipped,
+                        **isolator,
                     }
                 )
 

@@ -25,6 +25,13 @@ Tables (one row per …, statistics over the records of a set; units in :data:`C
     record set × record: dt, samples, PGA as run, scale, and the record's quality flags
     (:mod:`floorslide.records.quality`) with their numbers; records rejected by ``[scene] qa =
     "reject"`` follow with status ``rejected``.
+``isolators``
+    record set × building on nonlinear isolation: the layer (model, period, damping and its
+    parameters), median and 84th percentile of the peak isolator displacement, its largest
+    value, median |residual| displacement, median and 84th percentile of the peak isolator
+    force over the weight (V/W), and how many records take the layer beyond its capacity
+    (the impact that would follow is not modelled: the ``note`` says so). Empty, with a note,
+    when no building is on nonlinear isolation.
 
 Conventions
 -----------
@@ -72,6 +79,7 @@ from floorslide.constants import G
 from floorslide.errors import ModelError, SceneError
 from floorslide.report.columns import (
     COLUMNS,
+    EMPTY_NOTES,
     MIN_RECORDS,
     PERCENTILE,
     ROCK,
@@ -278,6 +286,84 @@ def records_table(study: Study) -> list[dict]:
                 qa=_qa_text(flags),
             )
         )
+    return rows
+
+
+ISOLATOR_PARAMETERS = ("q_ratio", "yield_disp", "alpha", "mu", "mu_s", "radius", "capacity")
+"""Parameters of a nonlinear layer in the ``isolators`` table (task attributes
+``isolator_<name>``; NaN where the layer has none)."""
+
+IMPACT_NOT_MODELLED = (
+    "impact with the moat wall (or the bearing's rim) is not modelled: beyond the capacity the "
+    "response is that of an unlimited layer"
+)
+
+
+def _isolator_note(exceeded: int, n: int, capacity: float) -> str:
+    """The ``note`` of an ``isolators`` row."""
+    if exceeded:
+        return f"capacity exceeded under {exceeded} of {n} records; {IMPACT_NOT_MODELLED}"
+    if math.isnan(capacity):
+        return "no capacity given"
+    return ""
+
+
+def isolator_table(study: Study) -> list[dict]:
+    """The ``isolators`` table (see the module docstring): one row per record set × building
+    on nonlinear isolation, from the task attributes a run stores."""
+    groups: dict[tuple[str, str], list[tuple]] = defaultdict(list)
+    layer: dict[str, dict] = {}
+    for t in study.tasks:
+        m = t.meta
+        if "isolator_peak_displacement" not in m:
+            continue
+        rs, bid = str(m["record_set"]), str(m["building"])
+        groups[(rs, bid)].append(
+            (
+                str(m["record"]),
+                _float(m["isolator_peak_displacement"]),
+                abs(_float(m.get("isolator_residual_displacement"))),
+                _float(m.get("isolator_peak_force_ratio")),
+                bool(_float(m.get("isolator_capacity_exceeded"), 0)),
+            )
+        )
+        layer.setdefault(
+            bid,
+            {
+                "isolator": str(m.get("isolator", "")),
+                "isolation_damping": _float(m.get("isolation_damping")),
+                **{k: _float(m.get(f"isolator_{k}")) for k in ISOLATOR_PARAMETERS},
+            },
+        )
+    bkey = _order_key(study)
+    rows = []
+    for rs, bid in sorted(groups, key=lambda k: bkey(*k)):
+        obs = _by_record(groups[(rs, bid)])
+        peak, resid, force = (np.array([o[j] for o in obs]) for j in (1, 2, 3))
+        _, peak_median, peak_p84 = summarize(peak)
+        _, force_median, force_p84 = summarize(force)
+        exceeded = sum(o[4] for o in obs)
+        finite = peak[np.isfinite(peak)]
+        row = {
+            "record_set": rs,
+            "building": bid,
+            "isolator": layer[bid]["isolator"],
+            "isolation_period": study.buildings[bid].isolation_period,
+        }
+        row.update(layer[bid])
+        row.update(
+            n_records=len(obs),
+            few_records=len(obs) < MIN_RECORDS,
+            peak_disp_median=peak_median,
+            peak_disp_p84=peak_p84,
+            peak_disp_max=float(finite.max()) if finite.size else math.nan,
+            residual_disp_median=summarize(resid)[1],
+            peak_force_ratio_median=force_median,
+            peak_force_ratio_p84=force_p84,
+            n_capacity_exceeded=exceeded,
+            note=_isolator_note(exceeded, len(obs), row["capacity"]),
+        )
+        rows.append({c.name: row[c.name] for c in COLUMNS["isolators"]})
     return rows
 
 
@@ -637,6 +723,12 @@ def table_notes(study: Study, damping: float | None) -> list[str]:
         "the sliding base's, peak_deformation the spring's and peak_top_accel the top mass's",
         "ratios are ratios of statistics (A / B); 0/0 (neither slides) is NaN, x/0 is inf",
     ]
+    if any("isolator_peak_displacement" in t.meta for t in study.tasks):
+        notes.append(
+            "isolators: displacements are the isolation layer's u0 relative to the ground; "
+            "residual_disp statistics are of |u0(end)|; the force ratio is the layer's force "
+            f"on the base mat over the total weight W (base shear V/W); {IMPACT_NOT_MODELLED}"
+        )
     if damping is not None:
         b = stored_broadening(study)
         wide = (
@@ -692,7 +784,7 @@ def design_tables(
     -------
     DesignTables
         ``tables`` maps ``slides``, ``pfa``, ``frs``, ``slide_ratios``, ``pfa_ratios``,
-        ``records`` to
+        ``records``, ``isolators`` to
         rows (dicts, SI values; columns and units in :data:`COLUMNS`), in a fixed order:
         record sets and buildings as in the scene (isolated variants by period), floors up,
         contents as in the scene, friction ascending.
@@ -729,8 +821,10 @@ def design_tables(
         "slide_ratios": slide_ratio_table(study, slides, comparisons),
         "pfa_ratios": pfa_ratio_table(study, pfa, comparisons),
         "records": records_table(study),
+        "isolators": isolator_table(study),
     }
     notes = table_notes(study, z) + period_notes + study.notes
+    notes += [f"{name}: {note}" for name, note in EMPTY_NOTES.items() if not tables[name]]
     return DesignTables(
         source=study.source,
         scene_name=study.scene_name,

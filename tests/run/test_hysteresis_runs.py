@@ -9,74 +9,13 @@ import numpy as np
 import pytest
 
 from floorslide.building.nonlinear import isolator_response
-from floorslide.run.execute import execute
 from floorslide.run.store import ResultFile
-from floorslide.scene.planner import plan
-from floorslide.scene.schema import load_scene
-
-DT = 0.01
+from tests.run.isolation_study import FPS, LRB, run_study
 
 
-def write_records(folder, n: int = 2) -> None:
-    """`n` short synthetic records (g, single column): damped sine bursts, 3 s."""
-    t = np.arange(0.0, 3.0, DT)
-    for k in range(n):
-        acc = (0.35 + 0.1 * k) * np.sin(2 * np.pi * (0.8 + 0.3 * k) * t) * np.exp(-0.4 * t)
-        np.savetxt(folder / f"rec{k + 1}.txt", acc)
-
-
-def scene_text(isolator: str | None, history: str = "rec1") -> str:
-    iso = (
-        ""
-        if isolator is None
-        else f"""
-[[buildings]]
-id = "iso"
-kind = "isolated"
-superstructure = "fixed"
-period = 2.5
-isolator = {isolator}
-"""
-    )
-    return f"""
-[scene]
-name = "hysteresis"
-
-[[records]]
-set = "s"
-files = ["rec*.txt"]
-units = "g"
-dt = {DT}
-
-[[buildings]]
-id = "fixed"
-kind = "fixed"
-stories = 1
-period = 0.2
-{iso}
-[[contents]]
-id = "box"
-floors = "roof"
-mu = [0.1]
-
-[report]
-history_record = "{history}"
-"""
-
-
-def run(tmp_path, isolator: str | None, history: str = "rec1", n: int = 2):
-    """Run the scene in `tmp_path`: (plan, result file path)."""
-    write_records(tmp_path, n)
-    path = tmp_path / "scene.toml"
-    path.write_text(scene_text(isolator, history))
-    p = plan(load_scene(path))
-    out = tmp_path / "out.h5"
-    execute(p, str(out), workers=1)
-    return p, out
-
-
-FPS = '{ model = "friction_pendulum", mu = 0.04, capacity = 0.05 }'
-LRB = '{ model = "bilinear", q_ratio = 0.05, yield_disp = 0.01 }'
+def run(tmp_path, isolator: str, n: int = 2):
+    """Run the study with one building ``iso`` on `isolator`: (plan, result file)."""
+    return run_study(tmp_path, {"iso": isolator}, n)
 
 
 @pytest.mark.parametrize("isolator", [FPS, LRB])
