@@ -1043,7 +1043,9 @@ def _emit(text: str, out: str | None) -> None:
 @click.option("--json", "as_json", is_flag=True, help="Print the files written as a JSON list.")
 def plot(result, out, compare, damping, allow_incomplete, as_json):
     """Figures (PNG) from a result file OUT.h5, one per kind and record set: floor motions and
-    sliding histories of the stored history record; median floor response spectra per floor
+    sliding histories of the stored history record; the isolator's hysteresis loop (force / W
+    versus displacement) of each building on nonlinear isolation under that record
+    (hysteresis_<set>.png); median floor response spectra per floor
     (unbroadened, and broadened when stored); peak slide versus friction per floor (median and
     84th percentile per building; a statistic that falls on rocking records is drawn at the
     top of the panel, never at 0); spring deformation and top-mass acceleration of 2-DOF

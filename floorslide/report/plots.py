@@ -5,6 +5,10 @@ One figure per kind and record set, with one panel per floor or per content on a
 ``histories_<set>.png``
     floor accelerations and sliding histories of the study's history record (the task(s) that
     stored histories), one column per building;
+``hysteresis_<set>.png``
+    buildings on nonlinear isolation only: the isolator's hysteresis loop under the history
+    record, force / W against isolator displacement (mm), one panel per building, with the
+    peak displacement and the capacity (when given; red when exceeded) marked;
 ``frs_<set>.png``
     floor response spectra: median PSA over the set's records per building, one panel per
     floor, log period axis;
@@ -241,6 +245,106 @@ def figure_histories(study: Study, record_set: str) -> Figure | None:
             ax.grid(alpha=0.3)
             ax.legend(fontsize="small", loc="upper left")
         axes[-1][j].set_xlabel("time (s)")
+    return fig
+
+
+def _layer_label(meta: dict) -> str:
+    """The isolation layer of a task in words, for titles (``""`` when not stored)."""
+
+    def num(key: str) -> float:
+        try:
+            return float(meta.get(key, math.nan))
+        except (TypeError, ValueError):
+            return math.nan
+
+    model = str(meta.get("isolator", ""))
+    period = num("isolation_period")
+    if model == "friction_pendulum":
+        text = f"friction pendulum, mu = {num('isolator_mu'):g}, T = {period:g} s"
+    elif model == "bilinear":
+        text = (
+            f"lead-rubber, Q/W = {num('isolator_q_ratio'):g}, "
+            f"D_y = {1000 * num('isolator_yield_disp'):.3g} mm, T_d = {period:g} s"
+        )
+    else:
+        return model
+    return text.replace("= nan", "= ?")
+
+
+def _hysteresis_tasks(study: Study, record_set: str) -> list[TaskResult]:
+    """The set's tasks that stored the isolator's loop, in building order."""
+    order = list(study.buildings)
+    return sorted(
+        (
+            t
+            for t in study.set_tasks(record_set)
+            if t.histories is not None
+            and getattr(t.histories, "isolator_displacement", None) is not None
+            and getattr(t.histories, "isolator_force_ratio", None) is not None
+        ),
+        key=lambda t: order.index(t.meta["building"]),
+    )
+
+
+def _hysteresis_panel(ax, t: TaskResult) -> None:
+    """One building's loop: force / W against isolator displacement (mm), with its peak
+    displacement (inside steps) and its capacity marked."""
+    h, m = t.histories, t.meta
+    x = 1000.0 * np.asarray(h.isolator_displacement, dtype=float)
+    y = np.asarray(h.isolator_force_ratio, dtype=float)
+    ax.plot(x, y, lw=0.8, color="tab:blue", label="loop (at the samples)")
+    ax.plot(x[-1:], y[-1:], "o", ms=4, color="tab:blue", mfc="white", label="end (residual)")
+    peak = float(m.get("isolator_peak_displacement", np.abs(x).max() / 1000.0))
+    ax.axvline(1000 * peak, color="0.3", ls="--", lw=0.9)
+    ax.axvline(
+        -1000 * peak, color="0.3", ls="--", lw=0.9, label=f"peak |u0| = {1000 * peak:.4g} mm"
+    )
+    capacity = float(m.get("isolator_capacity", math.nan))
+    if math.isfinite(capacity):
+        exceeded = bool(m.get("isolator_capacity_exceeded", 0))
+        label = f"capacity {1000 * capacity:.4g} mm" + (
+            ": EXCEEDED (impact not modelled)" if exceeded else ""
+        )
+        for sign in (1, -1):
+            ax.axvline(
+                sign * 1000 * capacity,
+                color="red" if exceeded else "tab:orange",
+                ls=":",
+                lw=1.4,
+                label=label if sign > 0 else None,
+            )
+    ax.axhline(0.0, color="0.6", lw=0.6)
+    ax.axvline(0.0, color="0.6", lw=0.6)
+    ax.set_xlabel("isolator displacement u0 (mm)")
+    ax.set_ylabel("isolator force / W (V/W)")
+    ax.set_title(f"{m['building']}, record {m['record']}\n{_layer_label(m)}", fontsize="medium")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize="small", loc="upper left")
+
+
+def figure_hysteresis(study: Study, record_set: str) -> Figure | None:
+    """Hysteresis loops of the set's history task(s) on nonlinear isolation, or None.
+
+    One panel per building on nonlinear isolation that stored its loop (at most
+    :data:`MAX_COLUMNS`): the isolation layer's force over the total weight (V/W) against the
+    isolator displacement (mm) at the samples, the true peak displacement (found inside
+    steps) as dashed lines and the layer's capacity, when given, dotted (red when exceeded:
+    the impact that would follow is not modelled).
+    """
+    tasks = _hysteresis_tasks(study, record_set)
+    if not tasks:
+        return None
+    tasks, cut = _pick(tasks, MAX_COLUMNS)
+    fig, axes = _new_figure(len(tasks))
+    records = sorted({str(t.meta["record"]) for t in tasks})
+    _suptitle(
+        fig,
+        study,
+        f"Isolator hysteresis — force / W versus isolator displacement, record "
+        f"{', '.join(records)}, set {record_set}" + (" (some buildings left out)" if cut else ""),
+    )
+    for ax, t in zip(axes, tasks, strict=True):
+        _hysteresis_panel(ax, t)
     return fig
 
 
@@ -724,8 +828,9 @@ def plot_figures(
     Returns
     -------
     list of Path
-        The files written, in order: per record set, histories (if stored), FRS, peak slide
-        versus mu, oscillators (if any), then one peak-slide ratio figure per comparison.
+        The files written, in order: per record set, histories (if stored), hysteresis (if
+        a building on nonlinear isolation stored its loop), FRS, peak slide versus mu,
+        oscillators (if any), then one peak-slide ratio figure per comparison.
 
     Raises
     ------
@@ -769,6 +874,9 @@ def plot_figures(
             fig = figure_histories(study, rs)
             if fig is not None:
                 written.append(_save(fig, target(f"histories_{s}")))
+            fig = figure_hysteresis(study, rs)
+            if fig is not None:
+                written.append(_save(fig, target(f"hysteresis_{s}")))
             if z is not None:
                 fig = figure_frs(study, rs, z)
                 if fig is not None:

@@ -124,3 +124,37 @@ def test_without_nonlinear_isolation_the_table_says_so(linear_only):
     assert format_csv("isolators", [], status).startswith(f"# {status}\n# {note}\nrecord_set,")
     df = record_table(linear_only)
     assert df.isolator_peak_disp_m.isna().all() and df.isolator_capacity_exceeded.isna().all()
+
+
+def test_the_hysteresis_figure_is_drawn_on_nonlinear_isolation(nonlinear, tmp_path):
+    from floorslide.report.plots import figure_hysteresis, plot_figures
+    from floorslide.report.study import load_study
+
+    names = [p.name for p in plot_figures(nonlinear, tmp_path / "fig")]
+    assert names[:2] == ["histories_s.png", "hysteresis_s.png"]  # after the histories
+    assert (tmp_path / "fig" / "hysteresis_s.png").read_bytes()[:4] == b"\x89PNG"
+    study = load_study(nonlinear)
+    fig = figure_hysteresis(study, "s")
+    axes = [ax for ax in fig.axes if ax.get_visible()]
+    assert [ax.get_title().split(",")[0] for ax in axes] == ["fps@mu=0.04", "fps@mu=0.08", "lrb"]
+    task = next(t for t in study.tasks if t.histories and t.meta["building"] == "fps@mu=0.04")
+    ax = axes[0]
+    assert "record rec1" in ax.get_title() and "friction pendulum, mu = 0.04" in ax.get_title()
+    loop = ax.get_lines()[0]
+    np.testing.assert_array_equal(loop.get_xdata(), 1000 * task.histories.isolator_displacement)
+    np.testing.assert_array_equal(loop.get_ydata(), task.histories.isolator_force_ratio)
+    assert ax.get_xlabel() == "isolator displacement u0 (mm)"
+    assert ax.get_ylabel() == "isolator force / W (V/W)"
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    peak = 1000 * task.meta["isolator_peak_displacement"]
+    assert f"peak |u0| = {peak:.4g} mm" in labels
+    assert "capacity 320 mm: EXCEEDED (impact not modelled)" in labels  # rec1 exceeds it
+    assert not any("capacity" in t.get_text() for t in axes[2].get_legend().get_texts())
+
+
+def test_no_hysteresis_figure_without_nonlinear_isolation(linear_only, tmp_path):
+    from floorslide.report.plots import plot_figures
+
+    names = [p.name for p in plot_figures(linear_only, tmp_path / "fig")]
+    assert "histories_s.png" in names
+    assert not any(n.startswith("hysteresis") for n in names)
