@@ -18,7 +18,12 @@ from __future__ import annotations
 import numpy as np
 
 from floorslide._jit import njit
-from floorslide.building._instep import foh_step, substep_inputs, taylor_coefficients
+from floorslide.building._instep import (
+    curvature_tail_weights,
+    foh_step,
+    substep_inputs,
+    taylor_coefficients,
+)
 from floorslide.contents._kernels import _general
 from floorslide.contents._oscillator_kernel import _advance_part
 from floorslide.numerics.polynomial import first_rise, max_abs_on, poly_val, scratch
@@ -197,6 +202,168 @@ def _flexible(OR, OB, x, a_s, slope, L, K, t_abs, o2, w2, xi2, r2, g, mub2, muk2
                           FLEX_MAX_EVENTS, cs, Y, poly, y, pk, work2)  # fmt: skip
 
 
+# columns of a function's chord-bound row (see _chord_rows), after its N state coefficients
+VALUE, C2, C3, TIGHT, LOOSE = 0, 1, 2, 3, 4
+
+
+@njit(cache=True)
+def _chord_rows(RR, BB, ER, EB, OR, OB, n, h, mat_of):
+    """Per branch, the rows that bound its event function and its outputs on a whole sub-step
+    of length ``h`` (:func:`_fast_substep`).
+
+    ``G[m, f, part]`` for function ``f`` of the branch with matrices ``m`` (``f = 0``: the
+    event function — isolator displacement on ``ELASTIC``, its velocity on the yielding and
+    sliding branches, the friction a stuck pendulum needs on ``STICK``; ``f ≥ 1``: output
+    ``f − 1``), ``part`` one of :data:`VALUE` (Taylor row 0: the value), :data:`C2`, :data:`C3`
+    (rows 2 and 3), :data:`TIGHT` (the tail weights ``j ≥ 4`` of
+    :func:`~floorslide.building._instep.curvature_tail_weights`) and :data:`LOOSE`
+    (``2|row 2| + 6h|row 3| + tail``, which bounds ``max|f''|`` from ``|x|`` alone). Each row
+    holds ``N`` state coefficients, then those of the ground value and of its slope.
+    ``mat_of[b]`` is −1 for a branch ``b`` the layer does not have."""
+    nb, N = RR.shape[0], RR.shape[1]
+    K = RR.shape[2] - 1
+    nf = OR.shape[1] + 1
+    G = np.zeros((nb, nf, 5, N + 2))
+    WX = np.zeros(N)
+    for b in range(mat_of.size):
+        if mat_of[b] < 0:
+            continue
+        m = mat_of[b]
+        for f in range(nf):
+            if f == 0:
+                if b == STICK:
+                    R, B = ER[m], EB[m]
+                elif b == ELASTIC or b == LINEAR:
+                    R, B = RR[m, 0], BB[m, 0]
+                else:
+                    R, B = RR[m, n], BB[m, n]
+            else:
+                R, B = OR[m, f - 1], OB[m, f - 1]
+            g = G[m, f]
+            for j in range(N):
+                g[VALUE, j] = R[0, j]
+            g[VALUE, N] = B[0]
+            if K >= 2:
+                for j in range(N):
+                    g[C2, j] = R[2, j]
+                g[C2, N] = B[2]
+                g[C2, N + 1] = B[1] / 2.0
+            if K >= 3:
+                for j in range(N):
+                    g[C3, j] = R[3, j]
+                g[C3, N] = B[3]
+                g[C3, N + 1] = B[2] / 3.0
+            wa, ws = curvature_tail_weights(R, B, h, WX)
+            for j in range(N):
+                g[TIGHT, j] = WX[j]
+            g[TIGHT, N] = wa
+            g[TIGHT, N + 1] = ws
+            for j in range(N + 2):
+                g[LOOSE, j] = 2.0 * abs(g[C2, j]) + 6.0 * h * abs(g[C3, j]) + g[TIGHT, j]
+    return G
+
+
+@njit(cache=True, _nrt=False)
+def _deviation(g, x, ax, aa, slope, h, loose):
+    """``h²/8 · max|f''|`` bounded on a sub-step for the function with chord-bound rows `g`
+    (:func:`_chord_rows`) from its start state ``x`` (``ax = |x|``): the deviation of ``f``
+    from its chord. `loose`: from ``|x|`` alone (one product); else with ``c_2, c_3`` formed
+    exactly (the states of a building cancel in them)."""
+    N = x.size
+    if loose:
+        s = g[LOOSE, N] * abs(aa) + g[LOOSE, N + 1] * abs(slope)
+        for j in range(N):
+            s += g[LOOSE, j] * ax[j]
+        return 0.125 * h * h * s
+    c2 = g[C2, N] * aa + g[C2, N + 1] * slope
+    c3 = g[C3, N] * aa + g[C3, N + 1] * slope
+    tail = g[TIGHT, N] * abs(aa) + g[TIGHT, N + 1] * abs(slope)
+    for j in range(N):
+        c2 += g[C2, j] * x[j]
+        c3 += g[C3, j] * x[j]
+        tail += g[TIGHT, j] * ax[j]
+    return 0.125 * h * h * (2.0 * abs(c2) + 6.0 * h * abs(c3) + tail)
+
+
+@njit(cache=True, _nrt=False)
+def _value(g, x, a):
+    """The function's value ``row 0 · x + d·a``."""
+    N = x.size
+    s = g[VALUE, N] * a
+    for j in range(N):
+        s += g[VALUE, j] * x[j]
+    return s
+
+
+@njit(cache=True, _nrt=False)
+def _inside(lo, hi, v0, v1, g, x, ax, aa, slope, h):
+    """True when the function (ends ``v0``, ``v1``) provably stays strictly inside
+    ``(lo, hi)`` on the sub-step: its ends plus the chord deviation, loose bound first."""
+    top = max(v0, v1)
+    bot = min(v0, v1)
+    dev = _deviation(g, x, ax, aa, slope, h, True)
+    if top + dev < hi and bot - dev > lo:
+        return True
+    dev = _deviation(g, x, ax, aa, slope, h, False)
+    return top + dev < hi and bot - dev > lo
+
+
+@njit(cache=True, _nrt=False)
+def _fast_substep(branch, G, x, y, ax, aa, ab, slope, h, p, dy, limit, peak, t_peak, t0, z0,
+                  z1, need):  # fmt: skip
+    """The common case of a sub-step, without searching: returns −1 unless a rigorous bound
+    shows that `branch` has no event on the whole sub-step from state `x` to `y` (the exact
+    step's end); then updates the outputs' peaks with their end values and flags in `need`
+    the outputs whose ends plus chord deviation (:func:`_inside`) can exceed their peak so far
+    — only those are searched (:func:`_search_peak`); returns how many. ``G`` is the branch's
+    :func:`_chord_rows` block; ``z0`` the outputs' values at the start (updated to the end
+    values ``z1``); an output is searched only when that bound exceeds its peak (so never
+    while it is identically zero). Compiled without reference counting: no arrays are made
+    here."""
+    N = x.size
+    for j in range(N):
+        ax[j] = abs(x[j])
+    if branch != LINEAR:
+        g = G[0]
+        if branch == STICK:
+            lo, hi = -limit, limit
+        elif branch == ELASTIC:
+            lo, hi = p - dy, p + dy
+        elif branch == PLASTIC_POS or branch == SLIP_POS:
+            lo, hi = 0.0, np.inf
+        else:
+            lo, hi = -np.inf, 0.0
+        v0 = _value(g, x, aa)
+        v1 = _value(g, y, ab)
+        if not _inside(lo, hi, v0, v1, g, x, ax, aa, slope, h):
+            return -1
+    count = 0
+    for i in range(peak.size):
+        g = G[i + 1]
+        v1 = _value(g, y, ab)
+        z1[i] = v1
+        if abs(v1) > peak[i]:
+            peak[i] = abs(v1)
+            t_peak[i] = t0 + h
+        top = max(abs(z0[i]), abs(v1))
+        need[i] = top + _deviation(g, x, ax, aa, slope, h, True) > peak[i] and (
+            top + _deviation(g, x, ax, aa, slope, h, False) > peak[i]
+        )
+        if need[i]:
+            count += 1
+    return count
+
+
+@njit(cache=True)
+def _search_peak(OR, OB, i, x, a0, slope, h, K, peak, t_peak, t0, c, work):
+    """Search output ``i`` (Taylor rows ``OR[i], OB[i]``) on a sub-step for a new peak."""
+    taylor_coefficients(OR[i], OB[i], x, a0, slope, c)
+    v, t = max_abs_on(c, K, h, peak[i], work)
+    if v > peak[i]:
+        peak[i] = v
+        t_peak[i] = t0 + t
+
+
 @njit(cache=True)
 def nonlinear_run(
     mat_of,
@@ -246,7 +413,8 @@ def nonlinear_run(
 ):
     """Integrate the building over the record.
 
-    ``mat_of[branch]`` is the index of the branch's matrices in the stacks ``PHI, PP, QQ``
+    ``mat_of[branch]`` (−1 for a branch the layer does not have) is the index of the
+    branch's matrices in the stacks ``PHI, PP, QQ``
     (exact sub-step recurrence), ``RR, BB`` (full-state Taylor rows), ``ER, EB`` (the friction
     a stuck pendulum needs, as Taylor rows) and ``OR, OB`` (Taylor rows of the outputs whose
     true peaks are tracked in ``peak``/``t_peak``). ``consts = [k1 − k2, D_y, Q, mu·W,
@@ -308,6 +476,13 @@ def nonlinear_run(
     work2 = scratch(K2 + 1)
     x = x0.copy()
     y = np.empty(N)
+    G = _chord_rows(RR, BB, ER, EB, OR, OB, n, h, mat_of)
+    nout = peak.size
+    ax = np.empty(N)
+    z0 = np.empty(nout)
+    z1 = np.empty(nout)
+    need = np.zeros(nout, dtype=np.bool_)
+    z_valid = False  # z0 holds the outputs' values at the sub-step's start
     branch = branch0
     npts = acc.size
     n_ev = 0
@@ -325,6 +500,42 @@ def nonlinear_run(
             t0 = (k * substeps + r) * h
             s0 = 0.0
             events_here = 0
+            if not fresh:
+                # the common case first: a rigorous bound shows no event on the whole
+                # sub-step; then the end state is the exact step's and only the outputs whose
+                # bound allows a new peak are searched
+                m = mat_of[branch]
+                foh_step(PHI[m], PP[m], QQ[m], x, aa, ab, y)
+                p = -x[iF] / kk if branch == ELASTIC else 0.0
+                if not z_valid:
+                    for i in range(nout):
+                        z0[i] = _value(G[m, i + 1], x, aa)
+                nsearch = _fast_substep(branch, G[m], x, y, ax, aa, ab, slope, h, p, dy, musW,
+                                        peak, t_peak, t0, z0, z1, need)  # fmt: skip
+                if nsearch >= 0:
+                    for i in range(nout if nsearch > 0 else 0):
+                        if need[i]:
+                            _search_peak(OR[m], OB[m], i, x, aa, slope, h, K, peak, t_peak, t0,
+                                         c, work)  # fmt: skip
+                    if nblk > 0:
+                        _blocks(OR[m], OB[m], x, aa, slope, h, K, t0, blk_out, mub, muk,
+                                allow_pos, allow_neg, g, bstates, st, cb, bwork, rw,
+                                BLOCK_MAX_EVENTS)  # fmt: skip
+                    if nosc > 0:
+                        _oscillators(OR[m], OB[m], x, aa, slope, h, K, osc_out, osc_w, osc_xi,
+                                     osc_S, osc_P, D, co, d, dv, da, ow)  # fmt: skip
+                    if n2 > 0:
+                        _flexible(OR[m], OB[m], x, aa, slope, h, K, t0, o2, flex[1], flex[2],
+                                  flex[3], g, mub2, muk2, S2, flex[4], K2, c2, cs2, Y2, poly2,
+                                  y2, pk2, work2)  # fmt: skip
+                    for i in range(N):
+                        x[i] = y[i]
+                    for i in range(nout):
+                        z0[i] = z1[i]
+                    z_valid = True
+                    row += 1
+                    continue
+            z_valid = False
             while True:
                 m = mat_of[branch]
                 L = h - s0

@@ -308,6 +308,50 @@ def _initial(building: NonlinearIsolatedBuilding, x0: np.ndarray, a0: float) -> 
     return SLIP_POS if F > 0 else SLIP_NEG
 
 
+_ASSEMBLY_CACHE: dict = {}
+_ASSEMBLY_CACHE_SIZE = 32
+
+
+def _assembled(key, systems, mats, outputs, r_f, d_f, dt, m):
+    """The kernel's matrices for the branches `mats` (exact sub-step recurrences, Taylor rows
+    of the states, of the needed friction and of the outputs), memoised on `key` — the bytes
+    of every matrix they are made from, dt and the sub-steps — so that a building used on many
+    records (or many calls) pays for its matrix exponentials once. The arrays are shared
+    between calls and never written."""
+    hit = _ASSEMBLY_CACHE.get(key)
+    if hit is not None:
+        return hit
+    steppers = {b: ExactStepper.build(*systems[b], dt, m) for b in mats}
+    K = max(s.order for s in steppers.values())
+    N = next(iter(systems.values()))[0].shape[0]
+    nb = len(mats)
+    nout = outputs[0][0].shape[0]
+    PHI = np.empty((nb, N, N))
+    PP = np.empty((nb, N))
+    QQ = np.empty((nb, N))
+    RR = np.empty((nb, N, K + 1, N))
+    BB = np.empty((nb, N, K + 1))
+    ER = np.zeros((nb, K + 1, N))
+    EB = np.zeros((nb, K + 1))
+    OR = np.empty((nb, nout, K + 1, N))
+    OB = np.empty((nb, nout, K + 1))
+    for j, b in enumerate(mats):
+        st = steppers[b]
+        PHI[j] = st.phi
+        PP[j], QQ[j] = st.input_weights()
+        RR[j], BB[j] = st.taylor_rows(np.eye(N), order=K)
+        if b == STICK:
+            er, eb = st.taylor_rows(r_f[None, :], np.array([d_f]), order=K)
+            ER[j], EB[j] = er[0], eb[0]
+        C, D = outputs[j]
+        OR[j], OB[j] = st.taylor_rows(C, D, order=K)
+    value = (PHI, PP, QQ, RR, BB, ER, EB, OR, OB, K)
+    if len(_ASSEMBLY_CACHE) >= _ASSEMBLY_CACHE_SIZE:
+        _ASSEMBLY_CACHE.pop(next(iter(_ASSEMBLY_CACHE)))
+    _ASSEMBLY_CACHE[key] = value
+    return value
+
+
 def isolator_response(
     building: NonlinearIsolatedBuilding,
     acc,
@@ -388,35 +432,26 @@ def isolator_response(
         rho_obj = phase_radius(w2, float(f_xi), float(f_r))
         h_b = dt / m
         ho2 = h_b / substeps_for(rho_obj, h_b)
-    steppers = {b: ExactStepper.build(A, bb, dt, m) for b, (A, bb) in systems.items()}
-    K = max(s.order for s in steppers.values())
     mats = sorted(set(branches))
-    nb = len(mats)
-    mat_of = np.zeros(7, dtype=np.int64)
+    mat_of = np.full(7, -1, dtype=np.int64)  # -1: not a branch of this layer
     for j, b in enumerate(mats):
         mat_of[b] = j
-    PHI = np.empty((nb, N, N))
-    PP = np.empty((nb, N))
-    QQ = np.empty((nb, N))
-    RR = np.empty((nb, N, K + 1, N))
-    BB = np.empty((nb, N, K + 1))
-    ER = np.zeros((nb, K + 1, N))
-    EB = np.zeros((nb, K + 1))
     nout = 3 if oscillator is not None else len(floors) + 2
-    OR = np.empty((nb, nout, K + 1, N))
-    OB = np.empty((nb, nout, K + 1))
     r_f, d_f = building.needed_friction_row()
     r_f = np.concatenate([r_f, np.zeros(N - r_f.size)])
-    for j, b in enumerate(mats):
-        st = steppers[b]
-        PHI[j] = st.phi
-        PP[j], QQ[j] = st.input_weights()
-        RR[j], BB[j] = st.taylor_rows(np.eye(N), order=K)
-        if b == STICK:
-            er, eb = st.taylor_rows(r_f[None, :], np.array([d_f]), order=K)
-            ER[j], EB[j] = er[0], eb[0]
-        C, D = _outputs(building, b, floors, oscillator, N)
-        OR[j], OB[j] = st.taylor_rows(C, D, order=K)
+    outputs = [_outputs(building, b, floors, oscillator, N) for b in mats]
+    key = (
+        float(dt),
+        int(m),
+        N,
+        tuple((systems[b][0].tobytes(), systems[b][1].tobytes()) for b in mats),
+        tuple((C.tobytes(), D.tobytes()) for C, D in outputs),
+        r_f.tobytes(),
+        float(d_f),
+        STICK in mats,
+    )
+    assembled = _assembled(key, systems, mats, outputs, r_f, d_f, dt, m)
+    PHI, PP, QQ, RR, BB, ER, EB, OR, OB, K = assembled
     c = building.constants
     W = c["W"]
     if building.kind == "bilinear":
