@@ -141,45 +141,85 @@ def _blocks(OR, OB, x, a_s, slope, L, K, t_abs, blk_out, mub, muk, allow_pos, al
             states[i, j] = st[j]
 
 
+@njit(cache=True, _nrt=False)
+def _shift(c, K, base, out):
+    """``out``: the coefficients of ``p(base + s)`` in ``s`` for ``p = Σ c_j τ^j`` (degree
+    ``K``; repeated synthetic division, Horner's Taylor shift)."""
+    for j in range(K + 1):
+        out[j] = c[j]
+    if base == 0.0:
+        return
+    for i in range(K):
+        for j in range(K - 1, i - 1, -1):
+            out[j] += base * out[j + 1]
+
+
+@njit(cache=True, inline="always")
+def _bound_on(p, deg, L):
+    """``Σ_j |p_j| L^j ≥ max|p|`` on ``[0, L]``."""
+    s = 0.0
+    for j in range(deg, -1, -1):
+        s = s * L + abs(p[j])
+    return s
+
+
 @njit(cache=True)
-def _oscillators(OR, OB, x, a_s, slope, L, K, osc_out, osc_w, osc_xi, S, P, D, c, d, dv, da,
-                 work):  # fmt: skip
+def _oscillators(OR, OB, x, a_s, slope, L, K, osc_out, osc_w, osc_xi, osc_rho, S, P, D, c,
+                 CS, d, dv, da, work):  # fmt: skip
     """Advance linear oscillators through a segment ``[0, L]`` on the floors of output rows
     ``osc_out``: ``q'' + 2ξω q' + ω² q = −a_f(τ)`` with ``a_f`` the floor's Taylor polynomial
-    (degree ``K``), so ``q`` is the series ``Σ d_j τ^j`` with ``d_0 = q, d_1 = q'`` and
+    (degree ``K``). Oscillator ``i`` goes through the segment in equal parts no longer than
+    ``MAX_PHASE/osc_rho[i]`` (its own ``ρ·h ≤ 0.5``; the building keeps its own sub-steps):
+    on a part starting at ``τ_b`` the floor polynomial is shifted there (``CS``, one shift per
+    floor and part grid: oscillators come sorted by floor, then by ``osc_rho``) and ``q`` is
+    the series ``Σ d_j s^j`` with ``d_0 = q, d_1 = q'`` and
     ``d_{k+2} = −(c_k + 2ξω(k+1) d_{k+1} + ω² d_k)/((k+1)(k+2))`` (exact to rounding at degree
-    ``D`` for ``ωL ≤ 0.5``). ``S[i] = (q, q')`` in/out; ``P[i]`` the peaks of ``|q|``, ``|q'|``
-    and of the absolute acceleration ``|ω² q + 2ξω q'|``, inside the segment."""
+    ``D``). ``S[i] = (q, q')`` in/out; ``P[i]`` the peaks of ``|q|``, ``|q'|`` and of the
+    absolute acceleration ``|ω² q + 2ξω q'|``, searched inside a part only when the bound
+    ``Σ|d_j| h^j`` exceeds the peak so far."""
     last = -1
+    last_parts = -1
     for i in range(osc_w.size):
         o = osc_out[i]
         if o != last:
             taylor_coefficients(OR[o], OB[o], x, a_s, slope, c)
             last = o
+            last_parts = -1
+        parts = max(1, int(np.ceil(L * osc_rho[i] / 0.5 - 1e-12)))
+        hp = L / parts
+        if parts != last_parts:
+            for sp in range(parts):
+                _shift(c, K, sp * hp, CS[sp])
+            last_parts = parts
         w = osc_w[i]
         z2w = 2.0 * osc_xi[i] * w
         w2 = w * w
-        d[0] = S[i, 0]
-        d[1] = S[i, 1]
-        for k in range(D - 1):
-            ck = c[k] if k <= K else 0.0
-            d[k + 2] = -(ck + z2w * (k + 1) * d[k + 1] + w2 * d[k]) / ((k + 1) * (k + 2))
-        for j in range(D):
-            dv[j] = (j + 1) * d[j + 1]
-        dv[D] = 0.0
-        for j in range(D + 1):
-            da[j] = -(w2 * d[j] + z2w * dv[j])
-        v, _ = max_abs_on(d, D, L, P[i, 0], work)
-        if v > P[i, 0]:
-            P[i, 0] = v
-        v, _ = max_abs_on(dv, D - 1, L, P[i, 1], work)
-        if v > P[i, 1]:
-            P[i, 1] = v
-        v, _ = max_abs_on(da, D, L, P[i, 2], work)
-        if v > P[i, 2]:
-            P[i, 2] = v
-        S[i, 0] = poly_val(d, D, L)
-        S[i, 1] = poly_val(dv, D - 1, L)
+        for sp in range(parts):
+            cs = CS[sp]
+            d[0] = S[i, 0]
+            d[1] = S[i, 1]
+            for k in range(D - 1):
+                ck = cs[k] if k <= K else 0.0
+                d[k + 2] = -(ck + z2w * (k + 1) * d[k + 1] + w2 * d[k]) / ((k + 1) * (k + 2))
+            for j in range(D):
+                dv[j] = (j + 1) * d[j + 1]
+            dv[D] = 0.0
+            for j in range(D + 1):
+                da[j] = -(w2 * d[j] + z2w * dv[j])
+            if _bound_on(d, D, hp) > P[i, 0]:
+                v, _ = max_abs_on(d, D, hp, P[i, 0], work)
+                if v > P[i, 0]:
+                    P[i, 0] = v
+            if _bound_on(dv, D - 1, hp) > P[i, 1]:
+                v, _ = max_abs_on(dv, D - 1, hp, P[i, 1], work)
+                if v > P[i, 1]:
+                    P[i, 1] = v
+            if _bound_on(da, D, hp) > P[i, 2]:
+                v, _ = max_abs_on(da, D, hp, P[i, 2], work)
+                if v > P[i, 2]:
+                    P[i, 2] = v
+            S[i, 0] = poly_val(d, D, hp)
+            S[i, 1] = poly_val(dv, D - 1, hp)
 
 
 @njit(cache=True)
@@ -403,6 +443,7 @@ def nonlinear_run(
     osc_out,
     osc_w,
     osc_xi,
+    osc_rho,
     osc_S,
     osc_P,
     D,
@@ -460,6 +501,10 @@ def nonlinear_run(
     st = np.empty(bstates.shape[1])
     nosc = osc_w.size
     co = np.empty(max(K, D) + 2)
+    most_parts = 1
+    for i in range(nosc):
+        most_parts = max(most_parts, int(np.ceil(h * osc_rho[i] / 0.5 - 1e-12)))
+    CS = np.zeros((most_parts, K + 1))
     d = np.empty(D + 2)
     dv = np.empty(D + 2)
     da = np.empty(D + 2)
@@ -523,7 +568,7 @@ def nonlinear_run(
                                 BLOCK_MAX_EVENTS)  # fmt: skip
                     if nosc > 0:
                         _oscillators(OR[m], OB[m], x, aa, slope, h, K, osc_out, osc_w, osc_xi,
-                                     osc_S, osc_P, D, co, d, dv, da, ow)  # fmt: skip
+                                     osc_rho, osc_S, osc_P, D, co, CS, d, dv, da, ow)  # fmt: skip
                     if n2 > 0:
                         _flexible(OR[m], OB[m], x, aa, slope, h, K, t0, o2, flex[1], flex[2],
                                   flex[3], g, mub2, muk2, S2, flex[4], K2, c2, cs2, Y2, poly2,
@@ -555,7 +600,7 @@ def nonlinear_run(
                                 BLOCK_MAX_EVENTS)  # fmt: skip
                     if nosc > 0:
                         _oscillators(OR[m], OB[m], x, a_s, slope, L, K, osc_out, osc_w, osc_xi,
-                                     osc_S, osc_P, D, co, d, dv, da, ow)  # fmt: skip
+                                     osc_rho, osc_S, osc_P, D, co, CS, d, dv, da, ow)  # fmt: skip
                     if n2 > 0:
                         _flexible(OR[m], OB[m], x, a_s, slope, L, K, t0 + s0, o2, flex[1],
                                   flex[2], flex[3], g, mub2, muk2, S2, flex[4], K2, c2, cs2, Y2,
@@ -574,7 +619,7 @@ def nonlinear_run(
                             BLOCK_MAX_EVENTS)  # fmt: skip
                 if nosc > 0:
                     _oscillators(OR[m], OB[m], x, a_s, slope, te, K, osc_out, osc_w, osc_xi,
-                                 osc_S, osc_P, D, co, d, dv, da, ow)  # fmt: skip
+                                 osc_rho, osc_S, osc_P, D, co, CS, d, dv, da, ow)  # fmt: skip
                 if n2 > 0:
                     _flexible(OR[m], OB[m], x, a_s, slope, te, K, t0 + s0, o2, flex[1],
                               flex[2], flex[3], g, mub2, muk2, S2, flex[4], K2, c2, cs2, Y2,

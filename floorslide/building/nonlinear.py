@@ -421,8 +421,6 @@ def isolator_response(
     N = next(iter(systems.values()))[0].shape[0]
     rho = max(spectral_radius(A) for A, _ in systems.values())
     oscillators = [] if oscillators is None else list(oscillators)
-    if oscillators:
-        rho = max(rho, max(float(o[1]) for o in oscillators))
     m = substeps_for(rho, dt)
     from floorslide.contents.oscillator import phase_radius
 
@@ -475,12 +473,24 @@ def isolator_response(
     from floorslide.contents.events import SLIDE_MAX_EVENTS
 
     blocks = [] if blocks is None else list(blocks)
+    # oscillators by floor, then by their own rate (the kernel shares the floor polynomial's
+    # shifts between oscillators with the same part grid)
     osc_out = np.array([floors.index(int(o[0])) for o in oscillators], dtype=np.int64)
     osc_w = np.array([float(o[1]) for o in oscillators])
     osc_xi = np.array([float(o[2]) for o in oscillators])
+    osc_rho = osc_w * np.where(osc_xi > 1.0, osc_xi + np.sqrt(np.abs(osc_xi**2 - 1.0)), 1.0)
+    osc_order = np.lexsort((osc_rho, osc_out))
+    osc_out, osc_w, osc_xi, osc_rho = (
+        osc_out[osc_order],
+        osc_w[osc_order],
+        osc_xi[osc_order],
+        osc_rho[osc_order],
+    )
     from floorslide.building.exact import taylor_degree
 
-    D = max(K, taylor_degree(float(osc_w.max()) * dt / m) if oscillators else 0) + 2
+    # each oscillator goes through a segment in parts with ρ·h ≤ MAX_PHASE (the kernel's 0.5)
+    phase = min(0.5, float(osc_rho.max()) * dt / m) if oscillators else 0.0
+    D = max(K, taylor_degree(phase)) + 2
     from floorslide.contents._oscillator_kernel import O_LIMIT_AT, O_NCOL
 
     if flexible is not None:
@@ -517,7 +527,7 @@ def isolator_response(
             mat_of, PHI, PP, QQ, RR, BB, ER, EB, OR, OB, K, consts, acc, m, dt / m,
             x0, branch0, X, BR, ev_row, ev_tau, ev_branch, peak, t_peak, MAX_EVENTS_PER_SUBSTEP,
             blk_out, mub, muk, direction != "negative", direction != "positive", G, bstates, n,
-            hist_u, osc_out, osc_w, osc_xi, osc_S, osc_P, D, flex, mub2, muk2, S2,
+            hist_u, osc_out, osc_w, osc_xi, osc_rho, osc_S, osc_P, D, flex, mub2, muk2, S2,
         )  # fmt: skip
         if len(blocks) and (bstates[:, LIMIT_AT] >= 0).any():
             t = float(bstates[bstates[:, LIMIT_AT] >= 0, LIMIT_AT].min())
@@ -577,7 +587,7 @@ def isolator_response(
         notes=notes,
         block_states=bstates[np.argsort(order, kind="stable")] if len(blocks) else None,
         block_slides=hist_u[np.argsort(order, kind="stable")] if block_histories else None,
-        oscillator_peaks=osc_P if oscillators else None,
+        oscillator_peaks=osc_P[np.argsort(osc_order, kind="stable")] if oscillators else None,
         flexible_states=S2 if flexible is not None else None,
     )
 
@@ -657,8 +667,8 @@ def floor_spectrum_on_isolation(
     Every oscillator ``(T, ξ)`` rides along one integration of the building (it does not act
     back): through each segment between the layer's events it is advanced by the Taylor series
     of its exact response to the floor's in-step polynomial, and its peaks are found inside
-    steps (:func:`isolator_response` with ``oscillators=``). The sub-steps are short for the
-    stiffest oscillator too (``ω h ≤ 0.5``).
+    steps (:func:`isolator_response` with ``oscillators=``). The building keeps its own
+    sub-steps; each oscillator goes through them in parts short for it (``ω h ≤ 0.5``).
 
     Returns
     -------
