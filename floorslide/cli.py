@@ -1200,9 +1200,10 @@ def _demo_may_replace(h5, scene_text: str) -> bool:
 )
 def demo(out_dir, workers):
     """Run the bundled demo: a broad-band and a pulse-like set of recorded earthquakes, a
-    1-storey fixed-base building (T = 0.2 s, 2 %) and the same on isolation swept over
-    T_i = 1.5…4 s (ξ_i = 10 %), equipment with mu = 0.05…0.5 on the roof, floor response
-    spectra per floor. Writes DIR/results.h5, DIR/tables (CSV and Markdown) and DIR/figures.
+    1-storey fixed-base building (T = 0.2 s, 2 %), the same on linear isolation swept over
+    T_i = 1.5…4 s (ξ_i = 10 %) and on friction-pendulum bearings (mu = 0.06, T = 3 s),
+    equipment with mu = 0.05…0.5 on the roof, floor response spectra per floor. Writes
+    DIR/results.h5, DIR/tables (CSV and Markdown) and DIR/figures.
 
     Run again, it replaces DIR/results.h5 only if that file is a floorslide result of the demo
     scene (a previous demo, finished or not); any other file there is left alone and the demo

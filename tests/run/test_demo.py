@@ -29,8 +29,12 @@ def test_demo(tmp_path):
     out = demo(tmp_path / "d", "--workers", "2")
     assert out.returncode == 0, out.stderr
     rf = ResultFile(tmp_path / "d" / "results.h5")
-    assert len(rf.done_tasks()) == 36 * 7
+    assert len(rf.done_tasks()) == 36 * 8
     assert "pulse-like (18 records)" in out.stdout and "| isolated@T=2.5 |" in out.stdout
+    # issue 14 item 5: the friction-pendulum variant beside the linear model, with its loop
+    assert "| fps |" in out.stdout
+    assert (tmp_path / "d" / "figures" / "hysteresis_broad-band.png").exists()
+    assert (tmp_path / "d" / "tables" / "isolators.csv").exists()
     # issue 12 item 4: 9 of 18 records rock under the cabinet at mu = 0.4 on isolated@T=2
     # (pulse-like); the median falls on them and reads "rocks", not the 0.0 of the 9 others
     row = next(ln for ln in out.stdout.splitlines()[::-1] if ln.startswith("| isolated@T=2 |"))
@@ -44,7 +48,7 @@ def test_demo(tmp_path):
     again = demo(tmp_path / "d", "--workers", "2")
     assert again.returncode == 0, again.stderr
     assert again.stdout.split("tasks in")[0] == out.stdout.split("tasks in")[0]
-    assert len(ResultFile(tmp_path / "d" / "results.h5").done_tasks()) == 36 * 7
+    assert len(ResultFile(tmp_path / "d" / "results.h5").done_tasks()) == 36 * 8
 
 
 def test_demo_leaves_other_files_alone(tmp_path):
