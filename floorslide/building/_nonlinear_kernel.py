@@ -24,7 +24,7 @@ from floorslide.building._instep import (
     substep_inputs,
     taylor_coefficients,
 )
-from floorslide.contents._kernels import _general
+from floorslide.contents._kernels import objects_on_substep
 from floorslide.contents._oscillator_kernel import _advance_part
 from floorslide.numerics.polynomial import first_rise, max_abs_on, poly_val, scratch
 
@@ -121,26 +121,6 @@ def _peaks(branch_rows, branch_beta, x, a0, slope, L, K, peak, t_peak, t0, c, wo
             t_peak[i] = t0 + t
 
 
-@njit(cache=True)
-def _blocks(OR, OB, x, a_s, slope, L, K, t_abs, blk_out, mub, muk, allow_pos, allow_neg, g,
-            states, st, c, bwork, rw, max_events):  # fmt: skip
-    """Advance the rigid blocks through a segment ``[0, L]`` of one branch: each stands on the
-    floor whose absolute acceleration is output row ``blk_out[i]``; its exact event-driven
-    step is the rigid-block kernel's (:func:`floorslide.contents._kernels._general`)."""
-    last = -1
-    for i in range(muk.size):
-        o = blk_out[i]
-        if o != last:
-            taylor_coefficients(OR[o], OB[o], x, a_s, slope, c)
-            last = o
-        for j in range(st.size):
-            st[j] = states[i, j]
-        _general(c, K, L, g, 0.0, False, g, mub[i], muk[i], allow_pos, allow_neg, t_abs, st,
-                 bwork, rw, max_events)  # fmt: skip
-        for j in range(st.size):
-            states[i, j] = st[j]
-
-
 @njit(cache=True, _nrt=False)
 def _shift(c, K, base, out):
     """``out``: the coefficients of ``p(base + s)`` in ``s`` for ``p = Σ c_j τ^j`` (degree
@@ -161,6 +141,39 @@ def _bound_on(p, deg, L):
     for j in range(deg, -1, -1):
         s = s * L + abs(p[j])
     return s
+
+
+@njit(cache=True)
+def _blocks_substep(G, OR, OB, m, x, y, aa, ab, slope, h, t0, n, blk_out, blk_floor, mub, muk,
+                    allow_pos, allow_neg, g, bstates, c, bwork, rw, st):  # fmt: skip
+    """Advance the rigid blocks through a whole sub-step without events of the building
+    (state `x` to `y`, branch matrices ``m``; or a segment of one, of length ``h`` ≤ the
+    sub-step: the curvature-tail weights of the whole sub-step in ``G`` bound it too), floor
+    by floor, as on a linear building
+    (:func:`floorslide.contents._kernels.objects_on_substep`: closed forms where a rigorous
+    enclosure of the floor acceleration decides, the event-driven step otherwise). Block
+    ``i`` stands on floor ``blk_floor[i]`` (state index), output row ``blk_out[i]``; the
+    floor's relative displacement and velocity are the states ``f`` and ``n + f``."""
+    N = x.size
+    nblk = muk.size
+    i0 = 0
+    while i0 < nblk:
+        o = blk_out[i0]
+        i1 = i0
+        while i1 < nblk and blk_out[i1] == o:
+            i1 += 1
+        f = blk_floor[i0]
+        gr = G[m, o + 1]
+        vr0 = x[n + f]
+        dV = y[n + f] - vr0 + 0.5 * h * (aa + ab)
+        dD = y[f] - x[f] - vr0 * h
+        dD += aa * h * h / 2.0 + slope * h * h * h / 6.0
+        objects_on_substep(OR[m, o], OB[m, o], x, y, aa, ab, slope, h, t0, gr[TIGHT, :N],
+                           gr[TIGHT, N], gr[TIGHT, N + 1], dV, dD, g, 0.0, g, g, g * h,
+                           g * h * h / 2.0, False, g, mub[i0:i1], muk[i0:i1], allow_pos,
+                           allow_neg, bstates[i0:i1], BLOCK_MAX_EVENTS, c, bwork, rw,
+                           st)  # fmt: skip
+        i0 = i1
 
 
 @njit(cache=True)
@@ -432,6 +445,7 @@ def nonlinear_run(
     t_peak,
     max_events,
     blk_out,
+    blk_floor,
     mub,
     muk,
     allow_pos,
@@ -468,9 +482,11 @@ def nonlinear_run(
     ride along without acting back (response-spectrum oscillators on a floor).
 
     Rigid blocks ride along (none when ``muk`` is empty): block ``i`` stands on the floor of
-    output row ``blk_out[i]`` (sorted), friction ``mub``/``muk``, state ``bstates[i]`` (the
-    columns of :mod:`floorslide.contents._kernels`), advanced exactly through every segment;
-    when ``hist_u`` has a row per block, their slides at the samples are written there.
+    output row ``blk_out[i]`` (sorted; ``blk_floor[i]`` the floor's state index), friction
+    ``mub``/``muk``, state ``bstates[i]`` (the columns of :mod:`floorslide.contents._kernels`),
+    advanced exactly through every segment (a sub-step without events of the building as on a
+    linear building, :func:`_blocks_substep`); when ``hist_u`` has a row per block, their
+    slides at the samples are written there.
     Linear oscillators ride along the same way (none when ``osc_w`` is empty; see
     :func:`_oscillators`): the floor response spectra of the floors of rows ``osc_out``.
     2-DOF sliding oscillators too (none when ``muk2`` is empty): ``flex = [row, ω, ξ, r,
@@ -563,9 +579,9 @@ def nonlinear_run(
                             _search_peak(OR[m], OB[m], i, x, aa, slope, h, K, peak, t_peak, t0,
                                          c, work)  # fmt: skip
                     if nblk > 0:
-                        _blocks(OR[m], OB[m], x, aa, slope, h, K, t0, blk_out, mub, muk,
-                                allow_pos, allow_neg, g, bstates, st, cb, bwork, rw,
-                                BLOCK_MAX_EVENTS)  # fmt: skip
+                        _blocks_substep(G, OR, OB, m, x, y, aa, ab, slope, h, t0, n, blk_out,
+                                        blk_floor, mub, muk, allow_pos, allow_neg, g, bstates,
+                                        cb, bwork, rw, st)  # fmt: skip
                     if nosc > 0:
                         _oscillators(OR[m], OB[m], x, aa, slope, h, K, osc_out, osc_w, osc_xi,
                                      osc_rho, osc_S, osc_P, D, co, CS, d, dv, da, ow)  # fmt: skip
@@ -593,11 +609,17 @@ def nonlinear_run(
                 )  # fmt: skip
                 fresh = False
                 if te == NO_EVENT:
+                    if events_here == 0:
+                        foh_step(PHI[m], PP[m], QQ[m], x, aa, ab, y)
+                        a_end = ab
+                    else:
+                        _state_at(RR[m], BB[m], x, a_s, slope, L, K, y, c)
+                        a_end = a_s + slope * L
                     _peaks(OR[m], OB[m], x, a_s, slope, L, K, peak, t_peak, t0 + s0, c, work)
                     if nblk > 0:
-                        _blocks(OR[m], OB[m], x, a_s, slope, L, K, t0 + s0, blk_out, mub, muk,
-                                allow_pos, allow_neg, g, bstates, st, cb, bwork, rw,
-                                BLOCK_MAX_EVENTS)  # fmt: skip
+                        _blocks_substep(G, OR, OB, m, x, y, a_s, a_end, slope, L, t0 + s0, n,
+                                        blk_out, blk_floor, mub, muk, allow_pos, allow_neg, g,
+                                        bstates, cb, bwork, rw, st)  # fmt: skip
                     if nosc > 0:
                         _oscillators(OR[m], OB[m], x, a_s, slope, L, K, osc_out, osc_w, osc_xi,
                                      osc_rho, osc_S, osc_P, D, co, CS, d, dv, da, ow)  # fmt: skip
@@ -605,18 +627,15 @@ def nonlinear_run(
                         _flexible(OR[m], OB[m], x, a_s, slope, L, K, t0 + s0, o2, flex[1],
                                   flex[2], flex[3], g, mub2, muk2, S2, flex[4], K2, c2, cs2, Y2,
                                   poly2, y2, pk2, work2)  # fmt: skip
-                    if events_here == 0:
-                        foh_step(PHI[m], PP[m], QQ[m], x, aa, ab, y)
-                    else:
-                        _state_at(RR[m], BB[m], x, a_s, slope, L, K, y, c)
                     for i in range(N):
                         x[i] = y[i]
                     break
+                _state_at(RR[m], BB[m], x, a_s, slope, te, K, y, c)
                 _peaks(OR[m], OB[m], x, a_s, slope, te, K, peak, t_peak, t0 + s0, c, work)
                 if nblk > 0:
-                    _blocks(OR[m], OB[m], x, a_s, slope, te, K, t0 + s0, blk_out, mub, muk,
-                            allow_pos, allow_neg, g, bstates, st, cb, bwork, rw,
-                            BLOCK_MAX_EVENTS)  # fmt: skip
+                    _blocks_substep(G, OR, OB, m, x, y, a_s, a_s + slope * te, slope, te,
+                                    t0 + s0, n, blk_out, blk_floor, mub, muk, allow_pos,
+                                    allow_neg, g, bstates, cb, bwork, rw, st)  # fmt: skip
                 if nosc > 0:
                     _oscillators(OR[m], OB[m], x, a_s, slope, te, K, osc_out, osc_w, osc_xi,
                                  osc_rho, osc_S, osc_P, D, co, CS, d, dv, da, ow)  # fmt: skip
@@ -624,7 +643,6 @@ def nonlinear_run(
                     _flexible(OR[m], OB[m], x, a_s, slope, te, K, t0 + s0, o2, flex[1],
                               flex[2], flex[3], g, mub2, muk2, S2, flex[4], K2, c2, cs2, Y2,
                               poly2, y2, pk2, work2)  # fmt: skip
-                _state_at(RR[m], BB[m], x, a_s, slope, te, K, y, c)
                 for i in range(N):
                     x[i] = y[i]
                 a_e = a_s + slope * te

@@ -505,6 +505,7 @@ def isolator_response(
     blk_out = np.array([floors.index(int(b[0])) for b in blocks], dtype=np.int64)
     order = np.argsort(blk_out, kind="stable")
     blk_out = blk_out[order]
+    blk_floor = np.array([int(blocks[i][0]) for i in order], dtype=np.int64)
     mub = np.array([float(blocks[i][1]) for i in order])
     muk = np.array([float(blocks[i][2]) for i in order])
     dirs = {str(b[3]) for b in blocks} or {"both"}
@@ -526,7 +527,8 @@ def isolator_response(
         n_ev = kern.nonlinear_run(
             mat_of, PHI, PP, QQ, RR, BB, ER, EB, OR, OB, K, consts, acc, m, dt / m,
             x0, branch0, X, BR, ev_row, ev_tau, ev_branch, peak, t_peak, MAX_EVENTS_PER_SUBSTEP,
-            blk_out, mub, muk, direction != "negative", direction != "positive", G, bstates, n,
+            blk_out, blk_floor, mub, muk, direction != "negative", direction != "positive", G,
+            bstates, n,
             hist_u, osc_out, osc_w, osc_xi, osc_rho, osc_S, osc_P, D, flex, mub2, muk2, S2,
         )  # fmt: skip
         if len(blocks) and (bstates[:, LIMIT_AT] >= 0).any():

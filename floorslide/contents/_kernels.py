@@ -261,6 +261,117 @@ def _general(
     state[DISP] = u
 
 
+@njit(cache=True, _nrt=False)
+def objects_on_substep(R, beta, x_prev, x, aa, ab, slope, h, t0, WX, WA, WS, dV, dD, n0, sn,
+                       nmin, nmax, nint, nint2, has_vert, g, mub, muk, allow_pos, allow_neg,
+                       states, max_events, c, work, rw, st):  # fmt: skip
+    """Advance rigid blocks on one floor through one sub-step of a linear building (or of one
+    branch of a piecewise-linear one), exactly; returns the floor acceleration at its end.
+
+    The floor's absolute acceleration on the sub-step is the output with Taylor rows ``R,
+    beta`` of the building going from state ``x_prev`` to ``x`` (ground ``aa`` → ``ab``,
+    ``slope``); ``WX, WA, WS`` its curvature-tail weights on ``h``
+    (:func:`~floorslide.building._instep.curvature_tail_weights`). ``dV``, ``dD``: the changes
+    of the floor's absolute velocity and of its displacement minus ``v_0·h`` over the sub-step
+    (the integrals a sliding block needs); ``n0, sn, nmin, nmax, nint, nint2``: the normal
+    acceleration ``n0 + sn·τ``, its extremes and its first and second integrals on the
+    sub-step. Objects that provably stay stuck, or slide one way throughout, are advanced in
+    closed form from a rigorous enclosure of the floor acceleration, tightened only when a
+    decision needs it; every other one by the event-driven :func:`_general`.
+
+    This is the inner loop of :func:`slide_kernel`, for callers that step a building
+    themselves (:mod:`floorslide.building._nonlinear_kernel`). ``slide_kernel`` keeps its own
+    copy of the loop inline: numba does not inline a function with this many arguments, and
+    a call per sub-step made one object per call 30 % slower (measured). Change both
+    together; ``tests/contents/test_objects_on_substep.py`` checks they agree bit for bit.
+    Compiled without reference counting (no arrays are made here): the call stays cheap.
+    """
+    K = R.shape[0] - 1
+    nobj = muk.size
+    # shared floor quantities of this sub-step: end values, and a rigorous enclosure
+    # [amin, amax] of the floor acceleration on it, tightened only when a decision
+    # needs it (level 0: curvature bound from the state, O(n); 1: from the Taylor
+    # coefficients; 2: the exact extremes, every critical point)
+    A0 = _dot_state(R[0], x_prev) + beta[0] * aa
+    A1 = _dot_state(R[0], x) + beta[0] * ab
+    dev = 0.125 * h * h * curvature_bound_at(R, beta, x_prev, aa, slope, h, WX, WA, WS)
+    amin = min(A0, A1) - dev
+    amax = max(A0, A1) + dev
+    level = 0 if dev > 0.0 else 2
+    have_c = False
+    for i in range(nobj):
+        mode = states[i, MODE]
+        if mode == 0.0 and nmin > 0.0:
+            fb = mub[i] * nmin
+            while True:
+                ok = (amax <= fb or not allow_neg) and (amin >= -fb or not allow_pos)
+                if ok or level == 2:
+                    break
+                amin, amax, level = _tighten(level, R, beta, x_prev, aa, slope, c, K, h, A0, A1, rw)
+                have_c = True
+            if ok:
+                while max(amax, -amin) > states[i, PEAK_ACC] and level < 2:
+                    amin, amax, level = _tighten(
+                        level, R, beta, x_prev, aa, slope, c, K, h, A0, A1, rw
+                    )
+                    have_c = True
+                ab_abs = max(amax, -amin)
+                if ab_abs > states[i, PEAK_ACC]:
+                    states[i, PEAK_ACC] = ab_abs
+                continue
+        elif (mode == 1.0 or mode == -1.0) and nmin > 0.0:
+            sgn = mode
+            v = states[i, VEL]
+            v_end = v - dV - sgn * muk[i] * nint
+            fk = muk[i] * nmin
+            if sgn * v_end > 0.0:
+                while True:
+                    monotone = (amin > -fk) if sgn > 0.0 else (amax < fk)
+                    if monotone or level == 2:
+                        break
+                    amin, amax, level = _tighten(
+                        level, R, beta, x_prev, aa, slope, c, K, h, A0, A1, rw
+                    )
+                    have_c = True
+                if monotone:
+                    u = states[i, DISP] + v * h - dD - sgn * muk[i] * nint2
+                    states[i, VEL] = v_end
+                    states[i, DISP] = u
+                    states[i, SLIDE_TIME] += h
+                    if abs(u) > states[i, PEAK_DISP]:
+                        states[i, PEAK_DISP] = abs(u)
+                        states[i, T_PEAK] = t0 + h
+                    if muk[i] * nmax > states[i, PEAK_ACC]:
+                        states[i, PEAK_ACC] = muk[i] * nmax
+                    continue
+        if not have_c:
+            taylor_coefficients(R, beta, x_prev, aa, slope, c)
+            have_c = True
+        for j in range(NCOL):
+            st[j] = states[i, j]
+        _general(
+            c,
+            K,
+            h,
+            n0,
+            sn,
+            has_vert,
+            g,
+            mub[i],
+            muk[i],
+            allow_pos,
+            allow_neg,
+            t0,
+            st,
+            work,
+            rw,
+            max_events,
+        )
+        for j in range(NCOL):
+            states[i, j] = st[j]
+    return A1
+
+
 @njit(cache=True)
 def slide_kernel(
     X,
