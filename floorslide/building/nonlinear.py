@@ -312,10 +312,35 @@ _ASSEMBLY_CACHE: dict = {}
 _ASSEMBLY_CACHE_SIZE = 32
 
 
+_PREPARED_CACHE: dict = {}
+
+
+def _prepared(key, building, floors, oscillator):
+    """The layer's branches (sorted), each branch's ``(A, b)``, their largest spectral radius,
+    the output rows per branch and the needed-friction row, memoised on `key` (the building's
+    matrices and constants, the floors and the oscillator)."""
+    hit = _PREPARED_CACHE.get(key)
+    if hit is not None:
+        return hit
+    mats = sorted(set(building.branches()))
+    systems = {b: _augmented(building, b, oscillator) for b in mats}
+    N = next(iter(systems.values()))[0].shape[0]
+    rho = max(spectral_radius(A) for A, _ in systems.values())
+    outputs = [_outputs(building, b, floors, oscillator, N) for b in mats]
+    r_f, d_f = building.needed_friction_row()
+    r_f = np.concatenate([r_f, np.zeros(N - r_f.size)])
+    value = (systems, rho, mats, outputs, r_f, float(d_f))
+    if len(_PREPARED_CACHE) >= _ASSEMBLY_CACHE_SIZE:
+        _PREPARED_CACHE.pop(next(iter(_PREPARED_CACHE)))
+    _PREPARED_CACHE[key] = value
+    return value
+
+
 def _assembled(key, systems, mats, outputs, r_f, d_f, dt, m):
     """The kernel's matrices for the branches `mats` (exact sub-step recurrences, Taylor rows
     of the states, of the needed friction and of the outputs), memoised on `key` — the bytes
-    of every matrix they are made from, dt and the sub-steps — so that a building used on many
+    of the building's matrices and constants, the floors, the oscillator, dt and the sub-steps
+    — so that a building used on many
     records (or many calls) pays for its matrix exponentials once. The arrays are shared
     between calls and never written."""
     hit = _ASSEMBLY_CACHE.get(key)
@@ -416,10 +441,17 @@ def isolator_response(
     for f in floors:
         if not 0 <= f < n:
             raise ModelError(f"floor {f} does not exist; floors are 0..{n - 1}", "floors")
-    branches = building.branches()
-    systems = {b: _augmented(building, b, oscillator) for b in branches}
+    prep_key = (
+        building.kind,
+        building.mass.tobytes(),
+        building.stiffness_matrix.tobytes(),
+        building.damping_matrix.tobytes(),
+        tuple(sorted(building.constants.items())),
+        tuple(floors),
+        None if oscillator is None else tuple(float(v) for v in oscillator),
+    )
+    systems, rho, mats, outputs, r_f, d_f = _prepared(prep_key, building, floors, oscillator)
     N = next(iter(systems.values()))[0].shape[0]
-    rho = max(spectral_radius(A) for A, _ in systems.values())
     oscillators = [] if oscillators is None else list(oscillators)
     m = substeps_for(rho, dt)
     from floorslide.contents.oscillator import phase_radius
@@ -430,24 +462,11 @@ def isolator_response(
         rho_obj = phase_radius(w2, float(f_xi), float(f_r))
         h_b = dt / m
         ho2 = h_b / substeps_for(rho_obj, h_b)
-    mats = sorted(set(branches))
     mat_of = np.full(7, -1, dtype=np.int64)  # -1: not a branch of this layer
     for j, b in enumerate(mats):
         mat_of[b] = j
     nout = 3 if oscillator is not None else len(floors) + 2
-    r_f, d_f = building.needed_friction_row()
-    r_f = np.concatenate([r_f, np.zeros(N - r_f.size)])
-    outputs = [_outputs(building, b, floors, oscillator, N) for b in mats]
-    key = (
-        float(dt),
-        int(m),
-        N,
-        tuple((systems[b][0].tobytes(), systems[b][1].tobytes()) for b in mats),
-        tuple((C.tobytes(), D.tobytes()) for C, D in outputs),
-        r_f.tobytes(),
-        float(d_f),
-        STICK in mats,
-    )
+    key = (prep_key, float(dt), int(m))
     assembled = _assembled(key, systems, mats, outputs, r_f, d_f, dt, m)
     PHI, PP, QQ, RR, BB, ER, EB, OR, OB, K = assembled
     c = building.constants
@@ -553,11 +572,11 @@ def isolator_response(
     br = BR
     acc_out = np.empty((len(floors), acc.size))
     force = np.empty(acc.size)
-    for b in mats:
+    for j, b in enumerate(mats):
         sel = br == b
         if not sel.any():
             continue
-        C, D = building.output_rows(b, floors)
+        C, D = building.output_rows(b, floors) if oscillator is not None else outputs[j]
         vals = C @ samples[sel, : 2 * n + 1].T + D[:, None] * acc[sel][None, :]
         acc_out[:, sel] = vals[:-2]
         force[sel] = vals[-2]
