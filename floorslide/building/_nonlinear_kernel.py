@@ -465,6 +465,7 @@ def nonlinear_run(
     mub2,
     muk2,
     S2,
+    Yo,
 ):
     """Integrate the building over the record.
 
@@ -486,7 +487,8 @@ def nonlinear_run(
     ``mub``/``muk``, state ``bstates[i]`` (the columns of :mod:`floorslide.contents._kernels`),
     advanced exactly through every segment (a sub-step without events of the building as on a
     linear building, :func:`_blocks_substep`); when ``hist_u`` has a row per block, their
-    slides at the samples are written there.
+    slides at the samples are written there. ``Yo[k]`` (when it has a row per sample)
+    receives the outputs' values at record sample ``k``.
     Linear oscillators ride along the same way (none when ``osc_w`` is empty; see
     :func:`_oscillators`): the floor response spectra of the floors of rows ``osc_out``.
     2-DOF sliding oscillators too (none when ``muk2`` is empty): ``flex = [row, ω, ξ, r,
@@ -551,6 +553,10 @@ def nonlinear_run(
     for i in range(N):
         X[0, i] = x[i]
     BR[0] = branch
+    want_outputs = Yo.shape[0] == npts
+    if want_outputs:
+        for i in range(nout):
+            Yo[0, i] = _value(G[mat_of[branch], i + 1], x, acc[0])
     fresh = False
     for k in range(npts - 1):
         a = acc[k]
@@ -692,6 +698,10 @@ def nonlinear_run(
         for i in range(N):
             X[k + 1, i] = x[i]
         BR[k + 1] = branch
+        if want_outputs:
+            mk = mat_of[branch]
+            for i in range(nout):
+                Yo[k + 1, i] = _value(G[mk, i + 1], x, a1)
         if hist_u.shape[0] == nblk and nblk > 0:
             for i in range(nblk):
                 hist_u[i, k + 1] = bstates[i, 2]

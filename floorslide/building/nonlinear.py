@@ -531,6 +531,10 @@ def isolator_response(
     if len(dirs) > 1:
         raise ModelError("blocks of one call slide in one direction setting", "direction")
     (direction,) = dirs
+    # the outputs (floors' accelerations, isolator force) at the samples, from the kernel; with
+    # an oscillator riding as states its outputs are the oscillator's, so the floors' are
+    # formed here afterwards
+    Yo = np.empty((acc.size, nout) if oscillator is None else (0, nout))
     while True:
         ev_row = np.empty(cap, dtype=np.int64)
         ev_tau = np.empty(cap)
@@ -549,6 +553,7 @@ def isolator_response(
             blk_out, blk_floor, mub, muk, direction != "negative", direction != "positive", G,
             bstates, n,
             hist_u, osc_out, osc_w, osc_xi, osc_rho, osc_S, osc_P, D, flex, mub2, muk2, S2,
+            Yo,
         )  # fmt: skip
         if len(blocks) and (bstates[:, LIMIT_AT] >= 0).any():
             t = float(bstates[bstates[:, LIMIT_AT] >= 0, LIMIT_AT].min())
@@ -570,16 +575,20 @@ def isolator_response(
     h = dt / m
     samples = X
     br = BR
-    acc_out = np.empty((len(floors), acc.size))
-    force = np.empty(acc.size)
-    for j, b in enumerate(mats):
-        sel = br == b
-        if not sel.any():
-            continue
-        C, D = building.output_rows(b, floors) if oscillator is not None else outputs[j]
-        vals = C @ samples[sel, : 2 * n + 1].T + D[:, None] * acc[sel][None, :]
-        acc_out[:, sel] = vals[:-2]
-        force[sel] = vals[-2]
+    if oscillator is None:
+        acc_out = np.ascontiguousarray(Yo[:, :-2].T)
+        force = Yo[:, -2].copy()
+    else:
+        acc_out = np.empty((len(floors), acc.size))
+        force = np.empty(acc.size)
+        for b in mats:
+            sel = br == b
+            if not sel.any():
+                continue
+            C, D = building.output_rows(b, floors)
+            vals = C @ samples[sel, : 2 * n + 1].T + D[:, None] * acc[sel][None, :]
+            acc_out[:, sel] = vals[:-2]
+            force[sel] = vals[-2]
     times = ev_row[:n_ev] * h + ev_tau[:n_ev]
     cap_m = building.isolator.capacity
     exceeded = cap_m is not None and float(peak[-1]) > cap_m
