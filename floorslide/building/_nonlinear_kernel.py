@@ -143,36 +143,53 @@ def _bound_on(p, deg, L):
     return s
 
 
-@njit(cache=True)
-def _blocks_substep(G, OR, OB, m, x, y, aa, ab, slope, h, t0, n, blk_out, blk_floor, mub, muk,
-                    allow_pos, allow_neg, g, bstates, c, bwork, rw, st):  # fmt: skip
-    """Advance the rigid blocks through a whole sub-step without events of the building
-    (state `x` to `y`, branch matrices ``m``; or a segment of one, of length ``h`` ≤ the
-    sub-step: the curvature-tail weights of the whole sub-step in ``G`` bound it too), floor
-    by floor, as on a linear building
+@njit(cache=True, inline="always")
+def _pack_segment(XW, pk, x, y, a0, a1, slope, L, t0, g):
+    """Into the block pass's packed arguments: the building's states at a segment's ends, the
+    ground's values and slope there, its length and start time, and the normal force's
+    integrals over it (no vertical shaking: ``N = g``)."""
+    for j in range(x.size):
+        XW[0, j] = x[j]
+        XW[1, j] = y[j]
+    pk[0], pk[1], pk[2], pk[3], pk[4] = a0, a1, slope, L, t0
+    pk[13] = g * L
+    pk[14] = g * L * L / 2.0
+
+
+@njit(cache=True, inline="always")
+def _blocks_substep(G, OR, OB, m, XW, BLK, MU, bstates, buf, rw, pk, flags, n, h):
+    """Advance the rigid blocks through a whole sub-step without events of the building, or a
+    segment of one of length ``h`` (the curvature-tail weights of the whole sub-step in ``G``
+    bound a shorter segment too), floor by floor, as on a linear building
     (:func:`floorslide.contents._kernels.objects_on_substep`: closed forms where a rigorous
-    enclosure of the floor acceleration decides, the event-driven step otherwise). Block
-    ``i`` stands on floor ``blk_floor[i]`` (state index), output row ``blk_out[i]``; the
-    floor's relative displacement and velocity are the states ``f`` and ``n + f``."""
-    N = x.size
-    nblk = muk.size
+    enclosure of the floor acceleration decides, the event-driven step otherwise).
+
+    ``XW[0], XW[1]``: the building's states at the segment's ends (branch matrices ``m``);
+    ``pk[0:5]``, ``pk[9:16]``: ground values, slope, ``h``, start time and the normal force's
+    terms, set by the caller. Block ``i`` stands on floor ``BLK[1, i]`` (state index), output
+    row ``BLK[0, i]`` (sorted); the floor's relative displacement and velocity are the states
+    ``f`` and ``n + f``. Arguments packed as the block pass wants them (few fields per call)."""
+    N = XW.shape[1]
+    nblk = BLK.shape[1]
+    aa, ab, slope = pk[0], pk[1], pk[2]
     i0 = 0
     while i0 < nblk:
-        o = blk_out[i0]
+        o = BLK[0, i0]
         i1 = i0
-        while i1 < nblk and blk_out[i1] == o:
+        while i1 < nblk and BLK[0, i1] == o:
             i1 += 1
-        f = blk_floor[i0]
-        gr = G[m, o + 1]
-        vr0 = x[n + f]
-        dV = y[n + f] - vr0 + 0.5 * h * (aa + ab)
-        dD = y[f] - x[f] - vr0 * h
-        dD += aa * h * h / 2.0 + slope * h * h * h / 6.0
-        objects_on_substep(OR[m, o], OB[m, o], x, y, aa, ab, slope, h, t0, gr[TIGHT, :N],
-                           gr[TIGHT, N], gr[TIGHT, N + 1], dV, dD, g, 0.0, g, g, g * h,
-                           g * h * h / 2.0, False, g, mub[i0:i1], muk[i0:i1], allow_pos,
-                           allow_neg, bstates[i0:i1], BLOCK_MAX_EVENTS, c, bwork, rw,
-                           st)  # fmt: skip
+        f = BLK[1, i0]
+        for j in range(N):
+            XW[2, j] = G[m, o + 1, TIGHT, j]
+        pk[5] = G[m, o + 1, TIGHT, N]
+        pk[6] = G[m, o + 1, TIGHT, N + 1]
+        vr0 = XW[0, n + f]
+        pk[7] = XW[1, n + f] - vr0 + 0.5 * h * (aa + ab)
+        dD = XW[1, f] - XW[0, f] - vr0 * h
+        pk[8] = dD + aa * h * h / 2.0 + slope * h * h * h / 6.0
+        flags[4] = i0
+        flags[5] = i1
+        objects_on_substep(OR[m, o], OB[m, o], XW, MU, bstates, buf, rw, pk, flags)
         i0 = i1
 
 
@@ -513,10 +530,20 @@ def nonlinear_run(
     c = np.empty(K + 1)
     work = scratch(K + 1)
     nblk = muk.size
-    cb = np.empty(K + 1)
-    bwork = np.empty(4 * K + 16)
     rw = scratch(K + 3)
-    st = np.empty(bstates.shape[1])
+    # packed arguments of the block pass (see _blocks_substep)
+    XW = np.zeros((3, N))
+    BLK = np.empty((2, nblk), dtype=np.int64)
+    MU = np.empty((2, nblk))
+    for i in range(nblk):
+        BLK[0, i] = blk_out[i]
+        BLK[1, i] = blk_floor[i]
+        MU[0, i] = mub[i]
+        MU[1, i] = muk[i]
+    buf = np.empty(5 * K + 17 + bstates.shape[1])
+    pk = np.zeros(16)
+    pk[9], pk[11], pk[12], pk[15] = g, g, g, g
+    flags = np.array([0, int(allow_pos), int(allow_neg), BLOCK_MAX_EVENTS, 0, 0], dtype=np.int64)
     nosc = osc_w.size
     co = np.empty(max(K, D) + 2)
     most_parts = 1
@@ -585,9 +612,9 @@ def nonlinear_run(
                             _search_peak(OR[m], OB[m], i, x, aa, slope, h, K, peak, t_peak, t0,
                                          c, work)  # fmt: skip
                     if nblk > 0:
-                        _blocks_substep(G, OR, OB, m, x, y, aa, ab, slope, h, t0, n, blk_out,
-                                        blk_floor, mub, muk, allow_pos, allow_neg, g, bstates,
-                                        cb, bwork, rw, st)  # fmt: skip
+                        _pack_segment(XW, pk, x, y, aa, ab, slope, h, t0, g)
+                        _blocks_substep(G, OR, OB, m, XW, BLK, MU, bstates, buf, rw, pk, flags,
+                                        n, h)  # fmt: skip
                     if nosc > 0:
                         _oscillators(OR[m], OB[m], x, aa, slope, h, K, osc_out, osc_w, osc_xi,
                                      osc_rho, osc_S, osc_P, D, co, CS, d, dv, da, ow)  # fmt: skip
@@ -623,9 +650,9 @@ def nonlinear_run(
                         a_end = a_s + slope * L
                     _peaks(OR[m], OB[m], x, a_s, slope, L, K, peak, t_peak, t0 + s0, c, work)
                     if nblk > 0:
-                        _blocks_substep(G, OR, OB, m, x, y, a_s, a_end, slope, L, t0 + s0, n,
-                                        blk_out, blk_floor, mub, muk, allow_pos, allow_neg, g,
-                                        bstates, cb, bwork, rw, st)  # fmt: skip
+                        _pack_segment(XW, pk, x, y, a_s, a_end, slope, L, t0 + s0, g)
+                        _blocks_substep(G, OR, OB, m, XW, BLK, MU, bstates, buf, rw, pk, flags,
+                                        n, L)  # fmt: skip
                     if nosc > 0:
                         _oscillators(OR[m], OB[m], x, a_s, slope, L, K, osc_out, osc_w, osc_xi,
                                      osc_rho, osc_S, osc_P, D, co, CS, d, dv, da, ow)  # fmt: skip
@@ -639,9 +666,9 @@ def nonlinear_run(
                 _state_at(RR[m], BB[m], x, a_s, slope, te, K, y, c)
                 _peaks(OR[m], OB[m], x, a_s, slope, te, K, peak, t_peak, t0 + s0, c, work)
                 if nblk > 0:
-                    _blocks_substep(G, OR, OB, m, x, y, a_s, a_s + slope * te, slope, te,
-                                    t0 + s0, n, blk_out, blk_floor, mub, muk, allow_pos,
-                                    allow_neg, g, bstates, cb, bwork, rw, st)  # fmt: skip
+                    _pack_segment(XW, pk, x, y, a_s, a_s + slope * te, slope, te, t0 + s0, g)
+                    _blocks_substep(G, OR, OB, m, XW, BLK, MU, bstates, buf, rw, pk, flags, n,
+                                    te)  # fmt: skip
                 if nosc > 0:
                     _oscillators(OR[m], OB[m], x, a_s, slope, te, K, osc_out, osc_w, osc_xi,
                                  osc_rho, osc_S, osc_P, D, co, CS, d, dv, da, ow)  # fmt: skip

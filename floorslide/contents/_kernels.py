@@ -262,9 +262,7 @@ def _general(
 
 
 @njit(cache=True, _nrt=False)
-def objects_on_substep(R, beta, x_prev, x, aa, ab, slope, h, t0, WX, WA, WS, dV, dD, n0, sn,
-                       nmin, nmax, nint, nint2, has_vert, g, mub, muk, allow_pos, allow_neg,
-                       states, max_events, c, work, rw, st):  # fmt: skip
+def objects_on_substep(R, beta, XW, MU, states, buf, rw, p, flags):
     """Advance rigid blocks on one floor through one sub-step of a linear building (or of one
     branch of a piecewise-linear one), exactly; returns the floor acceleration at its end.
 
@@ -279,15 +277,34 @@ def objects_on_substep(R, beta, x_prev, x, aa, ab, slope, h, t0, WX, WA, WS, dV,
     closed form from a rigorous enclosure of the floor acceleration, tightened only when a
     decision needs it; every other one by the event-driven :func:`_general`.
 
-    This is the inner loop of :func:`slide_kernel`, for callers that step a building
-    themselves (:mod:`floorslide.building._nonlinear_kernel`). ``slide_kernel`` keeps its own
-    copy of the loop inline: numba does not inline a function with this many arguments, and
-    a call per sub-step made one object per call 30 % slower (measured). Change both
-    together; ``tests/contents/test_objects_on_substep.py`` checks they agree bit for bit.
-    Compiled without reference counting (no arrays are made here): the call stays cheap.
+    The arguments come packed, because a numba call whose arguments flatten to ~100 fields
+    costs ~150 ns whatever it does (measured; four arrays and a few scalars: ~5 ns): ``XW`` =
+    ``[x_prev, x, WX]``; ``MU`` = ``[mub, muk]`` (breakaway and kinetic friction, one column
+    per object); ``buf`` scratch of length ≥ ``5K + 17 + NCOL`` (the Taylor coefficients, the
+    event step's work, one state row); ``rw`` the root isolation's scratch; ``p`` =
+    ``[aa, ab, slope, h, t0, WA, WS, dV, dD, n0, sn, nmin, nmax, nint, nint2, g]``; ``flags`` =
+    ``[has_vert, allow_pos, allow_neg, max_events, i0, i1]``: the objects ``i0 … i1 − 1`` (the
+    columns of ``MU``, the rows of ``states``) stand on this floor. :func:`slide_kernel` calls
+    it on every sub-step, and so does the kernel of buildings on nonlinear isolation
+    (:mod:`floorslide.building._nonlinear_kernel`) on every segment between the layer's events.
+    Compiled without reference counting (no arrays are made here).
     """
     K = R.shape[0] - 1
-    nobj = muk.size
+    x_prev = XW[0]
+    x = XW[1]
+    WX = XW[2]
+    mub = MU[0]
+    muk = MU[1]
+    aa, ab, slope, h, t0 = p[0], p[1], p[2], p[3], p[4]
+    WA, WS, dV, dD = p[5], p[6], p[7], p[8]
+    n0, sn, nmin, nmax, nint, nint2, g = p[9], p[10], p[11], p[12], p[13], p[14], p[15]
+    has_vert = flags[0] != 0
+    allow_pos = flags[1] != 0
+    allow_neg = flags[2] != 0
+    max_events = flags[3]
+    c = buf[: K + 1]
+    work = buf[K + 1 : 5 * K + 17]
+    st = buf[5 * K + 17 : 5 * K + 17 + NCOL]
     # shared floor quantities of this sub-step: end values, and a rigorous enclosure
     # [amin, amax] of the floor acceleration on it, tightened only when a decision
     # needs it (level 0: curvature bound from the state, O(n); 1: from the Taylor
@@ -299,7 +316,7 @@ def objects_on_substep(R, beta, x_prev, x, aa, ab, slope, h, t0, WX, WA, WS, dV,
     amax = max(A0, A1) + dev
     level = 0 if dev > 0.0 else 2
     have_c = False
-    for i in range(nobj):
+    for i in range(flags[4], flags[5]):
         mode = states[i, MODE]
         if mode == 0.0 and nmin > 0.0:
             fb = mub[i] * nmin
@@ -439,13 +456,22 @@ def slide_kernel(
     K = R.shape[0] - 1
     nobj = muk.size
     nsteps = (X.shape[0] - 1) // substeps
-    c = np.empty(K + 1)
-    work = np.empty(4 * K + 16)
     rw = scratch(K + 3)
-    st = np.empty(NCOL)
-    # weights of the tail of the curvature bound of the floor acceleration on a sub-step
-    WX = np.zeros(n)
-    WA, WS = curvature_tail_weights(R, beta, h, WX)
+    # packed arguments of the per-sub-step block pass (objects_on_substep): the states at the
+    # sub-step's ends and the tail weights of the curvature bound of the floor acceleration on
+    # a sub-step, the friction coefficients, scratch, the scalars and the flags
+    XW = np.zeros((3, n))
+    WA, WS = curvature_tail_weights(R, beta, h, XW[2])
+    MU = np.empty((2, nobj))
+    for i in range(nobj):
+        MU[0, i] = mub[i]
+        MU[1, i] = muk[i]
+    buf = np.empty(5 * K + 17 + NCOL)
+    pk = np.zeros(16)
+    pk[5], pk[6], pk[15] = WA, WS, g
+    flags = np.array(
+        [int(has_vert), int(allow_pos), int(allow_neg), max_events, 0, nobj], dtype=np.int64
+    )
     in_lift = liftoff[2] != 0.0
     if k0 == 0:
         # floor values at the very start (the building at rest)
@@ -477,17 +503,6 @@ def slide_kernel(
             t0 = (k * substeps + r) * h
             x_prev = X[kk * substeps + r]
             x = X[kk * substeps + r + 1]
-            # shared floor quantities of this sub-step: end values, and a rigorous enclosure
-            # [amin, amax] of the floor acceleration on it, tightened only when a decision
-            # needs it (level 0: curvature bound from the state, O(n); 1: from the Taylor
-            # coefficients; 2: the exact extremes, every critical point)
-            A0 = _dot_state(R[0], x_prev) + beta[0] * aa
-            A1 = _dot_state(R[0], x) + beta[0] * ab
-            dev = 0.125 * h * h * curvature_bound_at(R, beta, x_prev, aa, slope, h, WX, WA, WS)
-            amin = min(A0, A1) - dev
-            amax = max(A0, A1) + dev
-            level = 0 if dev > 0.0 else 2
-            have_c = False
             vr0 = _dot_state(rv, x_prev)
             dV = _dot_state(rv, x) - vr0 + 0.5 * h * (aa + ab)
             dD = _dot_state(rd, x) - _dot_state(rd, x_prev) - vr0 * h
@@ -516,78 +531,13 @@ def slide_kernel(
                 nmax = g
                 nint = g * h
                 nint2 = g * h * h / 2.0
-            for i in range(nobj):
-                mode = states[i, MODE]
-                if mode == 0.0 and nmin > 0.0:
-                    fb = mub[i] * nmin
-                    while True:
-                        ok = (amax <= fb or not allow_neg) and (amin >= -fb or not allow_pos)
-                        if ok or level == 2:
-                            break
-                        amin, amax, level = _tighten(
-                            level, R, beta, x_prev, aa, slope, c, K, h, A0, A1, rw
-                        )
-                        have_c = True
-                    if ok:
-                        while max(amax, -amin) > states[i, PEAK_ACC] and level < 2:
-                            amin, amax, level = _tighten(
-                                level, R, beta, x_prev, aa, slope, c, K, h, A0, A1, rw
-                            )
-                            have_c = True
-                        ab_abs = max(amax, -amin)
-                        if ab_abs > states[i, PEAK_ACC]:
-                            states[i, PEAK_ACC] = ab_abs
-                        continue
-                elif (mode == 1.0 or mode == -1.0) and nmin > 0.0:
-                    sgn = mode
-                    v = states[i, VEL]
-                    v_end = v - dV - sgn * muk[i] * nint
-                    fk = muk[i] * nmin
-                    if sgn * v_end > 0.0:
-                        while True:
-                            monotone = (amin > -fk) if sgn > 0.0 else (amax < fk)
-                            if monotone or level == 2:
-                                break
-                            amin, amax, level = _tighten(
-                                level, R, beta, x_prev, aa, slope, c, K, h, A0, A1, rw
-                            )
-                            have_c = True
-                        if monotone:
-                            u = states[i, DISP] + v * h - dD - sgn * muk[i] * nint2
-                            states[i, VEL] = v_end
-                            states[i, DISP] = u
-                            states[i, SLIDE_TIME] += h
-                            if abs(u) > states[i, PEAK_DISP]:
-                                states[i, PEAK_DISP] = abs(u)
-                                states[i, T_PEAK] = t0 + h
-                            if muk[i] * nmax > states[i, PEAK_ACC]:
-                                states[i, PEAK_ACC] = muk[i] * nmax
-                            continue
-                if not have_c:
-                    taylor_coefficients(R, beta, x_prev, aa, slope, c)
-                    have_c = True
-                for j in range(NCOL):
-                    st[j] = states[i, j]
-                _general(
-                    c,
-                    K,
-                    h,
-                    n0,
-                    sn,
-                    has_vert,
-                    g,
-                    mub[i],
-                    muk[i],
-                    allow_pos,
-                    allow_neg,
-                    t0,
-                    st,
-                    work,
-                    rw,
-                    max_events,
-                )
-                for j in range(NCOL):
-                    states[i, j] = st[j]
+            for j in range(n):
+                XW[0, j] = x_prev[j]
+                XW[1, j] = x[j]
+            pk[0], pk[1], pk[2], pk[3], pk[4] = aa, ab, slope, h, t0
+            pk[7], pk[8] = dV, dD
+            pk[9], pk[10], pk[11], pk[12], pk[13], pk[14] = n0, sn, nmin, nmax, nint, nint2
+            A1 = objects_on_substep(R, beta, XW, MU, states, buf, rw, pk, flags)
             if want_hist and r == substeps - 1:
                 for i in range(nobj):
                     hist_u[i, k + 1] = states[i, DISP]

@@ -1,6 +1,7 @@
-"""The rigid-block pass of one sub-step (``objects_on_substep``, which the buildings on
-nonlinear isolation call) is the inner loop of the linear path's ``slide_kernel``: driven by
-hand, sub-step by sub-step, it gives the same states bit for bit."""
+"""The rigid-block pass of one sub-step (``objects_on_substep``, called by the linear path's
+``slide_kernel`` and by the kernel of buildings on nonlinear isolation): driven by hand,
+sub-step by sub-step, with the floor's velocity and displacement increments formed here, it
+gives the states of ``fs.slide`` bit for bit."""
 
 from __future__ import annotations
 
@@ -27,9 +28,11 @@ def by_hand(fm, mus) -> np.ndarray:
     states[:, ck.LIMIT_AT] = -1.0
     # as slide_kernel at t = 0: friction transmits at most mu·g
     states[:, ck.PEAK_ACC] = np.minimum(abs(beta[0] * acc[0]), mus * G)
-    WX = np.zeros(R.shape[1])
-    WA, WS = curvature_tail_weights(R, beta, h, WX)
-    c, work, rw, st = np.empty(K + 1), np.empty(4 * K + 16), scratch(K + 3), np.empty(ck.NCOL)
+    XW = np.zeros((3, R.shape[1]))
+    WA, WS = curvature_tail_weights(R, beta, h, XW[2])
+    MU = np.array([mus, mus])
+    buf, rw = np.empty(5 * K + 17 + ck.NCOL), scratch(K + 3)
+    flags = np.array([0, 1, 1, 10000, 0, mus.size])
     for k0, X in fm.chunks():
         for kk in range((X.shape[0] - 1) // m):
             k = k0 + kk
@@ -42,9 +45,10 @@ def by_hand(fm, mus) -> np.ndarray:
                 dD = (rd @ x - rd @ xp if rd.size else 0.0) - vr0 * h
                 dD += aa * h * h / 2.0 + slope * h * h * h / 6.0
                 t0 = (k * m + r) * h
-                ck.objects_on_substep(R, beta, xp, x, aa, ab, slope, h, t0, WX, WA, WS, dV, dD,
-                                      G, 0.0, G, G, G * h, G * h * h / 2.0, False, G, mus, mus,
-                                      True, True, states, 10000, c, work, rw, st)  # fmt: skip
+                XW[0], XW[1] = xp, x
+                pk = np.array([aa, ab, slope, h, t0, WA, WS, dV, dD, G, 0.0, G, G, G * h,
+                               G * h * h / 2.0, G])  # fmt: skip
+                ck.objects_on_substep(R, beta, XW, MU, states, buf, rw, pk, flags)
     return states
 
 
