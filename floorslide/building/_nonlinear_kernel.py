@@ -25,7 +25,7 @@ from floorslide.building._instep import (
     taylor_coefficients,
 )
 from floorslide.contents._kernels import objects_on_substep
-from floorslide.contents._oscillator_kernel import _advance_part
+from floorslide.contents._oscillator_kernel import _advance_part, _shift
 from floorslide.numerics.polynomial import first_rise, max_abs_on, poly_val, scratch
 
 # branch codes: as floorslide.building.isolators
@@ -119,19 +119,6 @@ def _peaks(branch_rows, branch_beta, x, a0, slope, L, K, peak, t_peak, t0, c, wo
         if v > peak[i]:
             peak[i] = v
             t_peak[i] = t0 + t
-
-
-@njit(cache=True, _nrt=False)
-def _shift(c, K, base, out):
-    """``out``: the coefficients of ``p(base + s)`` in ``s`` for ``p = Σ c_j τ^j`` (degree
-    ``K``; repeated synthetic division, Horner's Taylor shift)."""
-    for j in range(K + 1):
-        out[j] = c[j]
-    if base == 0.0:
-        return
-    for i in range(K):
-        for j in range(K - 1, i - 1, -1):
-            out[j] += base * out[j + 1]
 
 
 @njit(cache=True, inline="always")
