@@ -390,6 +390,14 @@ def plan(scene: Scene, *, force: bool = False, evaluate: bool = True) -> Plan:
     if evaluate and tasks:
         from floorslide.building.motions import peak_floor_acceleration
 
+        nonlinear = [t for t in tasks if t.building.isolator_model not in ("", "linear")]
+        warming = None
+        if nonlinear and len(nonlinear) < len(tasks):
+            # its kernel compiles (fresh install) in a process of its own while this one
+            # compiles the linear buildings' kernels below
+            from floorslide.building.nonlinear import warm_up_in_background
+
+            warming = warm_up_in_background()
         for t in tasks:
             if not t.contents:
                 continue
@@ -398,6 +406,9 @@ def plan(scene: Scene, *, force: bool = False, evaluate: bool = True) -> Plan:
             if t.building.isolator_model not in ("", "linear"):
                 from floorslide.building.nonlinear import isolator_response
 
+                if warming is not None:
+                    warming.join()
+                    warming = None
                 peaks = isolator_response(model, t.record.acc, t.record.dt, floors=floors).pfa
             else:
                 pk = peak_floor_acceleration(model, t.record.acc, t.record.dt, floors=floors)
