@@ -171,3 +171,13 @@ def test_equivalent_linear_dissipates_the_loop_energy():
     sup = fs.ShearBuilding.from_period(stories=1, period=0.3, damping=0.03)
     lin = NonlinearIsolatedBuilding(sup, 1.0, iso).equivalent_linear(0.2)
     assert isinstance(lin, fs.IsolatedBuilding) and lin.isolation_damping > 0.1
+
+
+def test_the_kernel_warms_up_in_a_side_process():
+    """The planner's side process compiles (or loads) the kernel and exits cleanly."""
+    from floorslide.building.nonlinear import warm_up_in_background
+
+    proc = warm_up_in_background()
+    assert proc is not None
+    proc.join(timeout=600)
+    assert proc.exitcode == 0
