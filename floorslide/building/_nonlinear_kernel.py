@@ -25,7 +25,7 @@ from floorslide.building._instep import (
     taylor_coefficients,
 )
 from floorslide.contents._kernels import objects_on_substep
-from floorslide.contents._oscillator_kernel import _advance_part, _shift
+from floorslide.contents._oscillator_kernel import O_MODE, O_U, O_Z, O_ZD, _advance_part, _shift
 from floorslide.numerics.polynomial import first_rise, max_abs_on, poly_val, scratch
 
 # branch codes: as floorslide.building.isolators
@@ -422,6 +422,26 @@ def _search_peak(OR, OB, i, x, a0, slope, h, K, peak, t_peak, t0, c, work):
 
 
 @njit(cache=True)
+def _flexible_sample(H2, k, S2, muk2, flex, g, af):
+    """Histories of the 2-DOF oscillators at record sample ``k``, as the linear path keeps them
+    (:func:`floorslide.contents._oscillator_kernel.oscillator_kernel`): base slide ``u``, spring
+    deformation ``z``, the top mass's absolute acceleration ``−(2ξω ż + ω² z)`` and the base's
+    (the floor's `af` while stuck; the spring and kinetic friction forces over its mass while
+    sliding)."""
+    w, xi, r = flex[1], flex[2], flex[3]
+    for o in range(S2.shape[0]):
+        q_ = 2.0 * xi * w * S2[o, O_ZD] + w * w * S2[o, O_Z]
+        H2[o, k, 0] = S2[o, O_U]
+        H2[o, k, 1] = S2[o, O_Z]
+        H2[o, k, 2] = -q_
+        mode = S2[o, O_MODE]
+        if mode == 0.0:
+            H2[o, k, 3] = af
+        else:
+            H2[o, k, 3] = q_ / r - mode * muk2[o] * g * (1.0 + r) / r
+
+
+@njit(cache=True)
 def nonlinear_run(
     mat_of,
     PHI,
@@ -470,6 +490,7 @@ def nonlinear_run(
     muk2,
     S2,
     Yo,
+    H2,
 ):
     """Integrate the building over the record.
 
@@ -492,7 +513,8 @@ def nonlinear_run(
     advanced exactly through every segment (a sub-step without events of the building as on a
     linear building, :func:`_blocks_substep`); when ``hist_u`` has a row per block, their
     slides at the samples are written there. ``Yo[k]`` (when it has a row per sample)
-    receives the outputs' values at record sample ``k``.
+    receives the outputs' values at record sample ``k``; ``H2[o, k]`` (when it has a column per
+    sample) the 2-DOF oscillators' histories (:func:`_flexible_sample`).
     Linear oscillators ride along the same way (none when ``osc_w`` is empty; see
     :func:`_oscillators`): the floor response spectra of the floors of rows ``osc_out``.
     2-DOF sliding oscillators too (none when ``muk2`` is empty): ``flex = [row, ω, ξ, r,
@@ -571,6 +593,11 @@ def nonlinear_run(
     if want_outputs:
         for i in range(nout):
             Yo[0, i] = _value(G[mat_of[branch], i + 1], x, acc[0])
+    want_h2 = n2 > 0 and H2.shape[1] == npts
+    if want_h2:
+        af0 = _value(G[mat_of[branch], o2 + 1], x, acc[0])
+        for o in range(n2):
+            H2[o, 0, 3] = af0
     fresh = False
     for k in range(npts - 1):
         a = acc[k]
@@ -716,6 +743,8 @@ def nonlinear_run(
             mk = mat_of[branch]
             for i in range(nout):
                 Yo[k + 1, i] = _value(G[mk, i + 1], x, a1)
+        if want_h2:
+            _flexible_sample(H2, k + 1, S2, muk2, flex, g, _value(G[mat_of[branch], o2 + 1], x, a1))
         if hist_u.shape[0] == nblk and nblk > 0:
             for i in range(nblk):
                 hist_u[i, k + 1] = bstates[i, 2]

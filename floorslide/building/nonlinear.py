@@ -250,6 +250,9 @@ class IsolatorResponse:
     flexible_states: np.ndarray | None = None
     """Final states of the 2-DOF sliding oscillators asked for (columns of
     ``floorslide.contents._oscillator_kernel``)."""
+    flexible_histories: np.ndarray | None = None
+    """With ``flexible_histories=True``: the 2-DOF oscillators' ``(u, z, top, base)`` at the
+    samples, ``(n, npts, 4)`` (as :func:`floorslide.slide_oscillator`'s histories)."""
 
     def branch_names(self) -> list[str]:
         return [BRANCH_NAMES[b] for b in self.branch]
@@ -389,6 +392,7 @@ def isolator_response(
     block_histories: bool = False,
     oscillators=None,
     flexible=None,
+    flexible_histories: bool = False,
 ) -> IsolatorResponse:
     """Exact response of a building on nonlinear isolation to a piecewise-linear record.
 
@@ -423,7 +427,8 @@ def isolator_response(
         ``(floor, f, ξ, r, mu_b, mu_k)``: 2-DOF sliding oscillators (frequency ``f`` Hz, damping
         ξ, mass ratio ``r``; breakaway and kinetic friction arrays) riding along, advanced by
         the 2-DOF kernel's exact step (:func:`slide_oscillator_on_isolation` wraps this);
-        final states in ``flexible_states``.
+        final states in ``flexible_states``; with ``flexible_histories`` their histories at
+        the samples in ``flexible_histories``.
 
     Returns
     -------
@@ -535,6 +540,7 @@ def isolator_response(
     # an oscillator riding as states its outputs are the oscillator's, so the floors' are
     # formed here afterwards
     Yo = np.empty((acc.size, nout) if oscillator is None else (0, nout))
+    H2 = np.zeros((muk2.size, acc.size, 4) if flexible_histories else (0, 0, 4))
     while True:
         ev_row = np.empty(cap, dtype=np.int64)
         ev_tau = np.empty(cap)
@@ -553,7 +559,7 @@ def isolator_response(
             blk_out, blk_floor, mub, muk, direction != "negative", direction != "positive", G,
             bstates, n,
             hist_u, osc_out, osc_w, osc_xi, osc_rho, osc_S, osc_P, D, flex, mub2, muk2, S2,
-            Yo,
+            Yo, H2,
         )  # fmt: skip
         if len(blocks) and (bstates[:, LIMIT_AT] >= 0).any():
             t = float(bstates[bstates[:, LIMIT_AT] >= 0, LIMIT_AT].min())
@@ -619,6 +625,7 @@ def isolator_response(
         block_slides=hist_u[np.argsort(order, kind="stable")] if block_histories else None,
         oscillator_peaks=osc_P[np.argsort(osc_order, kind="stable")] if oscillators else None,
         flexible_states=S2 if flexible is not None else None,
+        flexible_histories=H2 if flexible is not None and flexible_histories else None,
     )
 
 
@@ -736,12 +743,14 @@ def slide_oscillator_on_isolation(
     *,
     mu_s=None,
     floor: int,
+    histories: bool = False,
 ):
     """2-DOF sliding oscillators (flexible equipment) on a floor of a building on nonlinear
     isolation, exact end to end: the 2-DOF kernel's event-driven step runs on the floor's exact
     in-step acceleration, segment by segment, inside the building's integration.
 
-    Parameters as :func:`floorslide.slide_oscillator`.
+    Parameters as :func:`floorslide.slide_oscillator` (``histories``: also the histories of
+    ``u``, ``z`` and both absolute accelerations at the samples).
 
     Returns
     -------
@@ -766,8 +775,10 @@ def slide_oscillator_on_isolation(
         dt,
         floors=[floor],
         flexible=(floor, f, float(damping), float(mass_ratio), mb, mk),
+        flexible_histories=histories,
     )
     S = r.flexible_states
+    H = r.flexible_histories
     if (S[:, cols.O_LIMIT_AT] >= 0).any():
         raise SolverLimitError(
             f"more than {OSCILLATOR_MAX_EVENTS} friction events of a 2-DOF oscillator inside one "
@@ -785,6 +796,10 @@ def slide_oscillator_on_isolation(
         peak_base_accel=S[:, cols.O_PEAK_BASE].copy(),
         slide_fraction=S[:, cols.O_SLIDE_TIME] / duration if duration > 0 else np.zeros(mk.size),
         slip_phases=S[:, cols.O_SLIPS].astype(int),
+        u=H[:, :, 0].copy() if histories else None,
+        z=H[:, :, 1].copy() if histories else None,
+        top_accel=H[:, :, 2].copy() if histories else None,
+        base_accel=H[:, :, 3].copy() if histories else None,
         notes=tuple(notes),
     )
 

@@ -152,10 +152,9 @@ def slide_oscillator(
 
     if isinstance(building, NonlinearIsolatedBuilding):
         # a building on nonlinear isolation: its own exact event-driven chain
-        if method != "exact" or histories:
+        if method != "exact":
             raise ModelError(
-                "only the exact method without histories is available yet on a building on "
-                "nonlinear isolation",
+                "only the exact method is available on a building on nonlinear isolation",
                 "method",
             )
         if floor is None:
@@ -164,8 +163,9 @@ def slide_oscillator(
             missing = "mu" if mu is None else "frequency"
             raise ModelError(f"slide_oscillator needs {missing}", missing)
         return slide_oscillator_on_isolation(
-            building, acc, dt, mu, frequency, damping, mass_ratio, mu_s=mu_s, floor=floor
-        )
+            building, acc, dt, mu, frequency, damping, mass_ratio, mu_s=mu_s, floor=floor,
+            histories=histories,
+        )  # fmt: skip
     fm, a, dt, notes = unwrap(acc, dt, building, floor)
     if fm is not None:
         building, floor = fm.building, fm.floor

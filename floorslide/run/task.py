@@ -273,7 +273,7 @@ def _run_nonlinear(task: Task, model, force: bool, t0: float) -> TaskResult:
     from floorslide.contents._kernels import DISP, PEAK_ACC, PEAK_DISP, SLIDE_TIME, SLIPS
 
     duration = (acc.size - 1) * dt
-    hist_slides, hist_mu = {}, {}
+    hist_slides, hist_mu, hist_deform, hist_top = {}, {}, {}, {}
     for content, floor, mu, mu_s, modes, reasons, idx, first in plans:
         n = mu.size
         peak = np.zeros(n)
@@ -324,6 +324,19 @@ def _run_nonlinear(task: Task, model, force: bool, t0: float) -> TaskResult:
                 modes=np.array(modes),
             )
         )
+        if task.histories and first < 0:
+            # 2-DOF oscillators: their histories from a run of the picked friction values
+            pick = np.unique(np.linspace(0, n - 1, min(HISTORY_MU, n)).round().astype(int))
+            key = f"{content.id}/floor_{floor}"
+            rh = slide_oscillator_on_isolation(
+                model, acc, dt, mu[pick], content.frequency, content.damping,
+                content.mass_ratio, mu_s=mu_s[pick], floor=floor, histories=True,
+            )  # fmt: skip
+            hist_slides[key], hist_mu[key] = rh.u, mu[pick]
+            hist_deform[key], hist_top[key] = rh.z, rh.top_accel
+            # an object that rocks is not a slider: no slide history is drawn for it
+            for arr in (rh.u, rh.z, rh.top_accel):
+                arr[rock[pick]] = np.nan
         if task.histories and first >= 0:
             pick = np.unique(np.linspace(0, n - 1, min(HISTORY_MU, n)).round().astype(int))
             key = f"{content.id}/floor_{floor}"
@@ -355,8 +368,8 @@ def _run_nonlinear(task: Task, model, force: bool, t0: float) -> TaskResult:
             base.floor_acceleration,
             hist_slides,
             hist_mu,
-            {},
-            {},
+            hist_deform,
+            hist_top,
             isolator_displacement=base.isolator_displacement,
             isolator_force_ratio=base.isolator_force / model.weight,
         )

@@ -97,3 +97,22 @@ def test_flexible_equipment_on_a_frictionless_pendulum_equals_the_linear_isolate
         a, c = getattr(r, name), getattr(ref, name)
         assert np.abs(a - c).max() <= 1e-11 * np.abs(c).max(), name
     np.testing.assert_array_equal(r.slip_phases, ref.slip_phases)
+
+
+def test_flexible_equipment_histories_on_a_frictionless_pendulum(elc):
+    """Issue 14: the 2-DOF oscillator's histories (u, z, top and base accelerations) on a
+    building on nonlinear isolation: with mu = 0 those of the linear isolated roof."""
+    b = building(fs.FrictionPendulum(mu=0.0, period=3.0))
+    lin = fs.IsolatedBuilding(b.superstructure, 1.0, 3.0, 0.0)
+    mus = [0.02, 0.1]
+    kw = dict(building=b, floor=2, histories=True)
+    r = fs.slide_oscillator(elc, 0.01, mus, 6.0, 0.02, 0.5, **kw)
+    ref = fs.slide_oscillator(elc, 0.01, mus, 6.0, 0.02, 0.5, **{**kw, "building": lin})
+    for name in ("u", "z", "top_accel", "base_accel"):
+        a, c = getattr(r, name), getattr(ref, name)
+        assert a.shape == c.shape == (2, elc.size), name
+        assert np.abs(a - c).max() <= 1e-10 * np.abs(c).max(), name
+    # the histories end where the results do, and their peaks are bounded by the true peaks
+    np.testing.assert_array_equal(r.u[:, -1], r.residual_slide)
+    assert np.all(np.abs(r.u).max(axis=1) <= r.peak_slide)
+    assert np.abs(r.u).max() > 1e-3  # the bases do slide

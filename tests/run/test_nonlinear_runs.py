@@ -141,3 +141,16 @@ def test_a_run_with_flexible_equipment_on_a_bilinear_layer_equals_the_api(tmp_pa
     assert done.any()
     np.testing.assert_array_equal(c.peak_slide[done], r.peak_slide[done])
     np.testing.assert_array_equal(c.peak_deformation[done], r.peak_deformation[done])
+    # the history record (the first record) keeps the 2-DOF equipment's histories too, as on
+    # linear buildings
+    assert t.histories is not None
+    rh = fs.slide_oscillator(
+        rec.acc, rec.dt, [0.03, 0.1], 5.0, 0.02, 0.5, building=model, floor=2,
+        histories=True,
+    )  # fmt: skip
+    key = "box/floor_2"
+    rows = np.isfinite(t.histories.deformation[key][:, 0])
+    assert rows.any()
+    np.testing.assert_array_equal(t.histories.slides[key][rows], rh.u[rows])
+    np.testing.assert_array_equal(t.histories.deformation[key][rows], rh.z[rows])
+    np.testing.assert_array_equal(t.histories.top_accel[key][rows], rh.top_accel[rows])
