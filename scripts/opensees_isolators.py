@@ -31,6 +31,10 @@ its interpreter::
     PYTHONPATH=. .venv/bin/python scripts/opensees_isolators.py \\
         --opensees-python /tmp/ops-venv/bin/python
 
+(Where the system has no ``libblas.so.3`` — "Failed to import openseespy on Linux" — point
+``LD_LIBRARY_PATH`` at the copy the wheel bundles,
+``/tmp/ops-venv/lib/python3.11/site-packages/openseespylinux/lib``.)
+
 What it shows (15 s): OpenSees and floorslide's Newmark agree to 7e-4, 2e-4, 4e-5 of the peak
 isolator displacement (bilinear) at dt/1, /4, /16 — the difference of their starts: OpenSees
 begins the transient with zero acceleration, floorslide from equilibrium (``−a_g(0)``
