@@ -811,19 +811,3 @@ def _warm_up() -> None:
     b = NonlinearIsolatedBuilding(sup, 1.0, FrictionPendulum(mu=0.05, period=3.0))
     ag = np.sin(np.linspace(0.0, 6.0, 61)) * 2.0
     isolator_response(b, ag, 0.01, blocks=[(1, 0.1, 0.1, "both")], oscillators=[(1, 10.0, 0.05)])
-
-
-def warm_up_in_background():
-    """Start compiling (or loading) the nonlinear-isolation kernel in a separate process, into
-    the disk cache, so that a caller busy compiling other kernels (a study's planner, on a
-    fresh install) finds it there: the two compile side by side on two cores instead of one
-    after the other (25 s of the kernel's on this machine). Returns the process (``join`` it
-    before the first call here), or None where processes cannot be forked."""
-    import multiprocessing
-    import sys
-
-    if sys.platform == "win32":  # pragma: no cover - spawn would re-import everything
-        return None
-    proc = multiprocessing.get_context("fork").Process(target=_warm_up, daemon=True)
-    proc.start()
-    return proc

@@ -70,7 +70,13 @@ def _run_local(todo, workers: int, force: bool, on_result: Callable) -> None:
     # fresh install) once, in this process, and every forked worker inherits them
     todo = list(todo)
     if todo:
+        # the other families' kernels compile (fresh install) in side processes meanwhile
+        from floorslide.run import warmup
+
+        first = warmup.family(todo[0])
+        warming = warmup.start(sorted({warmup.family(t) for t in todo} - {first}))
         on_result(run_task(todo[0], force))
+        warmup.finish(warming)
         todo = todo[1:]
     ctx = multiprocessing.get_context("fork" if sys.platform != "win32" else "spawn")
     with ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_worker_init) as pool:

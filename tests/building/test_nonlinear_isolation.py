@@ -173,11 +173,20 @@ def test_equivalent_linear_dissipates_the_loop_energy():
     assert isinstance(lin, fs.IsolatedBuilding) and lin.isolation_damping > 0.1
 
 
-def test_the_kernel_warms_up_in_a_side_process():
-    """The planner's side process compiles (or loads) the kernel and exits cleanly."""
-    from floorslide.building.nonlinear import warm_up_in_background
+def test_the_kernels_warm_up_in_side_processes():
+    """A study's kernels compile (or load) in side processes that exit cleanly; a process
+    that has them already starts none."""
+    from floorslide.run import warmup
 
-    proc = warm_up_in_background()
-    assert proc is not None
-    proc.join(timeout=600)
-    assert proc.exitcode == 0
+    procs = warmup.start(["linear", "nonlinear"])
+    warmup.finish(procs)
+    assert all(p.exitcode == 0 for p in procs)
+    fs.slide(np.zeros(10), 0.01, [0.1])
+    fs.isolator_response(
+        fs.NonlinearIsolatedBuilding(
+            fs.ShearBuilding.from_period(1, 0.3, 0.03), 1.0, fs.FrictionPendulum(0.05, period=3)
+        ),
+        np.zeros(10),
+        0.01,
+    )
+    assert warmup.start(["linear", "nonlinear"]) == []
