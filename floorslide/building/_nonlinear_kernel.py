@@ -110,15 +110,22 @@ def _needed_friction(fr, fd, x, a):
 
 
 @njit(cache=True)
+def _search_peak(OR, OB, i, x, a0, slope, h, K, peak, t_peak, t0, c, work):
+    """Search output ``i`` (Taylor rows ``OR[i], OB[i]``) on a segment ``[0, h]`` for a new
+    peak."""
+    taylor_coefficients(OR[i], OB[i], x, a0, slope, c)
+    v, t = max_abs_on(c, K, h, peak[i], work)
+    if v > peak[i]:
+        peak[i] = v
+        t_peak[i] = t0 + t
+
+
+@njit(cache=True)
 def _peaks(branch_rows, branch_beta, x, a0, slope, L, K, peak, t_peak, t0, c, work):
     """Update the true peaks ``max|y|`` of the outputs with Taylor rows ``branch_rows`` on a
     segment ``[0, L]`` from state `x`."""
     for i in range(peak.size):
-        taylor_coefficients(branch_rows[i], branch_beta[i], x, a0, slope, c)
-        v, t = max_abs_on(c, K, L, peak[i], work)
-        if v > peak[i]:
-            peak[i] = v
-            t_peak[i] = t0 + t
+        _search_peak(branch_rows, branch_beta, i, x, a0, slope, L, K, peak, t_peak, t0, c, work)
 
 
 @njit(cache=True, inline="always")
@@ -409,16 +416,6 @@ def _fast_substep(branch, G, x, y, ax, aa, ab, slope, h, p, dy, limit, peak, t_p
         if need[i]:
             count += 1
     return count
-
-
-@njit(cache=True)
-def _search_peak(OR, OB, i, x, a0, slope, h, K, peak, t_peak, t0, c, work):
-    """Search output ``i`` (Taylor rows ``OR[i], OB[i]``) on a sub-step for a new peak."""
-    taylor_coefficients(OR[i], OB[i], x, a0, slope, c)
-    v, t = max_abs_on(c, K, h, peak[i], work)
-    if v > peak[i]:
-        peak[i] = v
-        t_peak[i] = t0 + t
 
 
 @njit(cache=True)
@@ -744,7 +741,11 @@ def nonlinear_run(
             for i in range(nout):
                 Yo[k + 1, i] = _value(G[mk, i + 1], x, a1)
         if want_h2:
-            _flexible_sample(H2, k + 1, S2, muk2, flex, g, _value(G[mat_of[branch], o2 + 1], x, a1))
+            if want_outputs:
+                af = Yo[k + 1, o2]
+            else:
+                af = _value(G[mat_of[branch], o2 + 1], x, a1)
+            _flexible_sample(H2, k + 1, S2, muk2, flex, g, af)
         if hist_u.shape[0] == nblk and nblk > 0:
             for i in range(nblk):
                 hist_u[i, k + 1] = bstates[i, 2]

@@ -311,73 +311,76 @@ def _initial(building: NonlinearIsolatedBuilding, x0: np.ndarray, a0: float) -> 
     return SLIP_POS if F > 0 else SLIP_NEG
 
 
-_ASSEMBLY_CACHE: dict = {}
-_ASSEMBLY_CACHE_SIZE = 32
-
-
+_CACHE_SIZE = 32
+"""Most buildings (with their floors, time step …) whose matrices are kept per cache."""
 _PREPARED_CACHE: dict = {}
+_ASSEMBLY_CACHE: dict = {}
+
+
+def _memoised(cache: dict, key, make):
+    """``cache[key]``, made by ``make()`` the first time (the oldest entry is dropped beyond
+    :data:`_CACHE_SIZE`)."""
+    hit = cache.get(key)
+    if hit is None:
+        if len(cache) >= _CACHE_SIZE:
+            cache.pop(next(iter(cache)))
+        hit = cache[key] = make()
+    return hit
 
 
 def _prepared(key, building, floors, oscillator):
     """The layer's branches (sorted), each branch's ``(A, b)``, their largest spectral radius,
     the output rows per branch and the needed-friction row, memoised on `key` (the building's
     matrices and constants, the floors and the oscillator)."""
-    hit = _PREPARED_CACHE.get(key)
-    if hit is not None:
-        return hit
-    mats = sorted(set(building.branches()))
-    systems = {b: _augmented(building, b, oscillator) for b in mats}
-    N = next(iter(systems.values()))[0].shape[0]
-    rho = max(spectral_radius(A) for A, _ in systems.values())
-    outputs = [_outputs(building, b, floors, oscillator, N) for b in mats]
-    r_f, d_f = building.needed_friction_row()
-    r_f = np.concatenate([r_f, np.zeros(N - r_f.size)])
-    value = (systems, rho, mats, outputs, r_f, float(d_f))
-    if len(_PREPARED_CACHE) >= _ASSEMBLY_CACHE_SIZE:
-        _PREPARED_CACHE.pop(next(iter(_PREPARED_CACHE)))
-    _PREPARED_CACHE[key] = value
-    return value
+
+    def make():
+        mats = sorted(set(building.branches()))
+        systems = {b: _augmented(building, b, oscillator) for b in mats}
+        N = next(iter(systems.values()))[0].shape[0]
+        rho = max(spectral_radius(A) for A, _ in systems.values())
+        outputs = [_outputs(building, b, floors, oscillator, N) for b in mats]
+        r_f, d_f = building.needed_friction_row()
+        r_f = np.concatenate([r_f, np.zeros(N - r_f.size)])
+        return systems, rho, mats, outputs, r_f, float(d_f)
+
+    return _memoised(_PREPARED_CACHE, key, make)
 
 
 def _assembled(key, systems, mats, outputs, r_f, d_f, dt, m):
     """The kernel's matrices for the branches `mats` (exact sub-step recurrences, Taylor rows
     of the states, of the needed friction and of the outputs), memoised on `key` — the bytes
     of the building's matrices and constants, the floors, the oscillator, dt and the sub-steps
-    — so that a building used on many
-    records (or many calls) pays for its matrix exponentials once. The arrays are shared
-    between calls and never written."""
-    hit = _ASSEMBLY_CACHE.get(key)
-    if hit is not None:
-        return hit
-    steppers = {b: ExactStepper.build(*systems[b], dt, m) for b in mats}
-    K = max(s.order for s in steppers.values())
-    N = next(iter(systems.values()))[0].shape[0]
-    nb = len(mats)
-    nout = outputs[0][0].shape[0]
-    PHI = np.empty((nb, N, N))
-    PP = np.empty((nb, N))
-    QQ = np.empty((nb, N))
-    RR = np.empty((nb, N, K + 1, N))
-    BB = np.empty((nb, N, K + 1))
-    ER = np.zeros((nb, K + 1, N))
-    EB = np.zeros((nb, K + 1))
-    OR = np.empty((nb, nout, K + 1, N))
-    OB = np.empty((nb, nout, K + 1))
-    for j, b in enumerate(mats):
-        st = steppers[b]
-        PHI[j] = st.phi
-        PP[j], QQ[j] = st.input_weights()
-        RR[j], BB[j] = st.taylor_rows(np.eye(N), order=K)
-        if b == STICK:
-            er, eb = st.taylor_rows(r_f[None, :], np.array([d_f]), order=K)
-            ER[j], EB[j] = er[0], eb[0]
-        C, D = outputs[j]
-        OR[j], OB[j] = st.taylor_rows(C, D, order=K)
-    value = (PHI, PP, QQ, RR, BB, ER, EB, OR, OB, K)
-    if len(_ASSEMBLY_CACHE) >= _ASSEMBLY_CACHE_SIZE:
-        _ASSEMBLY_CACHE.pop(next(iter(_ASSEMBLY_CACHE)))
-    _ASSEMBLY_CACHE[key] = value
-    return value
+    — so that a building used on many records (or many calls) pays for its matrix
+    exponentials once. The arrays are shared between calls and never written."""
+
+    def make():
+        steppers = {b: ExactStepper.build(*systems[b], dt, m) for b in mats}
+        K = max(s.order for s in steppers.values())
+        N = next(iter(systems.values()))[0].shape[0]
+        nb = len(mats)
+        nout = outputs[0][0].shape[0]
+        PHI = np.empty((nb, N, N))
+        PP = np.empty((nb, N))
+        QQ = np.empty((nb, N))
+        RR = np.empty((nb, N, K + 1, N))
+        BB = np.empty((nb, N, K + 1))
+        ER = np.zeros((nb, K + 1, N))
+        EB = np.zeros((nb, K + 1))
+        OR = np.empty((nb, nout, K + 1, N))
+        OB = np.empty((nb, nout, K + 1))
+        for j, b in enumerate(mats):
+            st = steppers[b]
+            PHI[j] = st.phi
+            PP[j], QQ[j] = st.input_weights()
+            RR[j], BB[j] = st.taylor_rows(np.eye(N), order=K)
+            if b == STICK:
+                er, eb = st.taylor_rows(r_f[None, :], np.array([d_f]), order=K)
+                ER[j], EB[j] = er[0], eb[0]
+            C, D = outputs[j]
+            OR[j], OB[j] = st.taylor_rows(C, D, order=K)
+        return PHI, PP, QQ, RR, BB, ER, EB, OR, OB, K
+
+    return _memoised(_ASSEMBLY_CACHE, key, make)
 
 
 def isolator_response(
@@ -802,12 +805,3 @@ def slide_oscillator_on_isolation(
         base_accel=H[:, :, 3].copy() if histories else None,
         notes=tuple(notes),
     )
-
-
-def _warm_up() -> None:
-    """Compile (or load) the nonlinear-isolation kernel: one short call, blocks and spectrum
-    oscillators riding (every rider's code is part of the one kernel)."""
-    sup = ShearBuilding.from_period(stories=1, period=0.3, damping=0.03)
-    b = NonlinearIsolatedBuilding(sup, 1.0, FrictionPendulum(mu=0.05, period=3.0))
-    ag = np.sin(np.linspace(0.0, 6.0, 61)) * 2.0
-    isolator_response(b, ag, 0.01, blocks=[(1, 0.1, 0.1, "both")], oscillators=[(1, 10.0, 0.05)])

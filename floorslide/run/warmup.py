@@ -40,9 +40,14 @@ def _linear_tasks() -> None:
 
 
 def _nonlinear_tasks() -> None:
-    from floorslide.building.nonlinear import _warm_up
+    """One short call of the nonlinear-isolation kernel, blocks and spectrum oscillators riding
+    (every rider's code is part of the one kernel)."""
+    import floorslide as fs
 
-    _warm_up()
+    sup = fs.ShearBuilding.from_period(stories=1, period=0.3, damping=0.03)
+    b = fs.NonlinearIsolatedBuilding(sup, 1.0, fs.FrictionPendulum(mu=0.05, period=3.0))
+    ag = np.sin(np.linspace(0.0, 6.0, 61)) * 2.0
+    fs.isolator_response(b, ag, 0.01, blocks=[(1, 0.1, 0.1, "both")], oscillators=[(1, 10.0, 0.05)])
 
 
 def family(task) -> str:
