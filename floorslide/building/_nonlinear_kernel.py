@@ -120,14 +120,6 @@ def _search_peak(OR, OB, i, x, a0, slope, h, K, peak, t_peak, t0, c, work):
         t_peak[i] = t0 + t
 
 
-@njit(cache=True)
-def _peaks(branch_rows, branch_beta, x, a0, slope, L, K, peak, t_peak, t0, c, work):
-    """Update the true peaks ``max|y|`` of the outputs with Taylor rows ``branch_rows`` on a
-    segment ``[0, L]`` from state `x`."""
-    for i in range(peak.size):
-        _search_peak(branch_rows, branch_beta, i, x, a0, slope, L, K, peak, t_peak, t0, c, work)
-
-
 @njit(cache=True, inline="always")
 def _bound_on(p, deg, L):
     """``Σ_j |p_j| L^j ≥ max|p|`` on ``[0, L]``."""
@@ -328,25 +320,46 @@ def _chord_rows(RR, BB, ER, EB, OR, OB, n, h, mat_of):
 
 
 @njit(cache=True, _nrt=False)
-def _deviation(g, x, ax, aa, slope, h, loose):
-    """``h²/8 · max|f''|`` bounded on a sub-step for the function with chord-bound rows `g`
-    (:func:`_chord_rows`) from its start state ``x`` (``ax = |x|``): the deviation of ``f``
-    from its chord. `loose`: from ``|x|`` alone (one product); else with ``c_2, c_3`` formed
-    exactly (the states of a building cancel in them)."""
+def _tight_deviation(GT, f, x, ax, aa, slope, h):
+    """``h²/8 · max|f''|`` bounded on a sub-step for function ``f`` of the branch with
+    chord-bound rows ``GT`` (:func:`_chord_rows`, functions last) from its start state ``x``
+    (``ax = |x|``), with ``c_2, c_3`` formed exactly (the states of a building cancel in
+    them): the deviation of ``f`` from its chord. The loose bound (from ``|x|`` alone) is
+    formed for all functions at once in :func:`_fast_substep`."""
     N = x.size
-    if loose:
-        s = g[LOOSE, N] * abs(aa) + g[LOOSE, N + 1] * abs(slope)
-        for j in range(N):
-            s += g[LOOSE, j] * ax[j]
-        return 0.125 * h * h * s
-    c2 = g[C2, N] * aa + g[C2, N + 1] * slope
-    c3 = g[C3, N] * aa + g[C3, N + 1] * slope
-    tail = g[TIGHT, N] * abs(aa) + g[TIGHT, N + 1] * abs(slope)
+    c2 = GT[C2, N, f] * aa + GT[C2, N + 1, f] * slope
+    c3 = GT[C3, N, f] * aa + GT[C3, N + 1, f] * slope
+    tail = GT[TIGHT, N, f] * abs(aa) + GT[TIGHT, N + 1, f] * abs(slope)
     for j in range(N):
-        c2 += g[C2, j] * x[j]
-        c3 += g[C3, j] * x[j]
-        tail += g[TIGHT, j] * ax[j]
+        c2 += GT[C2, j, f] * x[j]
+        c3 += GT[C3, j, f] * x[j]
+        tail += GT[TIGHT, j, f] * ax[j]
     return 0.125 * h * h * (2.0 * abs(c2) + 6.0 * h * abs(c3) + tail)
+
+
+@njit(cache=True)
+def _segment_peaks(Gm, GTm, OR, OB, x, y, ax, a0, a1, slope, L, K, peak, t_peak, t0, c, work):
+    """Update the outputs' true peaks on a segment ``[0, L]`` (``L ≤ h``) of a sub-step that
+    holds an event or that the bound of :func:`_fast_substep` could not clear, from state
+    ``x`` (ground ``a0``) to ``y`` (ground ``a1``): an output is searched
+    (:func:`_search_peak`) only when its ends plus its deviation from the chord can exceed its
+    peak so far — the sub-step's chord bounds (``Gm``, ``GTm``: the branch's
+    :func:`_chord_rows`, both layouts) hold on any part of it."""
+    N = x.size
+    for j in range(N):
+        ax[j] = abs(x[j])
+    k8 = 0.125 * L * L
+    for i in range(peak.size):
+        f = i + 1
+        top = max(abs(_value(Gm[f], x, a0)), abs(_value(Gm[f], y, a1)))
+        s = GTm[LOOSE, N, f] * abs(a0) + GTm[LOOSE, N + 1, f] * abs(slope)
+        for j in range(N):
+            s += GTm[LOOSE, j, f] * ax[j]
+        if top + k8 * s <= peak[i]:
+            continue
+        if top + _tight_deviation(GTm, f, x, ax, a0, slope, L) <= peak[i]:
+            continue
+        _search_peak(OR, OB, i, x, a0, slope, L, K, peak, t_peak, t0, c, work)
 
 
 @njit(cache=True, _nrt=False)
@@ -359,36 +372,56 @@ def _value(g, x, a):
     return s
 
 
-@njit(cache=True, _nrt=False)
-def _inside(lo, hi, v0, v1, g, x, ax, aa, slope, h):
-    """True when the function (ends ``v0``, ``v1``) provably stays strictly inside
-    ``(lo, hi)`` on the sub-step: its ends plus the chord deviation, loose bound first."""
-    top = max(v0, v1)
-    bot = min(v0, v1)
-    dev = _deviation(g, x, ax, aa, slope, h, True)
-    if top + dev < hi and bot - dev > lo:
-        return True
-    dev = _deviation(g, x, ax, aa, slope, h, False)
-    return top + dev < hi and bot - dev > lo
+@njit(cache=True, _nrt=False, inline="always")
+def _foh_t(pht, p, q, x, aa, ab, out):
+    """:func:`~floorslide.building._instep.foh_step` with the transition matrix transposed
+    (``pht[j, i] = Φ[i, j]``): the same operations per component in the same order (the
+    same bits), the components accumulated together (vectorised; no chain of dependent
+    additions per component)."""
+    n = x.size
+    for i in range(n):
+        out[i] = p[i] * aa + q[i] * ab
+    for j in range(n):
+        xj = x[j]
+        for i in range(n):
+            out[i] += pht[j, i] * xj
 
 
-@njit(cache=True, _nrt=False)
-def _fast_substep(branch, G, x, y, ax, aa, ab, slope, h, p, dy, limit, peak, t_peak, t0, z0,
-                  z1, need):  # fmt: skip
+@njit(cache=True, _nrt=False, inline="always")
+def _fast_substep(branch, GT, x, y, ax, aa, ab, slope, h, p, dy, limit, peak, t_peak, t0, z0,
+                  z1, need, dl):  # fmt: skip
     """The common case of a sub-step, without searching: returns −1 unless a rigorous bound
     shows that `branch` has no event on the whole sub-step from state `x` to `y` (the exact
     step's end); then updates the outputs' peaks with their end values and flags in `need`
-    the outputs whose ends plus chord deviation (:func:`_inside`) can exceed their peak so far
-    — only those are searched (:func:`_search_peak`); returns how many. ``G`` is the branch's
-    :func:`_chord_rows` block; ``z0`` the outputs' values at the start (updated to the end
-    values ``z1``); an output is searched only when that bound exceeds its peak (so never
-    while it is identically zero). Compiled without reference counting: no arrays are made
-    here."""
+    the outputs whose ends plus chord deviation can exceed their peak so far — only those are
+    searched (:func:`_search_peak`); returns how many.
+
+    ``GT`` is the branch's :func:`_chord_rows` block with the functions last
+    (``GT[part, coefficient, f]``, ``f = 0`` the event function, ``f ≥ 1`` the outputs), so
+    that all functions' end values and loose deviation bounds (from ``|x|`` alone) are formed
+    together; a function whose loose bound does not decide is checked with the tight one
+    (:func:`_tight_deviation`). ``z0[f]`` holds the functions' values at the start; their
+    end values go to ``z1``. A function stays inside its range — the event function strictly
+    inside the branch's, an output at or below its peak — when its ends plus the deviation
+    from the chord do. An output is searched only when that bound exceeds its peak (so never
+    while it is identically zero). ``dl``: scratch, one per function. Compiled without
+    reference counting: no arrays are made here."""
     N = x.size
+    nf = z1.size
+    aab = abs(aa)
+    asl = abs(slope)
     for j in range(N):
         ax[j] = abs(x[j])
+    for f in range(nf):
+        z1[f] = GT[VALUE, N, f] * ab
+        dl[f] = GT[LOOSE, N, f] * aab + GT[LOOSE, N + 1, f] * asl
+    for j in range(N):
+        yj = y[j]
+        aj = ax[j]
+        for f in range(nf):
+            z1[f] += GT[VALUE, j, f] * yj
+            dl[f] += GT[LOOSE, j, f] * aj
     if branch != LINEAR:
-        g = G[0]
         if branch == STICK:
             lo, hi = -limit, limit
         elif branch == ELASTIC:
@@ -397,21 +430,22 @@ def _fast_substep(branch, G, x, y, ax, aa, ab, slope, h, p, dy, limit, peak, t_p
             lo, hi = 0.0, np.inf
         else:
             lo, hi = -np.inf, 0.0
-        v0 = _value(g, x, aa)
-        v1 = _value(g, y, ab)
-        if not _inside(lo, hi, v0, v1, g, x, ax, aa, slope, h):
-            return -1
+        top = max(z0[0], z1[0])
+        bot = min(z0[0], z1[0])
+        dev = 0.125 * h * h * dl[0]
+        if not (top + dev < hi and bot - dev > lo):
+            dev = _tight_deviation(GT, 0, x, ax, aa, slope, h)
+            if not (top + dev < hi and bot - dev > lo):
+                return -1
     count = 0
     for i in range(peak.size):
-        g = G[i + 1]
-        v1 = _value(g, y, ab)
-        z1[i] = v1
+        v1 = z1[i + 1]
         if abs(v1) > peak[i]:
             peak[i] = abs(v1)
             t_peak[i] = t0 + h
-        top = max(abs(z0[i]), abs(v1))
-        need[i] = top + _deviation(g, x, ax, aa, slope, h, True) > peak[i] and (
-            top + _deviation(g, x, ax, aa, slope, h, False) > peak[i]
+        top = max(abs(z0[i + 1]), abs(v1))
+        need[i] = top + 0.125 * h * h * dl[i + 1] > peak[i] and (
+            top + _tight_deviation(GT, i + 1, x, ax, aa, slope, h) > peak[i]
         )
         if need[i]:
             count += 1
@@ -436,6 +470,63 @@ def _flexible_sample(H2, k, S2, muk2, flex, g, af):
             H2[o, k, 3] = af
         else:
             H2[o, k, 3] = q_ / r - mode * muk2[o] * g * (1.0 + r) / r
+
+
+@njit(cache=True, _nrt=False)
+def _fast_run(k, r, substeps, mat_of, PHT, PP, QQ, G, GT, acc, h, x, y, ax, branch, iF, kk, dy,
+              musW, peak, t_peak, z0, z1, need, dl, z_valid, X, BR, Yo, want_outputs,
+              out):  # fmt: skip
+    """The sub-steps of a building with nothing riding along, from sub-step ``r`` of record
+    step ``k`` on, in one compiled loop while :func:`_fast_substep` clears them (no event,
+    no output search); the samples ``X``, ``BR``, ``Yo`` are written as it goes. It stops
+    before a sub-step the bound cannot clear (``out = [k, r, -1]``, the state untouched) or
+    after one whose outputs need a search (``out = [k, r, count]``: ``x`` the start state,
+    ``y`` the end, ``z1`` the functions' end values; the caller finishes that sub-step);
+    ``out[2] = -2`` at the record's end. ``PHT``: the transition matrices transposed
+    (:func:`_foh_t`); ``GT``: :func:`_chord_rows` with the functions last. Compiled without
+    reference counting: the views made here cost nothing."""
+    npts = acc.size
+    m = mat_of[branch]
+    Gm = G[m]
+    GTm = GT[m]
+    pht, pp, qq = PHT[m], PP[m], QQ[m]
+    nout = peak.size
+    N = x.size
+    if not z_valid:
+        a = acc[k]
+        a1 = acc[k + 1]
+        aa = a + (a1 - a) * (r / substeps)
+        for f in range(nout + 1):
+            z0[f] = _value(Gm[f], x, aa)
+    while k < npts - 1:
+        a = acc[k]
+        a1 = acc[k + 1]
+        slope = (a1 - a) / (substeps * h)
+        while r < substeps:
+            aa = a + (a1 - a) * (r / substeps)
+            ab = a + (a1 - a) * ((r + 1) / substeps) if r + 1 < substeps else a1
+            t0 = (k * substeps + r) * h
+            _foh_t(pht, pp, qq, x, aa, ab, y)
+            p = -x[iF] / kk if branch == ELASTIC else 0.0
+            ns = _fast_substep(branch, GTm, x, y, ax, aa, ab, slope, h, p, dy, musW, peak, t_peak,
+                               t0, z0, z1, need, dl)  # fmt: skip
+            if ns != 0:
+                out[0], out[1], out[2] = k, r, ns
+                return
+            for i in range(N):
+                x[i] = y[i]
+            for f in range(nout + 1):
+                z0[f] = z1[f]
+            r += 1
+        k += 1
+        r = 0
+        for i in range(N):
+            X[k, i] = x[i]
+        BR[k] = branch
+        if want_outputs:
+            for i in range(nout):
+                Yo[k, i] = z0[i + 1]
+    out[0], out[1], out[2] = k, r, -2
 
 
 @njit(cache=True)
@@ -575,8 +666,11 @@ def nonlinear_run(
     G = _chord_rows(RR, BB, ER, EB, OR, OB, n, h, mat_of)
     nout = peak.size
     ax = np.empty(N)
-    z0 = np.empty(nout)
-    z1 = np.empty(nout)
+    z0 = np.empty(nout + 1)  # the event function, then the outputs
+    z1 = np.empty(nout + 1)
+    dl = np.empty(nout + 1)
+    GT = np.ascontiguousarray(G.transpose(0, 2, 3, 1))
+    PHT = np.ascontiguousarray(PHI.transpose(0, 2, 1))
     need = np.zeros(nout, dtype=np.bool_)
     z_valid = False  # z0 holds the outputs' values at the sub-step's start
     branch = branch0
@@ -596,50 +690,72 @@ def nonlinear_run(
         for o in range(n2):
             H2[o, 0, 3] = af0
     fresh = False
-    for k in range(npts - 1):
+    alone = nblk == 0 and nosc == 0 and n2 == 0
+    fo = np.zeros(3, dtype=np.int64)
+    k = 0
+    r = 0
+    while k < npts - 1:
+        # a building alone takes its common sub-steps in one compiled loop (_fast_run), which
+        # stops before a sub-step its bound cannot clear (then ``pre = -1``) or after one whose
+        # outputs need a search (``pre = 1``; ``x`` still the start state, ``y`` the end)
+        pre = 0
+        if alone and not fresh:
+            _fast_run(k, r, substeps, mat_of, PHT, PP, QQ, G, GT, acc, h, x, y, ax, branch, iF,
+                      kk, dy, musW, peak, t_peak, z0, z1, need, dl, z_valid, X, BR, Yo,
+                      want_outputs, fo)  # fmt: skip
+            z_valid = True
+            if fo[2] == -2:
+                break
+            k = fo[0]
+            r = fo[1]
+            pre = 1 if fo[2] > 0 else -1
         a = acc[k]
         a1 = acc[k + 1]
         slope = (a1 - a) / (substeps * h)
-        for r in range(substeps):
-            aa, ab = substep_inputs(a, a1, r, substeps)
-            t0 = (k * substeps + r) * h
-            s0 = 0.0
-            events_here = 0
-            if not fresh:
-                # the common case first: a rigorous bound shows no event on the whole
-                # sub-step; then the end state is the exact step's and only the outputs whose
-                # bound allows a new peak are searched
-                m = mat_of[branch]
-                foh_step(PHI[m], PP[m], QQ[m], x, aa, ab, y)
+        row = k * substeps + r
+        aa, ab = substep_inputs(a, a1, r, substeps)
+        t0 = row * h
+        s0 = 0.0
+        events_here = 0
+        took_fast = False
+        if not fresh:
+            # the common case first: a rigorous bound shows no event on the whole sub-step;
+            # then the end state is the exact step's and only the outputs whose bound allows
+            # a new peak are searched
+            m = mat_of[branch]
+            if pre == 0:
+                _foh_t(PHT[m], PP[m], QQ[m], x, aa, ab, y)
                 p = -x[iF] / kk if branch == ELASTIC else 0.0
                 if not z_valid:
-                    for i in range(nout):
-                        z0[i] = _value(G[m, i + 1], x, aa)
-                nsearch = _fast_substep(branch, G[m], x, y, ax, aa, ab, slope, h, p, dy, musW,
-                                        peak, t_peak, t0, z0, z1, need)  # fmt: skip
-                if nsearch >= 0:
-                    for i in range(nout if nsearch > 0 else 0):
-                        if need[i]:
-                            _search_peak(OR[m], OB[m], i, x, aa, slope, h, K, peak, t_peak, t0,
-                                         c, work)  # fmt: skip
-                    if nblk > 0:
-                        _pack_segment(XW, pk, x, y, aa, ab, slope, h, t0, g)
-                        _blocks_substep(G, OR, OB, m, XW, BLK, MU, bstates, buf, rw, pk, flags,
-                                        n, h)  # fmt: skip
-                    if nosc > 0:
-                        _oscillators(OR[m], OB[m], x, aa, slope, h, K, osc_out, osc_w, osc_xi,
-                                     osc_rho, osc_S, osc_P, D, co, CS, d, dv, da, ow)  # fmt: skip
-                    if n2 > 0:
-                        _flexible(OR[m], OB[m], x, aa, slope, h, K, t0, o2, flex[1], flex[2],
-                                  flex[3], g, mub2, muk2, S2, flex[4], K2, c2, cs2, Y2, poly2,
-                                  y2, pk2, work2)  # fmt: skip
-                    for i in range(N):
-                        x[i] = y[i]
-                    for i in range(nout):
-                        z0[i] = z1[i]
-                    z_valid = True
-                    row += 1
-                    continue
+                    for f in range(nout + 1):
+                        z0[f] = _value(G[m, f], x, aa)
+                nsearch = _fast_substep(branch, GT[m], x, y, ax, aa, ab, slope, h, p, dy, musW,
+                                        peak, t_peak, t0, z0, z1, need, dl)  # fmt: skip
+            else:
+                nsearch = fo[2] if pre > 0 else -1
+            if nsearch >= 0:
+                for i in range(nout if nsearch > 0 else 0):
+                    if need[i]:
+                        _search_peak(OR[m], OB[m], i, x, aa, slope, h, K, peak, t_peak, t0,
+                                     c, work)  # fmt: skip
+                if nblk > 0:
+                    _pack_segment(XW, pk, x, y, aa, ab, slope, h, t0, g)
+                    _blocks_substep(G, OR, OB, m, XW, BLK, MU, bstates, buf, rw, pk, flags,
+                                    n, h)  # fmt: skip
+                if nosc > 0:
+                    _oscillators(OR[m], OB[m], x, aa, slope, h, K, osc_out, osc_w, osc_xi,
+                                 osc_rho, osc_S, osc_P, D, co, CS, d, dv, da, ow)  # fmt: skip
+                if n2 > 0:
+                    _flexible(OR[m], OB[m], x, aa, slope, h, K, t0, o2, flex[1], flex[2],
+                              flex[3], g, mub2, muk2, S2, flex[4], K2, c2, cs2, Y2, poly2,
+                              y2, pk2, work2)  # fmt: skip
+                for i in range(N):
+                    x[i] = y[i]
+                for f in range(nout + 1):
+                    z0[f] = z1[f]
+                z_valid = True
+                took_fast = True
+        if not took_fast:
             z_valid = False
             while True:
                 m = mat_of[branch]
@@ -659,7 +775,8 @@ def nonlinear_run(
                     else:
                         _state_at(RR[m], BB[m], x, a_s, slope, L, K, y, c)
                         a_end = a_s + slope * L
-                    _peaks(OR[m], OB[m], x, a_s, slope, L, K, peak, t_peak, t0 + s0, c, work)
+                    _segment_peaks(G[m], GT[m], OR[m], OB[m], x, y, ax, a_s, a_end, slope, L, K,
+                                   peak, t_peak, t0 + s0, c, work)  # fmt: skip
                     if nblk > 0:
                         _pack_segment(XW, pk, x, y, a_s, a_end, slope, L, t0 + s0, g)
                         _blocks_substep(G, OR, OB, m, XW, BLK, MU, bstates, buf, rw, pk, flags,
@@ -675,7 +792,8 @@ def nonlinear_run(
                         x[i] = y[i]
                     break
                 _state_at(RR[m], BB[m], x, a_s, slope, te, K, y, c)
-                _peaks(OR[m], OB[m], x, a_s, slope, te, K, peak, t_peak, t0 + s0, c, work)
+                _segment_peaks(G[m], GT[m], OR[m], OB[m], x, y, ax, a_s, a_s + slope * te, slope,
+                               te, K, peak, t_peak, t0 + s0, c, work)  # fmt: skip
                 if nblk > 0:
                     _pack_segment(XW, pk, x, y, a_s, a_s + slope * te, slope, te, t0 + s0, g)
                     _blocks_substep(G, OR, OB, m, XW, BLK, MU, bstates, buf, rw, pk, flags, n,
@@ -732,7 +850,10 @@ def nonlinear_run(
                     return -1 - row
                 if s0 >= h:
                     break
-            row += 1
+        r += 1
+        if r < substeps:
+            continue
+        r = 0
         for i in range(N):
             X[k + 1, i] = x[i]
         BR[k + 1] = branch
@@ -749,4 +870,5 @@ def nonlinear_run(
         if hist_u.shape[0] == nblk and nblk > 0:
             for i in range(nblk):
                 hist_u[i, k + 1] = bstates[i, 2]
+        k += 1
     return n_ev
