@@ -473,6 +473,23 @@ def _flexible_sample(H2, k, S2, muk2, flex, g, af):
 
 
 @njit(cache=True, _nrt=False)
+def _fast_step(m, branch, PHT, PP, QQ, G, GT, x, y, ax, aa, ab, slope, h, iF, kk, dy, musW, peak,
+               t_peak, t0, z0, z1, need, dl, z_valid):  # fmt: skip
+    """One sub-step of :func:`_fast_run` when something rides along (the caller advances the
+    riders): the exact step to ``y``, then :func:`_fast_substep`; ``z0`` formed first unless
+    `z_valid`. Compiled without reference counting, apart from the caller's loop."""
+    _foh_t(PHT[m], PP[m], QQ[m], x, aa, ab, y)
+    p = -x[iF] / kk if branch == ELASTIC else 0.0
+    if not z_valid:
+        Gm = G[m]
+        for f in range(z0.size):
+            z0[f] = _value(Gm[f], x, aa)
+    return _fast_substep(
+        branch, GT[m], x, y, ax, aa, ab, slope, h, p, dy, musW, peak, t_peak, t0, z0, z1, need, dl
+    )
+
+
+@njit(cache=True, _nrt=False)
 def _fast_run(k, r, substeps, mat_of, PHT, PP, QQ, G, GT, acc, h, x, y, ax, branch, iF, kk, dy,
               musW, peak, t_peak, z0, z1, need, dl, z_valid, X, BR, Yo, want_outputs,
               out):  # fmt: skip
@@ -724,13 +741,9 @@ def nonlinear_run(
             # a new peak are searched
             m = mat_of[branch]
             if pre == 0:
-                _foh_t(PHT[m], PP[m], QQ[m], x, aa, ab, y)
-                p = -x[iF] / kk if branch == ELASTIC else 0.0
-                if not z_valid:
-                    for f in range(nout + 1):
-                        z0[f] = _value(G[m, f], x, aa)
-                nsearch = _fast_substep(branch, GT[m], x, y, ax, aa, ab, slope, h, p, dy, musW,
-                                        peak, t_peak, t0, z0, z1, need, dl)  # fmt: skip
+                nsearch = _fast_step(m, branch, PHT, PP, QQ, G, GT, x, y, ax, aa, ab, slope, h,
+                                     iF, kk, dy, musW, peak, t_peak, t0, z0, z1, need, dl,
+                                     z_valid)  # fmt: skip
             else:
                 nsearch = fo[2] if pre > 0 else -1
             if nsearch >= 0:
