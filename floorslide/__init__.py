@@ -26,8 +26,10 @@ from floorslide.building import (
 from floorslide.constants import G
 from floorslide.contents import (
     OscillatorResult,
+    RockResult,
     SlideResult,
     response_mode,
+    rock,
     slide,
     slide_oscillator,
 )
@@ -66,6 +68,7 @@ __all__ = [
     "Rayleigh",
     "ShearBuilding",
     "OscillatorResult",
+    "RockResult",
     "SlideResult",
     "Spectrum",
     "broaden",
@@ -80,6 +83,7 @@ __all__ = [
     "floor_motion",
     "floor_motions",
     "peak_floor_acceleration",
+    "rock",
     "slide",
     "FloorslideError",
     "FloorslideWarning",

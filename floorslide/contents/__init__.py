@@ -3,6 +3,15 @@ and the rocking-or-sliding check."""
 
 from floorslide.contents.oscillator import OscillatorResult, slide_oscillator
 from floorslide.contents.rocking import response_mode
+from floorslide.contents.rocking_block import RockResult, rock
 from floorslide.contents.sliding import SlideResult, slide
 
-__all__ = ["OscillatorResult", "SlideResult", "response_mode", "slide", "slide_oscillator"]
+__all__ = [
+    "OscillatorResult",
+    "RockResult",
+    "SlideResult",
+    "response_mode",
+    "rock",
+    "slide",
+    "slide_oscillator",
+]

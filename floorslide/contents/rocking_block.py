@@ -1,0 +1,315 @@
+"""Rigid blocks rocking on a floor: impacts, overturning, the exact solver (Housner 1963).
+
+Conventions (docs/design.md §12): a block of base width ``B`` and height ``H`` (centre of mass at
+mid-height) has ``R = ½√(B² + H²)``, slenderness ``α = atan(B/H)`` and frequency parameter
+``p = √(3g/(4R))``. ``θ > 0`` is rotation about the corner that a *negative* floor acceleration
+lifts onto: at rest the block uplifts at the first instant ``a_f < −g tan α`` (``θ > 0``) or
+``a_f > g tan α`` (``θ < 0``). Rocking, ``θ'' = p²(θ − α sgn θ) − p² a_f/g`` (linearised,
+``method="exact"``) or ``θ'' = −p² [sin(α sgn θ − θ) + (a_f/g) cos(α sgn θ − θ)]``
+(``method="nonlinear"``); at each impact (``θ`` back to 0) the angular velocity is multiplied by
+the restitution ``r`` (default Housner's ``1 − 1.5 sin²α``); the block overturns when ``|θ|``
+reaches ``α``. Friction is assumed to hold the corner (no sliding: the Shenton check in
+:mod:`floorslide.contents.rocking` says when that is so).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from floorslide.building.exact import taylor_degree
+from floorslide.building.exact_motion import FloorMotion, single_use_motion, unwrap
+from floorslide.building.model import LinearBuilding
+from floorslide.constants import G
+from floorslide.contents import _rocking_kernel as rk
+from floorslide.errors import ModelError, SolverLimitError
+from floorslide.inputs import RecordLike
+
+ROCK_METHODS = ("exact", "nonlinear")
+
+
+@dataclass(frozen=True)
+class RockResult:
+    """Rocking of rigid blocks, one entry per block.
+
+    Attributes
+    ----------
+    width, height
+        Base width and height, m.
+    alpha, p, restitution
+        Slenderness ``atan(B/H)`` (rad), frequency parameter ``√(3g/(4R))`` (rad/s) and the
+        restitution used.
+    peak_ratio
+        ``max|θ|/α`` found inside steps (1 for a block that overturned).
+    peak_time
+        Time of the peak, s (NaN when the block never uplifted).
+    impacts
+        Impacts (``θ`` back to 0 while rocking).
+    uplifts
+        Uplifts from rest.
+    rocking_time
+        Time spent rocking, s.
+    overturned
+        Whether ``|θ|`` reached ``α``.
+    overturn_time
+        When it did, s (NaN otherwise).
+    mode
+        What the block did: ``"rest"`` (never uplifted), ``"rock"`` or ``"overturn"``.
+    duration
+        Duration of the record, s.
+    method
+        ``"exact"`` (linearised equation) or ``"nonlinear"`` (full equation).
+    theta
+        ``θ`` at the samples (``(n_blocks, npts)``, rad; NaN once overturned), when requested.
+    notes
+        What was done to the input record.
+    """
+
+    width: np.ndarray
+    height: np.ndarray
+    alpha: np.ndarray
+    p: np.ndarray
+    restitution: np.ndarray
+    peak_ratio: np.ndarray
+    peak_time: np.ndarray
+    impacts: np.ndarray
+    uplifts: np.ndarray
+    rocking_time: np.ndarray
+    overturned: np.ndarray
+    overturn_time: np.ndarray
+    mode: tuple[str, ...]
+    duration: float
+    method: str
+    theta: np.ndarray | None = field(default=None, repr=False)
+    notes: tuple[str, ...] = ()
+
+    def to_records(self) -> list[dict]:
+        """One JSON-ready dict per block (snake_case keys, SI values)."""
+        return [
+            dict(
+                width=float(self.width[i]),
+                height=float(self.height[i]),
+                alpha=float(self.alpha[i]),
+                p=float(self.p[i]),
+                restitution=float(self.restitution[i]),
+                peak_ratio=float(self.peak_ratio[i]),
+                peak_time=float(self.peak_time[i]),
+                impacts=int(self.impacts[i]),
+                uplifts=int(self.uplifts[i]),
+                rocking_time=float(self.rocking_time[i]),
+                overturned=bool(self.overturned[i]),
+                overturn_time=float(self.overturn_time[i]),
+                mode=self.mode[i],
+            )
+            for i in range(self.width.size)
+        ]
+
+
+def block_geometry(width, height, restitution=None, g: float = G):
+    """``(B, H, α, p, r)`` of blocks, broadcast to equal 1-D arrays: ``α = atan(B/H)``,
+    ``p = √(3g/(4R))`` with ``R = ½√(B² + H²)``, ``r`` given or Housner's ``1 − 1.5 sin²α``
+    (Housner 1963, eq. 17)."""
+    if width is None or height is None:
+        raise ModelError("width and height (m) are required to rock a block", "width")
+    B = np.atleast_1d(np.asarray(width, dtype=float)).ravel()
+    H = np.atleast_1d(np.asarray(height, dtype=float)).ravel()
+    r_in = np.atleast_1d(
+        np.asarray(np.nan if restitution is None else restitution, dtype=float)
+    ).ravel()
+    try:
+        B, H, r_in = np.broadcast_arrays(B, H, r_in)
+    except ValueError:
+        raise ModelError(
+            f"width ({B.size}), height ({H.size}) and restitution ({r_in.size}) must be one "
+            "value or one per block",
+            "width",
+        ) from None
+    for name, arr in (("width", B), ("height", H)):
+        if arr.size == 0 or not np.all(np.isfinite(arr)) or np.any(arr <= 0):
+            raise ModelError(f"{name} must be finite and > 0 m, got {arr.tolist()}", name)
+    alpha = np.arctan2(B, H)
+    R = 0.5 * np.hypot(B, H)
+    p = np.sqrt(3.0 * g / (4.0 * R))
+    if restitution is None:
+        r = 1.0 - 1.5 * np.sin(alpha) ** 2
+    else:
+        r = r_in.astype(float)
+        if not np.all((r >= 0.0) & (r <= 1.0)):
+            raise ModelError(f"restitution must be in [0, 1], got {r.tolist()}", "restitution")
+    if np.any(r < 0.0):
+        raise ModelError(
+            "Housner's restitution 1 − 1.5 sin²α is negative for blocks with B/H > "
+            f"{np.tan(np.arcsin(np.sqrt(2.0 / 3.0))):.3f} (a squat block does not rock this "
+            "way): give restitution",
+            "restitution",
+        )
+    return (
+        np.ascontiguousarray(B, dtype=float),
+        np.ascontiguousarray(H, dtype=float),
+        alpha,
+        p,
+        np.ascontiguousarray(r, dtype=float),
+    )
+
+
+def rock(
+    acc: RecordLike | FloorMotion,
+    dt: float | None = None,
+    width=None,
+    height=None,
+    *,
+    restitution=None,
+    building: LinearBuilding | None = None,
+    floor: int | None = None,
+    method: str = "exact",
+    histories: bool = False,
+    initial_angle=None,
+) -> RockResult:
+    """Rocking, impacts and overturning of rigid blocks on a floor (friction holds the corner).
+
+    Parameters
+    ----------
+    acc
+        Ground acceleration samples, m/s² (with `building`), or the motion the blocks stand on
+        (without), piecewise linear; an ObsPy Trace; or a :class:`~floorslide.FloorMotion`.
+    dt
+        Time step, s (as for :func:`~floorslide.slide`).
+    width, height
+        Base width and height of each block, m (one value or one per block; many blocks are
+        advanced in one compiled loop).
+    restitution
+        Ratio of angular velocities after/before an impact, in [0, 1] (default Housner's
+        ``1 − 1.5 sin²α``, which needs ``B/H < 1.41``).
+    building, floor
+        Put the blocks on `floor` of a linear `building` (fixed-base or isolated).
+    method
+        ``"exact"``: the linearised (slender-block) equation, exact for the piecewise-linear
+        record; ``"nonlinear"``: the full equation, its Taylor series exact to rounding.
+    histories
+        Also return ``θ`` at the samples.
+    initial_angle
+        ``θ`` at t = 0, rad (one value or one per block, ``|θ0| < α``; the block at rest there,
+        ``θ' = 0``): free-rocking checks. Default 0 (upright, at rest).
+
+    Returns
+    -------
+    RockResult
+
+    Raises
+    ------
+    ModelError
+        Invalid geometry, restitution, method or floor.
+    SolverLimitError
+        More than :data:`~floorslide.contents._rocking_kernel.ROCK_MAX_EVENTS` events of one
+        block inside one sub-step.
+
+    References
+    ----------
+    Housner, G. W. (1963). The behavior of inverted pendulum structures during earthquakes.
+    *Bull. Seismol. Soc. Am.* 53(2), 403–417.
+    Makris, N., Roussos, Y. S. (2000). Rocking response of rigid blocks under near-source ground
+    motions. *Géotechnique* 50(3), 243–262.
+    """
+    from floorslide.building.nonlinear import NonlinearIsolatedBuilding
+
+    if method not in ROCK_METHODS:
+        raise ModelError(
+            f"unknown method {method!r}; expected one of {', '.join(ROCK_METHODS)}", "method"
+        )
+    if isinstance(building, NonlinearIsolatedBuilding):
+        raise ModelError(
+            "rocking on a building on nonlinear isolation is not available yet", "building"
+        )
+    fm, a, dt, notes = unwrap(acc, dt, building, floor)
+    if fm is not None:
+        building, floor = fm.building, fm.floor
+    if building is None and floor not in (None, 0):
+        raise ModelError("floor= needs building=", "floor")
+    if building is not None and floor is None:
+        raise ModelError("floor is required with building=", "floor")
+    B, H, alpha, p, r = block_geometry(width, height, restitution)
+    if fm is None:
+        fm = single_use_motion(building, a, dt, floor)
+    nonlinear = method == "nonlinear"
+    phase_max = rk.NONLINEAR_PHASE if nonlinear else rk.LINEAR_PHASE
+    parts = np.maximum(1, np.ceil(p * fm.h / phase_max - 1e-12)).astype(int)
+    phase = float(np.max(p * fm.h / parts))
+    D = max(fm.order + 2, taylor_degree(2.0 * phase if nonlinear else phase))
+    par = np.empty((B.size, rk.NPAR))
+    par[:, rk.P_ALPHA] = alpha
+    par[:, rk.P_P] = p
+    par[:, rk.P_R] = r
+    par[:, rk.P_TAN] = B / H
+    par[:, rk.P_PARTS] = parts
+    states = np.zeros((B.size, rk.NCOL))
+    states[:, rk.T_OVER] = -1.0
+    states[:, rk.LIMIT_AT] = -1.0
+    states[:, rk.T_PEAK] = np.nan
+    if initial_angle is not None:
+        th0 = np.broadcast_to(np.asarray(initial_angle, dtype=float).ravel(), B.shape)
+        if not np.all(np.isfinite(th0)) or np.any(np.abs(th0) >= alpha):
+            raise ModelError(
+                f"initial_angle must be finite with |θ0| < α = {alpha.tolist()} rad, got "
+                f"{th0.tolist()}",
+                "initial_angle",
+            )
+        states[:, rk.TH] = th0
+        states[:, rk.MODE] = np.sign(th0)
+        states[:, rk.PEAK] = np.abs(th0) / alpha
+        states[:, rk.T_PEAK] = np.where(th0 != 0.0, 0.0, np.nan)
+    npts = a.size
+    hist = np.zeros((B.size, npts) if histories else (0, 0))
+    for k0, X in fm.chunks():
+        rk.rock_kernel(
+            X,
+            k0,
+            fm.R,
+            fm.beta,
+            a,
+            fm.substeps,
+            fm.h,
+            G,
+            par,
+            states,
+            hist,
+            histories,
+            nonlinear,
+            D,
+            rk.ROCK_MAX_EVENTS,
+        )
+    hit = np.flatnonzero(states[:, rk.LIMIT_AT] >= 0.0)
+    if hit.size:
+        i = int(hit[0])
+        raise SolverLimitError(
+            f"rock: more than {rk.ROCK_MAX_EVENTS} impacts or uplifts inside one sub-step at "
+            f"t = {states[i, rk.LIMIT_AT]:.6g} s (block {B[i]:g} × {H[i]:g} m): an impact "
+            "cascade the exact solver cannot resolve",
+            "width",
+        )
+    over = states[:, rk.MODE] == rk.OVERTURNED
+    mode = tuple(
+        "overturn"
+        if over[i]
+        else ("rock" if states[i, rk.UPLIFTS] > 0 or states[i, rk.ROCK_TIME] > 0 else "rest")
+        for i in range(B.size)
+    )
+    result = RockResult(
+        width=B,
+        height=H,
+        alpha=alpha,
+        p=p,
+        restitution=r,
+        peak_ratio=states[:, rk.PEAK].copy(),
+        peak_time=states[:, rk.T_PEAK].copy(),
+        impacts=states[:, rk.IMPACTS].astype(int),
+        uplifts=states[:, rk.UPLIFTS].astype(int),
+        rocking_time=states[:, rk.ROCK_TIME].copy(),
+        overturned=over,
+        overturn_time=np.where(over, states[:, rk.T_OVER], np.nan),
+        mode=mode,
+        duration=(npts - 1) * dt,
+        method=method,
+        theta=hist if histories else None,
+    )
+    return replace(result, notes=notes) if notes else result
