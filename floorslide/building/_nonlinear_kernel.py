@@ -26,7 +26,13 @@ from floorslide.building._instep import (
 )
 from floorslide.contents._kernels import objects_on_substep
 from floorslide.contents._oscillator_kernel import O_MODE, O_U, O_Z, O_ZD, _advance_part, _shift
-from floorslide.numerics.polynomial import first_rise, max_abs_on, poly_val, scratch
+from floorslide.contents._rocking_kernel import LIMIT_AT as RK_LIMIT_AT
+from floorslide.contents._rocking_kernel import MODE as RK_MODE
+from floorslide.contents._rocking_kernel import OVERTURNED as RK_OVERTURNED
+from floorslide.contents._rocking_kernel import P_P, P_TAN, _block_on_part
+from floorslide.contents._rocking_kernel import ROCK_MAX_EVENTS as RK_MAX_EVENTS
+from floorslide.contents._rocking_kernel import TH as RK_TH
+from floorslide.numerics.polynomial import first_rise, max_abs_on, poly_val, scratch, taylor_shift
 
 # branch codes: as floorslide.building.isolators
 LINEAR, ELASTIC, PLASTIC_POS, PLASTIC_NEG, SLIP_POS, SLIP_NEG, STICK = 0, 1, 2, 3, 4, 5, 6
@@ -260,6 +266,54 @@ def _flexible(OR, OB, x, a_s, slope, L, K, t_abs, o2, w2, xi2, r2, g, mub2, muk2
 
 # columns of a function's chord-bound row (see _chord_rows), after its N state coefficients
 VALUE, C2, C3, TIGHT, LOOSE = 0, 1, 2, 3, 4
+
+
+@njit(cache=True)
+def _rockers(OR, OB, x, a0, slope, L, K, t0, rk_out, rk_par, rk_states, g, D, nonlinear, phase,
+             max_events, RB):  # fmt: skip
+    """Advance the rocking blocks riding along through a segment ``[0, L]`` of the building
+    from state ``x`` (ground ``a0 + slope·τ``): block ``i`` stands on the floor of output row
+    ``rk_out[i]`` (sorted), parameters ``rk_par[i]`` and state ``rk_states[i]`` (the columns
+    of :mod:`floorslide.contents._rocking_kernel`); each goes through the segment in parts
+    with ``p·L ≤ phase`` by :func:`~floorslide.contents._rocking_kernel._block_on_part` on
+    the floor polynomial shifted to each part. ``RB``: scratch rows (floor coefficients and
+    their shifts, the series of θ, sin, cos, u, a polynomial, the root-isolation work)."""
+    c, cs, cw = RB[0, : K + 1], RB[1, : K + 1], RB[2, : K + 1]
+    t, S, C, u = RB[3, : D + 1], RB[4, : D + 1], RB[5, : D + 1], RB[6, : D + 1]
+    q = RB[7]
+    work = RB[8:]
+    last = -1
+    reach = 0.0
+    for i in range(rk_out.size):
+        st = rk_states[i]
+        if st[RK_MODE] == RK_OVERTURNED:
+            continue
+        o = rk_out[i]
+        if o != last:
+            taylor_coefficients(OR[o], OB[o], x, a0, slope, c)
+            last = o
+            reach = 0.0
+            for j in range(K, -1, -1):
+                reach = reach * L + abs(c[j])
+        par = rk_par[i]
+        if st[RK_MODE] == 0.0 and reach <= g * par[P_TAN]:
+            continue
+        parts = max(1, int(np.ceil(par[P_P] * L / phase - 1e-12)))
+        Lq = L / parts
+        for qq in range(parts):
+            if qq == 0:
+                for j in range(K + 1):
+                    cs[j] = c[j]
+            else:
+                taylor_shift(c, K, qq * Lq, cs)
+            ok = _block_on_part(st, par, cs, K, Lq, t0 + qq * Lq, g, D, nonlinear, max_events,
+                                t, S, C, u, q, cw, work)  # fmt: skip
+            if not ok:
+                if st[RK_LIMIT_AT] < 0.0:
+                    st[RK_LIMIT_AT] = t0
+                break
+            if st[RK_MODE] == RK_OVERTURNED:
+                break
 
 
 @njit(cache=True)
@@ -596,6 +650,13 @@ def nonlinear_run(
     S2,
     Yo,
     H2,
+    rk_out,
+    rk_par,
+    rk_states,
+    rk_D,
+    rk_nonlinear,
+    rk_phase,
+    rk_hist,
 ):
     """Integrate the building over the record.
 
@@ -625,6 +686,11 @@ def nonlinear_run(
     2-DOF sliding oscillators too (none when ``muk2`` is empty): ``flex = [row, ω, ξ, r,
     part length, degree]``, friction ``mub2``/``muk2``, states ``S2`` (the columns of
     :mod:`floorslide.contents._oscillator_kernel`).
+    Rocking blocks too (none when ``rk_out`` is empty; :func:`_rockers`): on the floors of
+    output rows ``rk_out`` (sorted), parameters ``rk_par``, states ``rk_states`` (the columns
+    of :mod:`floorslide.contents._rocking_kernel`), series degree ``rk_D``, the full equation
+    when ``rk_nonlinear``, parts of ``p·L ≤ rk_phase``; ``rk_hist[i, k]`` (when it has a row
+    per block) receives ``θ`` at sample ``k`` (NaN once overturned).
 
     Just after an event the search for the next one starts ``EVENT_GAP·h`` later: a branch
     entered at a level crossing (a breakaway at exactly the friction limit, a stop at exactly
@@ -707,7 +773,10 @@ def nonlinear_run(
         for o in range(n2):
             H2[o, 0, 3] = af0
     fresh = False
-    alone = nblk == 0 and nosc == 0 and n2 == 0
+    nrk = rk_out.size
+    sw = scratch(max(K, rk_D) + 2)  # the rockers' scratch rows, then their root-isolation work
+    RB = np.zeros((8 + sw.shape[0], max(sw.shape[1], max(K, rk_D) + 3)))
+    alone = nblk == 0 and nosc == 0 and n2 == 0 and nrk == 0
     fo = np.zeros(3, dtype=np.int64)
     k = 0
     r = 0
@@ -762,6 +831,9 @@ def nonlinear_run(
                     _flexible(OR[m], OB[m], x, aa, slope, h, K, t0, o2, flex[1], flex[2],
                               flex[3], g, mub2, muk2, S2, flex[4], K2, c2, cs2, Y2, poly2,
                               y2, pk2, work2)  # fmt: skip
+                if nrk > 0:
+                    _rockers(OR[m], OB[m], x, aa, slope, h, K, t0, rk_out, rk_par, rk_states, g,
+                             rk_D, rk_nonlinear, rk_phase, RK_MAX_EVENTS, RB)  # fmt: skip
                 for i in range(N):
                     x[i] = y[i]
                 for f in range(nout + 1):
@@ -801,6 +873,10 @@ def nonlinear_run(
                         _flexible(OR[m], OB[m], x, a_s, slope, L, K, t0 + s0, o2, flex[1],
                                   flex[2], flex[3], g, mub2, muk2, S2, flex[4], K2, c2, cs2, Y2,
                                   poly2, y2, pk2, work2)  # fmt: skip
+                    if nrk > 0:
+                        _rockers(OR[m], OB[m], x, a_s, slope, L, K, t0 + s0, rk_out, rk_par,
+                                 rk_states, g, rk_D, rk_nonlinear, rk_phase, RK_MAX_EVENTS,
+                                 RB)  # fmt: skip
                     for i in range(N):
                         x[i] = y[i]
                     break
@@ -818,6 +894,10 @@ def nonlinear_run(
                     _flexible(OR[m], OB[m], x, a_s, slope, te, K, t0 + s0, o2, flex[1],
                               flex[2], flex[3], g, mub2, muk2, S2, flex[4], K2, c2, cs2, Y2,
                               poly2, y2, pk2, work2)  # fmt: skip
+                if nrk > 0:
+                    _rockers(OR[m], OB[m], x, a_s, slope, te, K, t0 + s0, rk_out, rk_par,
+                             rk_states, g, rk_D, rk_nonlinear, rk_phase, RK_MAX_EVENTS,
+                             RB)  # fmt: skip
                 for i in range(N):
                     x[i] = y[i]
                 a_e = a_s + slope * te
@@ -883,5 +963,11 @@ def nonlinear_run(
         if hist_u.shape[0] == nblk and nblk > 0:
             for i in range(nblk):
                 hist_u[i, k + 1] = bstates[i, 2]
+        if nrk > 0 and rk_hist.shape[0] == nrk:
+            for i in range(nrk):
+                if rk_states[i, RK_MODE] == RK_OVERTURNED:
+                    rk_hist[i, k + 1] = np.nan
+                else:
+                    rk_hist[i, k + 1] = rk_states[i, RK_TH]
         k += 1
     return n_ev

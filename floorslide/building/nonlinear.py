@@ -253,6 +253,11 @@ class IsolatorResponse:
     flexible_histories: np.ndarray | None = None
     """With ``flexible_histories=True``: the 2-DOF oscillators' ``(u, z, top, base)`` at the
     samples, ``(n, npts, 4)`` (as :func:`floorslide.slide_oscillator`'s histories)."""
+    rocker_states: np.ndarray | None = None
+    """Final states of the rocking blocks asked for (columns of
+    ``floorslide.contents._rocking_kernel``)."""
+    rocker_theta: np.ndarray | None = None
+    """With ``rocker_histories=True``: their ``θ`` at the samples (NaN once overturned), rad."""
 
     def branch_names(self) -> list[str]:
         return [BRANCH_NAMES[b] for b in self.branch]
@@ -396,6 +401,8 @@ def isolator_response(
     oscillators=None,
     flexible=None,
     flexible_histories: bool = False,
+    rockers=None,
+    rocker_histories: bool = False,
 ) -> IsolatorResponse:
     """Exact response of a building on nonlinear isolation to a piecewise-linear record.
 
@@ -432,6 +439,13 @@ def isolator_response(
         the 2-DOF kernel's exact step (:func:`slide_oscillator_on_isolation` wraps this);
         final states in ``flexible_states``; with ``flexible_histories`` their histories at
         the samples in ``flexible_histories``.
+    rockers
+        ``(floor, par, states, nonlinear)``: rocking blocks on `floor` riding along, parameters
+        ``par`` and initial states ``states`` as :func:`floorslide.rock` prepares them (the
+        columns of :mod:`floorslide.contents._rocking_kernel`), the full equation when
+        `nonlinear`; advanced by its exact part step on the floor's in-step polynomial
+        (:func:`floorslide.rock` wraps this); final states in ``rocker_states``, with
+        ``rocker_histories`` ``θ`` at the samples in ``rocker_theta``.
 
     Returns
     -------
@@ -544,6 +558,21 @@ def isolator_response(
     # formed here afterwards
     Yo = np.empty((acc.size, nout) if oscillator is None else (0, nout))
     H2 = np.zeros((muk2.size, acc.size, 4) if flexible_histories else (0, 0, 4))
+    from floorslide.contents import _rocking_kernel as rk
+
+    if rockers is not None:
+        rk_floor, rk_par0, rk_states0, rk_nonlinear = rockers
+        rk_par = np.ascontiguousarray(rk_par0, dtype=float)
+        rk_out = np.full(rk_par.shape[0], floors.index(int(rk_floor)), dtype=np.int64)
+        rk_phase = rk.NONLINEAR_PHASE if rk_nonlinear else rk.LINEAR_PHASE
+        # parts of p·L ≤ rk_phase on every segment (the kernel splits each), the series degree
+        # as floorslide.rock chooses it for that phase
+        rk_D = max(K + 2, taylor_degree(rk_phase * (2.0 if rk_nonlinear else 1.0)))
+    else:
+        rk_par = np.zeros((0, rk.NPAR))
+        rk_states0 = np.zeros((0, rk.NCOL))
+        rk_out = np.zeros(0, dtype=np.int64)
+        rk_nonlinear, rk_phase, rk_D = False, rk.LINEAR_PHASE, 3
     while True:
         ev_row = np.empty(cap, dtype=np.int64)
         ev_tau = np.empty(cap)
@@ -556,13 +585,15 @@ def isolator_response(
         osc_P = np.zeros((len(oscillators), 3))
         S2 = np.zeros((muk2.size, O_NCOL))
         S2[:, O_LIMIT_AT] = -1.0
+        rk_states = np.array(rk_states0, dtype=float, copy=True)
+        rk_hist = np.zeros((rk_out.size, acc.size) if rocker_histories else (0, 0))
         n_ev = kern.nonlinear_run(
             mat_of, PHI, PP, QQ, RR, BB, ER, EB, OR, OB, K, consts, acc, m, dt / m,
             x0, branch0, X, BR, ev_row, ev_tau, ev_branch, peak, t_peak, MAX_EVENTS_PER_SUBSTEP,
             blk_out, blk_floor, mub, muk, direction != "negative", direction != "positive", G,
             bstates, n,
             hist_u, osc_out, osc_w, osc_xi, osc_rho, osc_S, osc_P, D, flex, mub2, muk2, S2,
-            Yo, H2,
+            Yo, H2, rk_out, rk_par, rk_states, rk_D, bool(rk_nonlinear), rk_phase, rk_hist,
         )  # fmt: skip
         if len(blocks) and (bstates[:, LIMIT_AT] >= 0).any():
             t = float(bstates[bstates[:, LIMIT_AT] >= 0, LIMIT_AT].min())
@@ -629,6 +660,8 @@ def isolator_response(
         oscillator_peaks=osc_P[np.argsort(osc_order, kind="stable")] if oscillators else None,
         flexible_states=S2 if flexible is not None else None,
         flexible_histories=H2 if flexible is not None and flexible_histories else None,
+        rocker_states=rk_states if rockers is not None else None,
+        rocker_theta=rk_hist if rockers is not None and rocker_histories else None,
     )
 
 

@@ -182,7 +182,9 @@ def rock(
         Ratio of angular velocities after/before an impact, in [0, 1] (default Housner's
         ``1 − 1.5 sin²α``, which needs ``B/H < 1.41``).
     building, floor
-        Put the blocks on `floor` of a linear `building` (fixed-base or isolated).
+        Put the blocks on `floor` of `building`: fixed-base, linearly isolated, or on nonlinear
+        isolation (:class:`~floorslide.NonlinearIsolatedBuilding`: the blocks ride along in its
+        event-driven integration, exact end to end).
     method
         ``"exact"``: the linearised (slender-block) equation, exact for the piecewise-linear
         record; ``"nonlinear"``: the full equation, its Taylor series exact to rounding.
@@ -217,31 +219,37 @@ def rock(
         raise ModelError(
             f"unknown method {method!r}; expected one of {', '.join(ROCK_METHODS)}", "method"
         )
-    if isinstance(building, NonlinearIsolatedBuilding):
-        raise ModelError(
-            "rocking on a building on nonlinear isolation is not available yet", "building"
-        )
-    fm, a, dt, notes = unwrap(acc, dt, building, floor)
-    if fm is not None:
-        building, floor = fm.building, fm.floor
+    on_isolation = isinstance(building, NonlinearIsolatedBuilding)
+    if on_isolation:
+        from floorslide.inputs import as_record
+
+        fm = None
+        a, dt, notes = as_record(acc, dt)
+        notes = tuple(notes)
+    else:
+        fm, a, dt, notes = unwrap(acc, dt, building, floor)
+        if fm is not None:
+            building, floor = fm.building, fm.floor
     if building is None and floor not in (None, 0):
         raise ModelError("floor= needs building=", "floor")
     if building is not None and floor is None:
         raise ModelError("floor is required with building=", "floor")
     B, H, alpha, p, r = block_geometry(width, height, restitution)
-    if fm is None:
-        fm = single_use_motion(building, a, dt, floor)
     nonlinear = method == "nonlinear"
     phase_max = rk.NONLINEAR_PHASE if nonlinear else rk.LINEAR_PHASE
-    parts = np.maximum(1, np.ceil(p * fm.h / phase_max - 1e-12)).astype(int)
-    phase = float(np.max(p * fm.h / parts))
-    D = max(fm.order + 2, taylor_degree(2.0 * phase if nonlinear else phase))
     par = np.empty((B.size, rk.NPAR))
     par[:, rk.P_ALPHA] = alpha
     par[:, rk.P_P] = p
     par[:, rk.P_R] = r
     par[:, rk.P_TAN] = B / H
-    par[:, rk.P_PARTS] = parts
+    par[:, rk.P_PARTS] = 1
+    if not on_isolation:
+        if fm is None:
+            fm = single_use_motion(building, a, dt, floor)
+        parts = np.maximum(1, np.ceil(p * fm.h / phase_max - 1e-12)).astype(int)
+        phase = float(np.max(p * fm.h / parts))
+        D = max(fm.order + 2, taylor_degree(2.0 * phase if nonlinear else phase))
+        par[:, rk.P_PARTS] = parts
     states = np.zeros((B.size, rk.NCOL))
     states[:, rk.T_OVER] = -1.0
     states[:, rk.LIMIT_AT] = -1.0
@@ -259,25 +267,39 @@ def rock(
         states[:, rk.PEAK] = np.abs(th0) / alpha
         states[:, rk.T_PEAK] = np.where(th0 != 0.0, 0.0, np.nan)
     npts = a.size
-    hist = np.zeros((B.size, npts) if histories else (0, 0))
-    for k0, X in fm.chunks():
-        rk.rock_kernel(
-            X,
-            k0,
-            fm.R,
-            fm.beta,
+    if on_isolation:
+        from floorslide.building.nonlinear import isolator_response
+
+        resp = isolator_response(
+            building,
             a,
-            fm.substeps,
-            fm.h,
-            G,
-            par,
-            states,
-            hist,
-            histories,
-            nonlinear,
-            D,
-            rk.ROCK_MAX_EVENTS,
+            dt,
+            floors=[floor],
+            rockers=(floor, par, states, nonlinear),
+            rocker_histories=histories,
         )
+        states = resp.rocker_states
+        hist = resp.rocker_theta if histories else None
+    else:
+        hist = np.zeros((B.size, npts) if histories else (0, 0))
+        for k0, X in fm.chunks():
+            rk.rock_kernel(
+                X,
+                k0,
+                fm.R,
+                fm.beta,
+                a,
+                fm.substeps,
+                fm.h,
+                G,
+                par,
+                states,
+                hist,
+                histories,
+                nonlinear,
+                D,
+                rk.ROCK_MAX_EVENTS,
+            )
     hit = np.flatnonzero(states[:, rk.LIMIT_AT] >= 0.0)
     if hit.size:
         i = int(hit[0])

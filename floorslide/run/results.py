@@ -18,6 +18,13 @@ class ContentResult:
     ``mode`` is Shenton's response mode from the floor's true PFA (``"slide"`` when no geometry
     was given); ``skipped`` says why nothing was integrated (``""`` when it was): the exact
     answer of a skipped slider is then zero slide and the floor's peak acceleration.
+
+    A content with width and height that rocks (Shenton's ``rock`` or ``slide-rock``) is
+    simulated as a rocking block (:func:`floorslide.rock`, the same for every friction value
+    whose static coefficient holds the corner): its sliding arrays are NaN there (never a
+    "0 slide"), its rocking arrays hold the result, and ``outcomes`` what it did — ``rest``,
+    ``slide``, ``rock``, ``overturn``, or ``slide-rock`` (then the slide and the rocking are
+    both bounds, each computed as if the other motion did not happen).
     """
 
     content: str
@@ -36,6 +43,18 @@ class ContentResult:
     peak_deformation: np.ndarray | None = None
     peak_top_accel: np.ndarray | None = None
     modes: np.ndarray | None = None  # per friction pair: rest, slide, rock or slide-rock
+    # rocking (contents with width and height; None otherwise), per friction pair: NaN (−1 for
+    # the impacts) where the object slides instead (Shenton 1996), 0 where it stays at rest
+    rock_peak_ratio: np.ndarray | None = None  # max|θ|/α, 1 when it overturned
+    rock_impacts: np.ndarray | None = None
+    rock_time: np.ndarray | None = None  # s spent rocking
+    overturned: np.ndarray | None = None  # 1.0 or 0.0
+    overturn_time: np.ndarray | None = None  # s (NaN: never)
+    outcomes: np.ndarray | None = None  # observed: rest, slide, rock, overturn or slide-rock
+
+
+ROCK_FIELDS = ("rock_peak_ratio", "rock_impacts", "rock_time", "overturned", "overturn_time")
+"""The rocking arrays of a :class:`ContentResult` (present together, or all None)."""
 
 
 @dataclass
@@ -77,6 +96,9 @@ class Histories:
     the base mat over the total weight W, the base shear ratio V/W) at the samples give its
     hysteresis loop; both are None for every other building (and in files written before they
     were kept).
+
+    ``rocking`` holds, per content that rocks under the record (same keys), its rotation over
+    its slenderness ``θ/α`` at the samples (NaN after it overturned).
     """
 
     dt: float
@@ -88,6 +110,7 @@ class Histories:
     top_accel: dict[str, np.ndarray] = field(default_factory=dict)
     isolator_displacement: np.ndarray | None = None  # (npts,), m
     isolator_force_ratio: np.ndarray | None = None  # (npts,), V/W
+    rocking: dict[str, np.ndarray] = field(default_factory=dict)  # θ/α, (npts,), NaN overturned
 
 
 @dataclass

@@ -28,8 +28,12 @@ Layout (every dataset carries a ``units`` attribute; ``1`` means dimensionless):
                              mu_k, mu_s (1), peak_slide (m), residual_slide (m),
                              peak_abs_accel (m/s**2), slide_fraction (1), slip_phases (1)
                              [+ peak_deformation (m), peak_top_accel (m/s**2) for oscillators],
-                             modes (per friction pair: rest/slide/rock/slide-rock; rocking
-                             objects are not simulated: their slide values are NaN); attrs
+                             modes (per friction pair, Shenton's: rest/slide/rock/slide-rock;
+                             the slide values of a rocking object are NaN); for contents with a
+                             width and height also rock_peak_ratio (1, max|θ|/α), rock_impacts
+                             (1), rock_time (s), overturned (1: 1/0), overturn_time (s, NaN:
+                             never) — NaN (−1 impacts) where the object slides — and outcomes
+                             (what it did: rest/slide/rock/overturn/slide-rock); attrs
                              model, mode (the common mode or "mixed"), skipped (reasons and
                              counts, or ""), vertical
       spectra/floor_<f>/     periods (s), damping (1), psa, sa (m/s**2), sv (m/s), sd (m): the
@@ -46,7 +50,9 @@ Layout (every dataset carries a ``units`` attribute; ``1`` means dimensionless):
                              rows of friction values under which the object rocks are NaN;
                              on nonlinear isolation also isolator_displacement (m, u0 relative
                              to the ground) and isolator_force_ratio (1, the layer's force
-                             over W) at the samples: the hysteresis loop
+                             over W) at the samples: the hysteresis loop; rocking/<content>/
+                             floor_<f>/theta_ratio (1, θ/α at the samples, NaN once
+                             overturned) for contents that rock under the record
 
 Reading stays backward compatible: a file written before the unbroadened spectra were kept
 has no ``broadening`` attr on ``spectra/floor_<f>``; if its scene asked for broadening, its
@@ -102,7 +108,13 @@ import numpy as np
 
 from floorslide.errors import OutputError, OutputExistsError, ResultFileError, one_line
 from floorslide.run import journal
-from floorslide.run.results import ContentResult, Histories, SpectrumResult, TaskResult
+from floorslide.run.results import (
+    ROCK_FIELDS,
+    ContentResult,
+    Histories,
+    SpectrumResult,
+    TaskResult,
+)
 from floorslide.run.snapshot import (
     DIGEST_SCHEME,
     H5_ERRORS,
@@ -139,6 +151,12 @@ UNITS = {
     "top_accel": "m/s**2",
     "isolator_displacement": "m",
     "isolator_force_ratio": "1",
+    "rock_peak_ratio": "1",
+    "rock_impacts": "1",
+    "rock_time": "s",
+    "overturned": "1",
+    "overturn_time": "s",
+    "theta_ratio": "1",
 }
 CONTENT_FIELDS = (
     "mu_k",
@@ -214,6 +232,16 @@ def _data(name: str, value) -> Data:
     return Data(np.asarray(value), {"units": UNITS.get(name, "1")})
 
 
+def _rocking_of(h) -> dict:
+    """The rocking arrays and outcomes of a stored content group (none in files written
+    before rocking was simulated, or for contents without a geometry)."""
+    if "rock_peak_ratio" not in h:
+        return {}
+    out = {name: _value(h, name) for name in ROCK_FIELDS}
+    out["outcomes"] = np.array([_s(m) for m in _value(h, "outcomes")])
+    return out
+
+
 def task_node(result: TaskResult) -> Node:
     """The group of one task as it is stored (the layout in this module's docstring), without
     its digest and ``done`` mark."""
@@ -231,6 +259,10 @@ def task_node(result: TaskResult) -> Node:
                 h.children[name] = _data(name, getattr(c, name))
         if c.modes is not None:
             h.children["modes"] = Data(np.asarray(c.modes, dtype=object), {"units": "1"})
+        if c.rock_peak_ratio is not None:
+            for name in ROCK_FIELDS:
+                h.children[name] = _data(name, getattr(c, name))
+            h.children["outcomes"] = Data(np.asarray(c.outcomes, dtype=object), {"units": "1"})
         h.attrs.update(model=c.model, mode=c.mode, skipped=c.skipped, vertical=c.vertical)
     spectra = g.group("spectra")
     for s in result.spectra:
@@ -264,6 +296,8 @@ def task_node(result: TaskResult) -> Node:
             if oscillator:
                 sg.children["z"] = _data("z", hi.deformation[key])
                 sg.children["top_accel"] = _data("top_accel", hi.top_accel[key])
+        for key, theta in hi.rocking.items():
+            hg.group(f"rocking/{key}").children["theta_ratio"] = _data("theta_ratio", theta)
     return g
 
 
@@ -945,6 +979,7 @@ def _read_task(g: Node, tid: str, legacy_broadening: float = 0.0) -> TaskResult:
                     else None,
                     peak_top_accel=_value(h, "peak_top_accel") if "peak_top_accel" in h else None,
                     modes=np.array([_s(m) for m in _value(h, "modes")]) if "modes" in h else None,
+                    **_rocking_of(h),
                 )
             )
     spectra = [_read_spectrum(k, h, legacy_broadening) for k, h in _groups(_group(g, "spectra"))]
@@ -960,6 +995,11 @@ def _read_task(g: Node, tid: str, legacy_broadening: float = 0.0) -> TaskResult:
                     mus[key] = _value(h, "mu_k")
                     if "z" in h:
                         deform[key], top[key] = _value(h, "z"), _value(h, "top_accel")
+        rocking = {}
+        if "rocking" in hg:
+            for cname, cg in _groups(_group(hg, "rocking")):
+                for fname, h in _groups(cg):
+                    rocking[f"{cname}/{fname}"] = _value(h, "theta_ratio")
         hist = Histories(
             float(hg.attrs["dt"]),
             _value(hg, "floors"),
@@ -969,6 +1009,7 @@ def _read_task(g: Node, tid: str, legacy_broadening: float = 0.0) -> TaskResult:
             deform,
             top,
             **{n: _value(hg, n) if n in hg else None for n in ISOLATOR_HISTORIES},
+            rocking=rocking,
         )
     return TaskResult(
         task_id=tid,

@@ -13,6 +13,7 @@ import numpy as np
 
 from floorslide.building.exact_motion import building_motion
 from floorslide.contents.oscillator import slide_oscillator
+from floorslide.contents.rocking_block import rock as rock_blocks
 from floorslide.contents.sliding import slide
 from floorslide.run.results import ContentResult, Histories, SpectrumResult, TaskResult
 from floorslide.scene.planner import Task, decide
@@ -79,6 +80,66 @@ def isolator_parameters(model) -> dict[str, float]:
     return out
 
 
+ROCKS = ("rock", "slide-rock")
+"""Shenton modes in which an object with a geometry is simulated as a rocking block."""
+
+
+def rocking_results(content, modes, rocker) -> dict:
+    """The rocking arrays of a content on one floor (:class:`~floorslide.run.results.
+    ContentResult`), one entry per friction pair, and what it did (``outcomes``).
+
+    Parameters
+    ----------
+    content
+        The :class:`~floorslide.scene.schema.ContentSpec` (without a width and height, no
+        rocking: empty dict).
+    modes
+        Shenton's mode per friction pair (:func:`~floorslide.scene.planner.decide`).
+    rocker
+        ``rocker(histories) → RockResult`` of one block of the content's geometry on the floor
+        (called at most once: while friction holds the corner, rocking does not depend on it).
+
+    Returns
+    -------
+    dict
+        ``rock_peak_ratio``, ``rock_impacts``, ``rock_time``, ``overturned``,
+        ``overturn_time``, ``outcomes`` and, when the block rocks, the :class:`RockResult`
+        under ``"result"``. Where the object slides instead (Shenton's ``slide``) they are NaN
+        (−1 impacts) and the outcome ``slide``; where it stays at rest (the floor's true peak
+        never reaches ``g·B/H``) they are zero, the exact answer, without a simulation.
+    """
+    if content.width is None:
+        return {}
+    n = len(modes)
+    out = dict(
+        rock_peak_ratio=np.full(n, np.nan),
+        rock_impacts=np.full(n, -1, dtype=np.int64),
+        rock_time=np.full(n, np.nan),
+        overturned=np.full(n, np.nan),
+        overturn_time=np.full(n, np.nan),
+    )
+    outcomes = list(modes)
+    rest = np.array([m == "rest" for m in modes])
+    for name in ("rock_peak_ratio", "rock_impacts", "rock_time", "overturned"):
+        out[name][rest] = 0
+    rocks = [i for i, m in enumerate(modes) if m in ROCKS]
+    if rocks:
+        r = rocker()
+        for i in rocks:
+            out["rock_peak_ratio"][i] = r.peak_ratio[0]
+            out["rock_impacts"][i] = r.impacts[0]
+            out["rock_time"][i] = r.rocking_time[0]
+            out["overturned"][i] = float(r.overturned[0])
+            out["overturn_time"][i] = r.overturn_time[0]
+            if r.overturned[0]:
+                outcomes[i] = "overturn"
+            elif modes[i] == "rock" and r.uplifts[0] == 0:
+                outcomes[i] = "rest"  # the true peak reached g·B/H exactly, not beyond
+        out["result"] = r
+    out["outcomes"] = np.array(outcomes)
+    return out
+
+
 def run_task(task: Task, force: bool = False) -> TaskResult:
     """Compute everything `task` asks for (see the planner for the skip rules)."""
     t0 = time.perf_counter()
@@ -94,7 +155,7 @@ def run_task(task: Task, force: bool = False) -> TaskResult:
     pfa = motion.peaks(list(task.floors))[0] if floors.size else np.zeros(0)
     pfa_of = dict(zip(task.floors, pfa, strict=True))
     result = TaskResult(task.task_id, _meta(task), floors, np.asarray(pfa, dtype=float))
-    hist_slides, hist_mu, hist_deform, hist_top = {}, {}, {}, {}
+    hist_slides, hist_mu, hist_deform, hist_top, hist_rock = {}, {}, {}, {}, {}
     for content, floor in task.contents:
         mu = np.asarray(content.mu, dtype=float)
         mu_s = np.asarray(content.mu_s if content.mu_s else content.mu, dtype=float)
@@ -106,10 +167,10 @@ def run_task(task: Task, force: bool = False) -> TaskResult:
         frac = np.zeros(n)
         slips = np.zeros(n, dtype=np.int64)
         deform = top = None
-        rock = np.array([m == "rock" for m in modes])
+        rocks = np.array([m == "rock" for m in modes])
         for arr in (peak, resid, acc_obj, frac):
-            arr[rock] = np.nan
-        slips[rock] = -1
+            arr[rocks] = np.nan
+        slips[rocks] = -1
         idx = np.nonzero(integrate)[0]
         fm = motion.floor(floor)
         if content.model == "oscillator":
@@ -138,6 +199,19 @@ def run_task(task: Task, force: bool = False) -> TaskResult:
             peak[idx], resid[idx] = r.peak_slide, r.residual_slide
             acc_obj[idx], frac[idx], slips[idx] = r.peak_abs_accel, r.slide_fraction, r.slip_phases
         summary = modes[0] if len(set(modes)) == 1 else "mixed"
+        rocking = rocking_results(
+            content,
+            modes,
+            lambda fm=fm, content=content: rock_blocks(
+                fm,
+                width=content.width,
+                height=content.height,
+                restitution=content.restitution,
+                method=content.rocking,
+                histories=task.histories,
+            ),
+        )
+        rock_result = rocking.pop("result", None)
         result.contents.append(
             ContentResult(
                 content=content.id,
@@ -156,8 +230,11 @@ def run_task(task: Task, force: bool = False) -> TaskResult:
                 peak_deformation=deform,
                 peak_top_accel=top,
                 modes=np.array(modes),
+                **rocking,
             )
         )
+        if task.histories and rock_result is not None:
+            hist_rock[f"{content.id}/floor_{floor}"] = rock_result.theta[0] / rock_result.alpha[0]
         if task.histories:
             pick = np.unique(np.linspace(0, n - 1, min(HISTORY_MU, n)).round().astype(int))
             key = f"{content.id}/floor_{floor}"
@@ -187,7 +264,7 @@ def run_task(task: Task, force: bool = False) -> TaskResult:
             # an object that rocks is not a slider: no slide history is drawn for it
             for arr in (hist_slides.get(key), hist_deform.get(key), hist_top.get(key)):
                 if arr is not None:
-                    arr[rock[pick]] = np.nan
+                    arr[rocks[pick]] = np.nan
     sc = task.spectra
     for floor in task.spectra_floors:
         sp = response_spectrum(motion.floor(floor), None, np.asarray(sc.periods), list(sc.damping))
@@ -201,7 +278,9 @@ def run_task(task: Task, force: bool = False) -> TaskResult:
     if task.histories:
         fl = np.array(task.floors, dtype=np.int64)
         motions = motion.samples(list(task.floors)) if fl.size else np.zeros((0, acc.size))
-        result.histories = Histories(dt, fl, motions, hist_slides, hist_mu, hist_deform, hist_top)
+        result.histories = Histories(
+            dt, fl, motions, hist_slides, hist_mu, hist_deform, hist_top, rocking=hist_rock
+        )
     result.seconds = time.perf_counter() - t0
     return result
 
@@ -281,10 +360,10 @@ def _run_nonlinear(task: Task, model, force: bool, t0: float) -> TaskResult:
         acc_obj = np.full(n, pfa_of[floor])
         frac = np.zeros(n)
         slips = np.zeros(n, dtype=np.int64)
-        rock = np.array([m == "rock" for m in modes])
+        rocks = np.array([m == "rock" for m in modes])
         for arr in (peak, resid, acc_obj, frac):
-            arr[rock] = np.nan
-        slips[rock] = -1
+            arr[rocks] = np.nan
+        slips[rocks] = -1
         deform = top = None
         if first < 0:  # 2-DOF oscillators
             deform = np.full(n, np.nan)
@@ -336,7 +415,7 @@ def _run_nonlinear(task: Task, model, force: bool, t0: float) -> TaskResult:
             hist_deform[key], hist_top[key] = rh.z, rh.top_accel
             # an object that rocks is not a slider: no slide history is drawn for it
             for arr in (rh.u, rh.z, rh.top_accel):
-                arr[rock[pick]] = np.nan
+                arr[rocks[pick]] = np.nan
         if task.histories and first >= 0:
             pick = np.unique(np.linspace(0, n - 1, min(HISTORY_MU, n)).round().astype(int))
             key = f"{content.id}/floor_{floor}"
@@ -345,7 +424,7 @@ def _run_nonlinear(task: Task, model, force: bool, t0: float) -> TaskResult:
             for row, i in enumerate(pick):
                 if int(i) in where and slides[where[int(i)]] is not None:
                     u[row] = slides[where[int(i)]]
-                if rock[i]:
+                if rocks[i]:
                     u[row] = np.nan
             hist_slides[key], hist_mu[key] = u, mu[pick]
     sc = task.spectra

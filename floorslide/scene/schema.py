@@ -76,6 +76,8 @@ CONTENT_KEYS = {
     "mass_ratio",
     "vertical",
     "direction",
+    "restitution",
+    "rocking",
 }
 SPECTRA_KEYS = {"floors", "damping", "periods", "broadening"}
 REPORT_KEYS = {"periods", "damping", "compare", "history_record"}
@@ -183,6 +185,8 @@ class ContentSpec:
     mass_ratio: float = 1.0
     vertical: bool = False
     direction: str = "both"
+    restitution: float | None = None  # rocking: None = Housner's 1 − 1.5 sin²α
+    rocking: str = "exact"  # rocking method: "exact" (linearised) or "nonlinear"
 
     def floors_of(self, stories: int) -> tuple[int, ...]:
         """The floors of a building with `stories` storeys this content stands on."""
@@ -923,6 +927,21 @@ def _contents(value, ck: _Checker, stories: set[int]) -> tuple[ContentSpec, ...]
         if "width" in c:
             width = ck.number(c["width"], f"{w}.width", lo=0, lo_open=True)
             height = ck.number(c.get("height"), f"{w}.height", lo=0, lo_open=True)
+        restitution = None
+        for key in ("restitution", "rocking"):
+            if key in c and "width" not in c:
+                ck.add(f"{w}.{key}", "applies to a rocking object: give width and height too")
+        if "restitution" in c:
+            restitution = ck.number(c["restitution"], f"{w}.restitution", lo=0, hi=1)
+        elif width is not None and height is not None and width / height > 1.4142135:
+            ck.add(
+                f"{w}.restitution",
+                "missing: Housner's 1 − 1.5 sin²α is negative for width/height > 1.414 "
+                "(a squat block); give restitution in [0, 1]",
+            )
+        rocking = c.get("rocking", "exact")
+        if rocking not in ("exact", "nonlinear"):
+            ck.add(f"{w}.rocking", f"must be 'exact' or 'nonlinear', got {rocking!r}")
         model = c.get("model", "rigid")
         freq = None
         damping, ratio = 0.02, 1.0
@@ -961,6 +980,8 @@ def _contents(value, ck: _Checker, stories: set[int]) -> tuple[ContentSpec, ...]
                 ratio if ratio is not None else 1.0,
                 bool(vertical),
                 str(direction),
+                restitution,
+                str(rocking),
             )
         )
     return tuple(out)
