@@ -29,6 +29,7 @@ METRICS = {
     "samples": "floor acceleration samples",
     "psa": "PSA",
     "isolator": "peak isolator displacement",
+    "rock_peak": "peak rocking angle θ/α",
 }
 """Metric key → what it measures. Relative errors: peak slide, peak deformation, PFA and PSA
 against the exact value of the same object, floor or period; the residual slide against the
@@ -395,6 +396,59 @@ def _peers(building: LinearBuilding | None, floor: int) -> list[Method]:
     return out
 
 
+ROCK_HEIGHT = 1.5
+"""Height of the bench's rocking blocks, m (their widths follow the record: :func:`_blocks`)."""
+
+
+def _blocks(building: LinearBuilding | None, floor: int):
+    """Rocking blocks of height :data:`ROCK_HEIGHT` with ``tan α = eta·PFA/g`` (``eta`` of
+    :data:`ETA`): every block uplifts on every record."""
+
+    def context(acc: np.ndarray, dt: float) -> dict:
+        ctx = _mus(building, floor)(acc, dt)
+        return {"width": ctx["mu"] * ROCK_HEIGHT}
+
+    return context
+
+
+def rocking_solver(ladder: Ladder) -> Solver:
+    """Rocking blocks on the ground (issue 15): the full equation solved exactly to rounding
+    (the reference), the linearised equation solved exactly (its error is the linearisation's),
+    fixed-step RK4 at ``dt/k`` with interpolated events, and SciPy's RK45 at ``rtol``
+    (:mod:`floorslide.contents.rocking_approx`)."""
+    from floorslide.contents.rocking_block import rock
+
+    def run(method: str, **settings) -> Run:
+        def go(acc, dt, ctx):
+            r = rock(acc, dt, ctx["width"], ROCK_HEIGHT, method=method, **settings)
+            return {"rock_peak": r.peak_ratio}
+
+        return go
+
+    methods = [
+        Method("exact", "exact (full equation)", "", run("nonlinear")),
+        Method("linearised", "linearised equation, exact", "", run("exact")),
+    ]
+    methods += [
+        Method("rk4", "RK4, dt/k, interpolated events", f"dt/{k}", run("rk4", substeps=k), k)
+        for k in ladder.substeps
+    ]
+    methods += [
+        Method(
+            "solve_ivp", "solve_ivp RK45, rtol", f"rtol {r:.0e}", run("solve_ivp", rtol=r), rtol=r
+        )
+        # every other tolerance of the full study (each run restarts at every event: slow)
+        for r in (ladder.rtols if len(ladder.rtols) <= 2 else ladder.rtols[::2])
+    ]
+    return Solver(
+        "rocking-ground",
+        "Rocking block on the ground (Housner; tan α = eta·PGA/g, height 1.5 m)",
+        ("rock_peak",),
+        tuple(methods),
+        _blocks(None, 0),
+    )
+
+
 def nonlinear_building(isolator):
     """The 3-storey superstructure of the isolated building (T = 0.4 s, 5 %) on a nonlinear
     layer."""
@@ -532,6 +586,7 @@ def solvers(ladder: Ladder) -> tuple[Solver, ...]:
             _pendulum(),
             ladder,
         ),
+        rocking_solver(ladder),
     )
 
 

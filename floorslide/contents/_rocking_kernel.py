@@ -114,6 +114,20 @@ def theta_series(s, th, thd, alpha, p2, cf, K, g, D, nonlinear, t, S, C, u):
         C[k + 1] = -cc / (k + 1)
 
 
+@njit(cache=True, inline="always")
+def _rise_from(q, deg, lo, hi, level, work):
+    """:func:`first_rise` of ``q`` above `level` on ``(lo, hi]``, skipped (−1) when
+    ``q(0) + Σ_{j≥1} |q_j| hi^j ≤ level`` shows there is none (a bound on all of ``[0, hi]``,
+    so valid after an event too, where ``first_rise`` itself starts at ``lo > 0`` and applies
+    no such filter)."""
+    reach = 0.0
+    for j in range(deg, 0, -1):
+        reach = (reach + abs(q[j])) * hi
+    if q[0] + reach <= level:
+        return -1.0
+    return first_rise(q, deg, lo, hi, level, work)
+
+
 @njit(cache=True)
 def _block_on_part(st, par, cs, K, Lq, t_part, g, D, nonlinear, max_events, t, S, C, u, q, cw,
                    work):  # fmt: skip
@@ -141,8 +155,8 @@ def _block_on_part(st, par, cs, K, Lq, t_part, g, D, nonlinear, max_events, t, S
             # uplift: a_f below −g tan α (corner +1) or above g tan α (corner −1)
             for j in range(K + 1):
                 q[j] = -cw[j]
-            tp = first_rise(q, K, lo, L, level, work)
-            tn = first_rise(cw, K, lo, L, level, work)
+            tp = _rise_from(q, K, lo, L, level, work)
+            tn = _rise_from(cw, K, lo, L, level, work)
             te = -1.0
             side = 0.0
             if tp >= 0.0:
@@ -163,10 +177,22 @@ def _block_on_part(st, par, cs, K, Lq, t_part, g, D, nonlinear, max_events, t, S
             # impact: s·θ falls through 0; overturning: s·θ rises to α
             for j in range(D + 1):
                 q[j] = -s * t[j]
-            ti = first_rise(q, D, lo, L, 0.0, work)
+            # an excursion that starts at θ = 0 (after an impact or an uplift) and turns back
+            # ends near τ* = −t₁/t₂ — soon, in a cascade of impacts: root isolation searches
+            # (lo, 4τ*] first (cheap on a short interval), then the rest of the part
+            if t[0] == 0.0 and s * t[1] > 0.0 and s * t[2] < 0.0:
+                win = min(L, -4.0 * t[1] / t[2])
+                if win > lo:
+                    ti = _rise_from(q, D, lo, win, 0.0, work)
+                    if ti < 0.0 and win < L:
+                        ti = _rise_from(q, D, win, L, 0.0, work)
+                else:
+                    ti = _rise_from(q, D, lo, L, 0.0, work)
+            else:
+                ti = _rise_from(q, D, lo, L, 0.0, work)
             for j in range(D + 1):
                 q[j] = s * t[j]
-            to = first_rise(q, D, lo, L, alpha, work)
+            to = _rise_from(q, D, lo, L, alpha, work)
             te = L
             kind = 0
             if ti >= 0.0:

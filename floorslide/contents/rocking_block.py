@@ -26,7 +26,8 @@ from floorslide.contents import _rocking_kernel as rk
 from floorslide.errors import ModelError, SolverLimitError
 from floorslide.inputs import RecordLike
 
-ROCK_METHODS = ("exact", "nonlinear")
+ROCK_METHODS = ("exact", "nonlinear", "rk4", "solve_ivp")
+APPROXIMATE = ("rk4", "solve_ivp")
 
 
 @dataclass(frozen=True)
@@ -165,6 +166,9 @@ def rock(
     method: str = "exact",
     histories: bool = False,
     initial_angle=None,
+    substeps: int = 4,
+    rtol: float = 1e-6,
+    integrator: str = "RK45",
 ) -> RockResult:
     """Rocking, impacts and overturning of rigid blocks on a floor (friction holds the corner).
 
@@ -188,11 +192,17 @@ def rock(
     method
         ``"exact"``: the linearised (slender-block) equation, exact for the piecewise-linear
         record; ``"nonlinear"``: the full equation, its Taylor series exact to rounding.
+        Approximate, for comparison (the full equation, on the floor's samples re-interpolated
+        linearly; :mod:`floorslide.contents.rocking_approx`): ``"rk4"`` (fixed steps of
+        ``dt/substeps``, events by linear interpolation) and ``"solve_ivp"`` (SciPy
+        `integrator` at `rtol`, ``max_step = dt``, events located); no histories.
     histories
         Also return ``θ`` at the samples.
     initial_angle
         ``θ`` at t = 0, rad (one value or one per block, ``|θ0| < α``; the block at rest there,
         ``θ' = 0``): free-rocking checks. Default 0 (upright, at rest).
+    substeps, rtol, integrator
+        Settings of the approximate methods.
 
     Returns
     -------
@@ -235,6 +245,9 @@ def rock(
     if building is not None and floor is None:
         raise ModelError("floor is required with building=", "floor")
     B, H, alpha, p, r = block_geometry(width, height, restitution)
+    if method in APPROXIMATE:
+        return _approximate(acc, dt, building, floor, B, H, alpha, p, r, method, substeps, rtol,
+                            integrator, histories, initial_angle)  # fmt: skip
     nonlinear = method == "nonlinear"
     phase_max = rk.NONLINEAR_PHASE if nonlinear else rk.LINEAR_PHASE
     par = np.empty((B.size, rk.NPAR))
@@ -335,3 +348,52 @@ def rock(
         theta=hist if histories else None,
     )
     return replace(result, notes=notes) if notes else result
+
+
+def _approximate(acc, dt, building, floor, B, H, alpha, p, r, method, substeps, rtol, integrator,
+                 histories, initial_angle) -> RockResult:  # fmt: skip
+    """:func:`rock` by an approximate method on the floor's samples."""
+    from floorslide.building.exact_motion import floor_motion
+    from floorslide.building.nonlinear import NonlinearIsolatedBuilding, isolator_response
+    from floorslide.contents import rocking_approx as ra
+
+    if histories or initial_angle is not None:
+        raise ModelError(
+            f"method={method!r} gives peaks only (no histories, no initial angle)", "method"
+        )
+    if isinstance(acc, FloorMotion):
+        af, dt, notes = acc.samples(), acc.dt, acc.notes
+    elif isinstance(building, NonlinearIsolatedBuilding):
+        from floorslide.inputs import as_record
+
+        a, dt, notes = as_record(acc, dt)
+        af = isolator_response(building, a, dt, floors=[floor]).floor_acceleration[0]
+    else:
+        fm = floor_motion(building, acc, 0 if building is None else floor, dt)
+        af, dt, notes = fm.samples(), fm.dt, fm.notes
+    tan_a = B / H
+    if method == "rk4":
+        out = ra.rk4(af, dt, alpha, p, r, tan_a, G, True, substeps)
+    else:
+        out = ra.solve_ivp_blocks(af, dt, alpha, p, r, tan_a, G, True, rtol, integrator)
+    over = out[:, 4] > 0
+    return RockResult(
+        width=B,
+        height=H,
+        alpha=alpha,
+        p=p,
+        restitution=r,
+        peak_ratio=out[:, 0].copy(),
+        peak_time=np.full(B.size, np.nan),
+        impacts=out[:, 1].astype(int),
+        uplifts=out[:, 2].astype(int),
+        rocking_time=out[:, 3].copy(),
+        overturned=over,
+        overturn_time=np.where(over, out[:, 5], np.nan),
+        mode=tuple(
+            "overturn" if over[i] else ("rock" if out[i, 2] > 0 else "rest") for i in range(B.size)
+        ),
+        duration=(af.size - 1) * dt,
+        method=method,
+        notes=tuple(notes),
+    )

@@ -352,7 +352,7 @@ def _run_nonlinear(task: Task, model, force: bool, t0: float) -> TaskResult:
     from floorslide.contents._kernels import DISP, PEAK_ACC, PEAK_DISP, SLIDE_TIME, SLIPS
 
     duration = (acc.size - 1) * dt
-    hist_slides, hist_mu, hist_deform, hist_top = {}, {}, {}, {}
+    hist_slides, hist_mu, hist_deform, hist_top, hist_rock = {}, {}, {}, {}, {}
     for content, floor, mu, mu_s, modes, reasons, idx, first in plans:
         n = mu.size
         peak = np.zeros(n)
@@ -383,6 +383,25 @@ def _run_nonlinear(task: Task, model, force: bool, t0: float) -> TaskResult:
             frac[i] = st[SLIDE_TIME] / duration if duration > 0 else 0.0
             slips[i] = int(st[SLIPS])
         summary = modes[0] if len(set(modes)) == 1 else "mixed"
+        # rocking blocks ride along in the building's own integration (fs.rock on it)
+        rocking = rocking_results(
+            content,
+            modes,
+            lambda floor=floor, content=content: rock_blocks(
+                acc,
+                dt,
+                width=content.width,
+                height=content.height,
+                restitution=content.restitution,
+                method=content.rocking,
+                histories=task.histories,
+                building=model,
+                floor=floor,
+            ),
+        )
+        rock_result = rocking.pop("result", None)
+        if task.histories and rock_result is not None:
+            hist_rock[f"{content.id}/floor_{floor}"] = rock_result.theta[0] / rock_result.alpha[0]
         result.contents.append(
             ContentResult(
                 content=content.id,
@@ -401,6 +420,7 @@ def _run_nonlinear(task: Task, model, force: bool, t0: float) -> TaskResult:
                 peak_deformation=deform,
                 peak_top_accel=top,
                 modes=np.array(modes),
+                **rocking,
             )
         )
         if task.histories and first < 0:
@@ -451,6 +471,7 @@ def _run_nonlinear(task: Task, model, force: bool, t0: float) -> TaskResult:
             hist_top,
             isolator_displacement=base.isolator_displacement,
             isolator_force_ratio=base.isolator_force / model.weight,
+            rocking=hist_rock,
         )
     result.seconds = time.perf_counter() - t0
     return result

@@ -120,7 +120,7 @@ def test_bad_input_is_refused_with_the_key():
     with pytest.raises(ModelError, match="restitution"):
         fs.rock(acc, 0.01, 0.2, 1.0, restitution=1.5)
     with pytest.raises(ModelError, match="method"):
-        fs.rock(acc, 0.01, 0.2, 1.0, method="rk4")
+        fs.rock(acc, 0.01, 0.2, 1.0, method="rk5")
     with pytest.raises(ModelError, match="initial_angle"):
         fs.rock(acc, 0.01, 0.2, 1.0, initial_angle=0.3)
     with pytest.raises(ModelError, match="restitution"):
