@@ -6,8 +6,10 @@ Rules (docs/design.md §1), each counted in the plan and printed by ``floorslide
 - floor 0 of a fixed-base building is the ground: no building model is stepped for it;
 - an object whose floor never reaches ``max(mu_s, mu_k)·g`` (its true peak, inside steps) is
   not integrated: its answer is exactly zero slide and the floor's peak acceleration;
-- objects that would rock (Shenton 1996, from width/height) are reported as rocking, not
-  simulated as sliders; objects that rest are the previous rule;
+- objects that would rock (Shenton 1996, from width/height: ``mu_s > B/H`` and the floor's true
+  peak above ``g·B/H``) are simulated as rocking blocks (:func:`floorslide.rock`: impacts,
+  overturning), once per content, floor and task, not as sliders; objects whose floor stays
+  below both thresholds rest (exact: no slide, no uplift); without width/height, sliding only;
 - vertical shaking and the flexible (2-DOF) model run only where a content declares them.
 
 Records are read, processed and scaled once, here; a record that cannot be read is reported
@@ -199,7 +201,10 @@ def decide(content: ContentSpec, pfa: float, force: bool = False):
         modes.append(mode)
         if mode == "rock":
             integrate[i] = False
-            reasons["objects that rock (Shenton 1996): reported, not simulated as sliders"] += 1
+            reasons[
+                "objects that rock (Shenton 1996: mu_s > B/H, floor PFA > g·B/H): simulated as "
+                "rocking blocks, not as sliders"
+            ] += 1
         elif not force and not content.vertical and content.model == "rigid" and pfa <= mub[i] * G:
             integrate[i] = False
             reasons[
@@ -416,5 +421,8 @@ def plan(scene: Scene, *, force: bool = False, evaluate: bool = True) -> Plan:
                 p.skipped.update(reasons)
                 label = "2-DOF sliding oscillators" if c.model == "oscillator" else "rigid blocks"
                 p.runs[f"{label} integrated (object × floor × task)"] += int(integrate.sum())
+                if any(m in ("rock", "slide-rock") for m in _modes):
+                    how = "linearised" if c.rocking == "exact" else "full equation"
+                    p.runs[f"rocking blocks simulated, {how} (content × floor × task)"] += 1
         warmup.finish(warming)
     return p
