@@ -21,9 +21,11 @@ import numpy as np
 
 def _linear_tasks() -> None:
     """One short call of each kernel a task on a linear building runs: the building's motion,
-    its floors' peaks and samples, rigid blocks with and without histories, floor spectra."""
+    its floors' peaks and samples, rigid blocks with and without histories, rocking blocks,
+    floor spectra."""
     from floorslide.building.exact_motion import building_motion
     from floorslide.building.model import IsolatedBuilding, ShearBuilding
+    from floorslide.contents.rocking_block import rock
     from floorslide.contents.sliding import slide
     from floorslide.spectra.core import response_spectrum
 
@@ -36,12 +38,13 @@ def _linear_tasks() -> None:
         fm = motion.floor(1)
         slide(fm, None, np.array([0.1]), np.array([0.1]))
         slide(fm, None, np.array([0.1]), np.array([0.1]), histories=True)
+        rock(fm, width=0.01, height=1.0)
         response_spectrum(fm, None, np.array([0.5]), [0.05])
 
 
 def _nonlinear_tasks() -> None:
     """One short call of the nonlinear-isolation kernel, blocks and spectrum oscillators riding
-    (every rider's code is part of the one kernel)."""
+    (every rider's code — rocking blocks' too — is part of the one kernel)."""
     import floorslide as fs
 
     sup = fs.ShearBuilding.from_period(stories=1, period=0.3, damping=0.03)
