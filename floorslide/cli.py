@@ -619,6 +619,109 @@ def slide(
         )
 
 
+@cli.command()
+@click.argument("record")
+@click.option("--width", required=True, metavar="B[,B...]", help="Base width(s) of the block, m.")
+@click.option(
+    "--height", required=True, metavar="H[,H...]", help="Height(s), m (one, or one per width)."
+)
+@click.option(
+    "--restitution",
+    type=NUMBER,
+    metavar="R",
+    help="Angular-velocity ratio after/before an impact, 0–1 (default Housner's 1 − 1.5 sin²α).",
+)
+@click.option(
+    "--method",
+    type=click.Choice(["exact", "nonlinear"]),
+    default="exact",
+    show_default=True,
+    help="exact: the linearised (slender-block) equation, exact; nonlinear: the full equation, "
+    "exact to rounding.",
+)
+@click.option("--scale-pga", type=NUMBER, metavar="G", help="Scale the record to this PGA, in g.")
+@click.option("--json", "as_json", is_flag=True, help="Print a JSON list (SI values) on stdout.")
+@building_options
+@record_options
+@processing_options
+def rock(
+    record,
+    width,
+    height,
+    restitution,
+    method,
+    scale_pga,
+    as_json,
+    building_spec,
+    floor,
+    fmt,
+    units,
+    dt,
+    component,
+    detrend,
+    taper,
+    highpass,
+    lowpass,
+):
+    """Rocking of rigid blocks (Housner) under RECORD — on the ground, or on a floor of a
+    building given with --building (and --floor) — one row per block: slenderness α =
+    atan(B/H), peak rotation over slenderness θ/α (1 = overturned), impacts, uplifts, time spent
+    rocking, and whether and when it overturned. Friction is assumed to hold the corner (Shenton:
+    mu_s > B/H; else the block slides: floorslide slide). Exact for the piecewise-linear record,
+    end to end; uplift, impacts and overturning located inside steps. No filtering unless asked.
+    The record's quality flags are printed as warnings on stderr.
+    """
+    from floorslide.building.exact_motion import floor_motion
+    from floorslide.constants import G
+    from floorslide.contents.rocking_block import rock as rock_blocks
+    from floorslide.errors import ModelError
+    from floorslide.records.process import process
+    from floorslide.records.quality import check_record
+
+    widths = _floats(width, "--width")
+    heights = _floats(height, "--height")
+    building, floor_no, where = _building(building_spec, floor)
+    tr = _read_one(record, fmt, units, dt, component)
+    tr = _apply_processing(tr, _processing(detrend, taper, highpass, lowpass))
+    quality = check_record(tr.data, tr.stats.delta)
+    _warn_quality(record, quality)
+    if scale_pga is not None:
+        if not scale_pga > 0:
+            raise click.BadParameter("must be > 0", param_hint="--scale-pga")
+        tr = process(tr, scale_pga=scale_pga)
+    fm = floor_motion(building, tr.data, floor_no if building is not None else None, tr.stats.delta)
+    try:
+        res = rock_blocks(fm, width=widths, height=heights, restitution=restitution, method=method)
+    except ModelError as exc:
+        raise click.BadParameter(exc.message, param_hint=f"--{exc.where or 'width'}") from None
+    rows = res.to_records()
+    if as_json:
+        for row in rows:
+            row.update(record=record, method=method, building=building_spec, floor=floor_no)
+            row["qa_flags"] = list(quality.codes)
+        click.echo(_strict_json(rows))
+        return
+    click.echo(
+        f"{record}: dt = {tr.stats.delta:g} s, {tr.stats.npts} samples, {method} "
+        f"({'linearised' if method == 'exact' else 'full'} equation)"
+        + (f", {where}" if building is None else "")
+    )
+    if building is not None:
+        pfa = fm.peak()[0]
+        click.echo(f"{where}; PFA = {pfa:.4g} m/s2 ({pfa / G:.4f} g)")
+    click.echo(
+        f"{'B (m)':>7} {'H (m)':>7} {'B/H':>6} {'alpha':>7} {'r':>6} {'peak th/a':>10} "
+        f"{'impacts':>8} {'uplifts':>8} {'rocking':>9}  outcome"
+    )
+    for row in rows:
+        outcome = f"overturns at {row['overturn_time']:.4g} s" if row["overturned"] else row["mode"]
+        click.echo(
+            f"{row['width']:7.4g} {row['height']:7.4g} {row['width'] / row['height']:6.3f} "
+            f"{row['alpha']:7.4f} {row['restitution']:6.3f} {row['peak_ratio']:10.4f} "
+            f"{row['impacts']:8d} {row['uplifts']:8d} {row['rocking_time']:8.3f}s  {outcome}"
+        )
+
+
 def _periods(text: str | None):
     """``--periods`` as a list ``0.1,0.5,1`` or a log-spaced ``min:max:n``."""
     if text is None:
@@ -838,7 +941,16 @@ def run(scene, out, dry_run, resume, overwrite, workers, scheduler, scheduler_ti
         sys.exit(EXIT_RECORD)
 
 
-REPORT_TABLES = ("slides", "pfa", "frs", "slide_ratios", "pfa_ratios", "records", "isolators")
+REPORT_TABLES = (
+    "slides",
+    "pfa",
+    "frs",
+    "slide_ratios",
+    "pfa_ratios",
+    "records",
+    "isolators",
+    "rocking",
+)
 """The design tables, in output order (floorslide.report.tables.TABLE_NAMES)."""
 
 REPORT_EXIT_CODES = (
@@ -953,12 +1065,14 @@ def table(result, fmt, as_json, compare, periods, damping, only, per_record, all
     the object slide or rock; PFA per floor; FRS ordinates (unbroadened and broadened); ratios
     between buildings (--compare A:B); the records and their quality flags; per building on
     nonlinear isolation the isolator's peak and residual displacement, peak force / W and the
-    records that exceed its capacity (table isolators).
+    records that exceed its capacity (table isolators); per content with a width and height
+    whose friction holds its corner (mu_s >= B/H) how many records made it rock and overturn,
+    its peak rotation theta/alpha (median, p84) and impacts (table rocking).
 
-    Rocking objects are not simulated as sliders and never count as 0 slide: each is its own
-    outcome, ranked above every slide, and a statistic that falls on rocking records reads
-    'rocks' (Markdown) with its *_outcome column 'rock'. Rows over fewer than 8 records carry
-    few_records (a p84 marked † in Markdown).
+    Rocking objects are simulated as rocking blocks, not as sliders, and never count as 0
+    slide: each is its own outcome, ranked above every slide, and a statistic that falls on
+    rocking records reads 'rocks' (Markdown) with its *_outcome column 'rock'. Rows over fewer
+    than 8 records carry few_records (a p84 marked † in Markdown).
 
     Markdown goes to stdout by default. CSV on stdout gives each table after a line
     '# table: NAME' (one --table NAME: that table alone, a plain CSV); with -o DIR it writes
@@ -1045,12 +1159,15 @@ def plot(result, out, compare, damping, allow_incomplete, as_json):
     """Figures (PNG) from a result file OUT.h5, one per kind and record set: floor motions and
     sliding histories of the stored history record; the isolator's hysteresis loop (force / W
     versus displacement) of each building on nonlinear isolation under that record
-    (hysteresis_<set>.png); median floor response spectra per floor
+    (hysteresis_<set>.png); the rotation theta/alpha of the contents that rock under that
+    record, overturning marked (rocking_<set>.png); median floor response spectra per floor
     (unbroadened, and broadened when stored); peak slide versus friction per floor (median and
     84th percentile per building; a statistic that falls on rocking records is drawn at the
     top of the panel, never at 0); spring deformation and top-mass acceleration of 2-DOF
-    equipment; median peak-slide ratio A / B versus isolation period, one curve per friction
-    coefficient. Prints the files written.
+    equipment; the fraction of records that rock and overturn each rocking content, per
+    building (overturning_<set>.png); median peak-slide ratio A / B versus isolation period, one
+    curve per friction coefficient. A figure without data in the file is not drawn. Prints the
+    files written.
     """
     import json
     from pathlib import Path
@@ -1081,10 +1198,12 @@ def demo_summary(tables) -> str:
     floor.
 
     Rocking follows the tables' rule (docs/design.md §10): an object that rocks under a record is
-    not
-    simulated as a slider and never counts as 0 slide; it is its own outcome, ranked above
-    every slide. A cell reads ``rocks (k/n)`` when the median falls on rocking records, and a
-    median that does not is followed by ``(k rock)`` when some records rock.
+    simulated as a rocking block, not as a slider, and never counts as 0 slide; it is its own
+    outcome, ranked above every slide. A cell reads ``rocks (k/n)`` when the median falls on
+    rocking records, and a median that does not is followed by ``(k rock)`` when some records
+    rock; where the file holds rocking results (the ``rocking`` table) both say how many of
+    them overturned: ``rocks (k/n; m overturn)``, ``(k rock; m overturn)``. A line under each
+    heading explains the cells (none when nothing rocks).
     """
     from collections import defaultdict
 
@@ -1094,6 +1213,10 @@ def demo_summary(tables) -> str:
     for row in tables["slides"]:
         groups[(row["record_set"], row["content"], row["floor"])].append(row)
     pfa = {(r["record_set"], r["building"], r["floor"]): r for r in tables["pfa"]}
+    rocking = {
+        (r["record_set"], r["building"], r["floor"], r["content"]): r
+        for r in (tables["rocking"] if "rocking" in tables.tables else [])
+    }
     out = []
     if getattr(tables, "status", ""):
         out += [tables.status, ""]
@@ -1102,29 +1225,41 @@ def demo_summary(tables) -> str:
         buildings = list(dict.fromkeys(r["building"] for r in rows))
         n = max(r["n_records"] for r in rows)
         what = "base of the 2-DOF oscillator" if rows[0]["model"] == "oscillator" else "object"
+        simulated = any((rset, b, floor, content) in rocking for b in buildings)
         out.append(
             f"{rset} ({n} records) — {content!r} on floor {floor}: median peak slide of the "
             f"{what} over all {n} records, mm"
         )
-        out.append(
-            "('rocks (k/n)': the median record rocks — rocking objects are not simulated as "
-            "sliders and never count as 0; '(k rock)': k records rock, ranked above every slide)"
-        )
+        if simulated:
+            out.append(
+                "('rocks (k/n; m overturn)': the median record rocks — k of n records rock "
+                "(simulated as rocking blocks; m of them overturn); rocking records never count "
+                "as 0 slide and rank above every slide; '(k rock; m overturn)': k records rock; "
+                "their rotations and impacts: the rocking table)"
+            )
+        elif any(r["n_rock"] for r in rows):  # a file written before rocking was simulated
+            out.append(
+                "('rocks (k/n)': the median record rocks — rocking objects are not simulated as "
+                "sliders and never count as 0; '(k rock)': k records rock, ranked above every "
+                "slide)"
+            )
         if n < MIN_RECORDS:
             out.append(f"(caution: {n} < {MIN_RECORDS} records per set)")
         head = "| building | PFA (g) | " + " | ".join(f"mu {m:g}" for m in mus) + " |"
         out += [head, "|" + "---|" * (len(mus) + 2)]
         for b in buildings:
             cells = []
+            rock = rocking.get((rset, b, floor, content))
+            over = f"; {rock['n_overturn']} overturn" if rock else ""
             for m in mus:
                 r = next(x for x in rows if x["building"] == b and x["mu_k"] == m)
                 med, k = r["peak_slide_median"], r["n_rock"]
                 if r["median_outcome"] == ROCK:
-                    cells.append(f"rocks ({k}/{r['n_records']})")
+                    cells.append(f"rocks ({k}/{r['n_records']}{over})")
                 elif med != med:
                     cells.append("—")
                 else:
-                    cells.append(f"{1000 * med:.1f}" + (f" ({k} rock)" if k else ""))
+                    cells.append(f"{1000 * med:.1f}" + (f" ({k} rock{over})" if k else ""))
             p = pfa.get((rset, b, floor))
             pg = f"{p['pfa_g_median']:.2f}" if p else "—"
             out.append(f"| {b} | {pg} | " + " | ".join(cells) + " |")

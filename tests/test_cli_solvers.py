@@ -212,3 +212,35 @@ def test_building_option_mistakes_are_one_line_usage_errors(command, args, texts
     assert option in error[0]
     for text in texts:
         assert text in error[0]
+
+
+def test_rock_json_matches_the_api_on_the_ground_and_on_a_roof():
+    acc, dt = load_slammer("ImperialValley_1940_ELC-180.txt")
+    out = run("rock", RECORD, "--width", "0.2,0.3", "--height", "1.2", "--json")
+    assert out.returncode == 0, out.stderr
+    rows = json.loads(out.stdout)
+    from floorslide.contents.rocking_block import rock
+
+    ref = rock(acc, dt, [0.2, 0.3], 1.2)
+    assert [r["peak_ratio"] for r in rows] == list(ref.peak_ratio)
+    assert [r["impacts"] for r in rows] == list(ref.impacts)
+    assert [r["mode"] for r in rows] == list(ref.mode)
+    spec = "isolated:period=2.5,damping=0.1,super_period=0.4,stories=3"
+    out = run("rock", RECORD, "--width", "0.12", "--height", "1.2", "--building", spec,
+              "--method", "nonlinear", "--json")  # fmt: skip
+    assert out.returncode == 0, out.stderr
+    row = json.loads(out.stdout)[0]
+    b = IsolatedBuilding(ShearBuilding.from_period(3, 0.4, 0.05), 1.0, 2.5, 0.1)
+    ref = rock(acc, dt, 0.12, 1.2, building=b, floor=3, method="nonlinear")
+    assert row["peak_ratio"] == ref.peak_ratio[0] and row["impacts"] == ref.impacts[0]
+    assert row["floor"] == 3 and row["method"] == "nonlinear"
+
+
+def test_rock_table_and_bad_geometry():
+    out = run("rock", RECORD, "--width", "0.2", "--height", "1.2", "--scale-pga", "0.8")
+    assert out.returncode == 0, out.stderr
+    assert "peak th/a" in out.stdout and ("overturns at" in out.stdout or "rock" in out.stdout)
+    out = run("rock", RECORD, "--width", "-0.2", "--height", "1.2")
+    assert out.returncode == 2 and "--width" in out.stderr and "> 0 m" in out.stderr
+    out = run("rock", RECORD, "--width", "0.2", "--height", "1.2", "--restitution", "2")
+    assert out.returncode == 2 and "--restitution" in out.stderr

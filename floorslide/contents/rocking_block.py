@@ -1,6 +1,6 @@
 """Rigid blocks rocking on a floor: impacts, overturning, the exact solver (Housner 1963).
 
-Conventions (docs/design.md §12): a block of base width ``B`` and height ``H`` (centre of mass at
+Conventions (docs/design.md §10c): a block of base width ``B`` and height ``H`` (centre of mass at
 mid-height) has ``R = ½√(B² + H²)``, slenderness ``α = atan(B/H)`` and frequency parameter
 ``p = √(3g/(4R))``. ``θ > 0`` is rotation about the corner that a *negative* floor acceleration
 lifts onto: at rest the block uplifts at the first instant ``a_f < −g tan α`` (``θ > 0``) or

@@ -26,7 +26,8 @@ fewer than 8 records moves by a whole record's worth when one is added)."""
 
 ROCK = "rock"
 """The outcome of a record under which the object rocks (Shenton 1996, mode ``rock``): it is
-not simulated as a slider, so its slide is unknown — never zero. In the statistics it is ranked
+not simulated as a slider, so its slide is unknown — never zero (its rocking is simulated as a
+rigid block, Housner 1963: the ``rocking`` table). In the statistics it is ranked
 above every slide (rocking needs a floor acceleration above ``g·B/H``, more than the object
 rests under); a median or 84th percentile that falls on rocking records is the outcome
 ``rock`` (NaN numbers, ``rocks`` in Markdown), and the mean over records of which any rocks is
@@ -35,7 +36,16 @@ rests under); a median or 84th percentile that falls on rocking records is the o
 OUTCOMES = ("rest", "slide", ROCK)
 """Outcome of a statistic of the peak slide: ``rest`` (0), ``slide`` (> 0) or ``rock``."""
 
-TABLE_NAMES = ("slides", "pfa", "frs", "slide_ratios", "pfa_ratios", "records", "isolators")
+TABLE_NAMES = (
+    "slides",
+    "pfa",
+    "frs",
+    "slide_ratios",
+    "pfa_ratios",
+    "records",
+    "isolators",
+    "rocking",
+)
 """The tables, in output order."""
 
 
@@ -269,10 +279,51 @@ COLUMNS: dict[str, tuple[Column, ...]] = {
         ),
         Column("note", "", "what the numbers do not include (the impact beyond the capacity)"),
     ),
+    "rocking": (
+        *_BUILDING,
+        _FLOOR,
+        Column("content", "", "content (equipment) id, with a width and height"),
+        Column("b_over_h", "1", "slenderness B/H = width / height"),
+        Column("alpha", "rad", "slenderness angle α = atan(B/H): |θ| = α overturns it"),
+        Column(
+            "mu_s_values",
+            "",
+            "the content's static friction coefficients that hold its corner (mu_s ≥ B/H), under "
+            "which it rocks rather than slides; the rocking does not depend on them",
+        ),
+        _N_RECORDS,
+        _FEW,
+        Column("n_rock", "1", "records under which it rocked (uplifted), overturned or not"),
+        Column("rock_fraction", "1", "n_rock / n_records"),
+        Column("n_overturn", "1", "records under which it overturned (|θ| reached α)"),
+        Column("overturn_fraction", "1", "n_overturn / n_records (over every record of the set)"),
+        Column(
+            "peak_ratio_median",
+            "1",
+            "median over every record of the peak rotation max|θ|/α (0 at rest; an overturned "
+            "record counts as 1)",
+        ),
+        Column(
+            "peak_ratio_p84",
+            "1",
+            "84th percentile over every record of max|θ|/α (an overturned record counts as 1)",
+        ),
+        Column(
+            "impacts_median",
+            "1",
+            "median number of impacts over every record (0 at rest; up to the overturning)",
+        ),
+    ),
 }
 """Columns of every table, in order."""
 
-EMPTY_NOTES = {"isolators": "no building on nonlinear isolation in this study"}
+EMPTY_NOTES = {
+    "isolators": "no building on nonlinear isolation in this study",
+    "rocking": (
+        "no content with a width and height whose static friction holds its corner "
+        "(mu_s ≥ B/H) has rocking results in this file"
+    ),
+}
 """What an empty table means, stated where it is written (Markdown, CSV, notes)."""
 
 OSCILLATOR_COLUMNS = frozenset(
@@ -289,6 +340,7 @@ TITLES = {
     "pfa_ratios": "PFA ratios between buildings (A / B)",
     "records": "Records: quality flags (mean offset, trend, clipping, truncation, sampling)",
     "isolators": "Nonlinear isolators: peak and residual displacement, peak force / W",
+    "rocking": "Rocking contents: rocking, overturning, peak rotation θ/α, impacts",
 }
 
 

@@ -8,8 +8,8 @@ comment="#")`` skips it), ``"status"`` and ``"complete": false`` in JSON, ``df.a
 on DataFrames.
 
 An empty table whose emptiness means something (the ``isolators`` table of a study without
-nonlinear isolation) says so: ``_No rows: …_`` in Markdown, a line ``# …`` above the CSV
-header, a note in JSON and on DataFrames.
+nonlinear isolation, the ``rocking`` table of one without rocking results) says so: ``_No
+rows: …_`` in Markdown, a line ``# …`` above the CSV header, a note in JSON and on DataFrames.
 
 Cells: NaN is ``—`` in Markdown, an empty cell in CSV and ``null`` in JSON; ``inf`` is ``∞``,
 ``inf`` and ``null``. A statistic that falls on rocking records is ``rocks`` in Markdown (its

@@ -9,6 +9,10 @@ One figure per kind and record set, with one panel per floor or per content on a
     buildings on nonlinear isolation only: the isolator's hysteresis loop under the history
     record, force / W against isolator displacement (mm), one panel per building, with the
     peak displacement and the capacity (when given; red when exceeded) marked;
+``rocking_<set>.png``
+    contents that rock under the history record only: their rotation over their slenderness
+    ``θ/α`` against time, one panel per building (at most 4), the lines ``θ/α = ±1`` (the
+    block overturns there) marked, an overturning marked where it happens;
 ``frs_<set>.png``
     floor response spectra: median PSA over the set's records per building, one panel per
     floor, log period axis;
@@ -20,10 +24,19 @@ One figure per kind and record set, with one panel per floor or per content on a
 ``oscillators_<set>.png``
     2-DOF (flexible) equipment only: peak spring deformation and the top mass's peak absolute
     acceleration versus kinetic friction, median and 84th percentile per building;
+``overturning_<set>.png``
+    contents with rocking results only (the ``rocking`` table): the fraction of the set's
+    records under which each rocked and overturned, against the buildings (their isolation
+    period when every one is an isolation variant; else one position per building, in the
+    tables' order), one series per content and floor;
 ``slide_ratio_<set>_<A>-over-<B>.png``
     median peak-slide ratio A / B versus the isolation period of A (or of B when A is
     fixed-base; building pairs side by side when neither is isolated), one curve per friction
     coefficient, per comparison (as in the design tables).
+
+A figure whose data the file does not hold (no nonlinear isolation, no 2-DOF equipment, no
+rocking results — contents without width and height, or a file written before rocking was
+simulated) is not drawn, and :func:`plot_figures` does not list it.
 
 Every figure states its statistic and number of records; a result file whose run is not
 finished is refused unless ``allow_incomplete``, and then every figure's title starts with
@@ -345,6 +358,192 @@ def figure_hysteresis(study: Study, record_set: str) -> Figure | None:
     )
     for ax, t in zip(axes, tasks, strict=True):
         _hysteresis_panel(ax, t)
+    return fig
+
+
+def _rocking_curves(t: TaskResult, study: Study) -> list[tuple[str, int, np.ndarray, dict]]:
+    """The θ/α histories of a task's contents that rocked under its record: ``(content, floor,
+    θ/α, values)`` in the tables' order, ``values`` the block's ``peak_ratio``, ``impacts`` and
+    ``overturn_time`` (the stored per-record results)."""
+    results = {(c.content, int(c.floor)): c for t_ in (t,) for c in t_.contents}
+    out = []
+    for key, ratio in getattr(t.histories, "rocking", {}).items():
+        content, floor = key.rsplit("/floor_", 1)
+        ratio = np.asarray(ratio, dtype=float)
+        c = results.get((content, int(floor)))
+        values = {"peak_ratio": math.nan, "impacts": math.nan, "overturn_time": math.nan}
+        if c is not None and c.rock_peak_ratio is not None:
+            peak = np.asarray(c.rock_peak_ratio, dtype=float)
+            if np.isfinite(peak).any():
+                i = int(np.nanargmax(peak))  # every pair whose friction holds the corner
+                values = {
+                    "peak_ratio": float(peak[i]),
+                    "impacts": float(c.rock_impacts[i]),
+                    "overturn_time": float(c.overturn_time[i]),
+                }
+        moved = np.isfinite(values["overturn_time"]) or np.nanmax(np.abs(ratio), initial=0) > 0
+        if moved:
+            out.append((content, int(floor), ratio, values))
+    rank = {c: i for i, c in enumerate(study.contents)}
+    return sorted(out, key=lambda x: (rank.get(x[0], len(rank)), x[0], x[1]))
+
+
+def _rocking_panel(ax, t: TaskResult, curves: list) -> None:
+    """One building's rocking histories θ/α against time, ±1 (overturning) and each
+    overturning marked."""
+    from matplotlib import colormaps
+
+    h = t.histories
+    time = np.arange(h.floor_acceleration.shape[-1]) * h.dt
+    cmap = colormaps["tab10"]
+    for k, (content, floor, ratio, v) in enumerate(curves):
+        color = cmap(k % 10)
+        n = min(time.size, ratio.size)
+        label = f"{content} on floor {floor}: "
+        if np.isfinite(v["overturn_time"]):
+            label += f"overturns at {v['overturn_time']:.3g} s"
+        else:
+            label += f"max|θ|/α = {v['peak_ratio']:.3g}"
+        if np.isfinite(v["impacts"]):
+            k_impacts = int(v["impacts"])
+            label += f", {k_impacts} impact" + ("" if k_impacts == 1 else "s")
+        ax.plot(time[:n], ratio[:n], lw=0.8, color=color, label=label)
+        if np.isfinite(v["overturn_time"]):
+            finite = ratio[np.isfinite(ratio)]
+            sign = 1.0 if finite.size == 0 or finite[-1] >= 0 else -1.0
+            ax.plot(
+                [v["overturn_time"]], [sign], "X", ms=10, color="red", mec="black", mew=0.6,
+                zorder=5,
+            )  # fmt: skip
+    for sign in (1, -1):
+        ax.axhline(sign, color="red", ls=":", lw=1.2)
+        ax.annotate(
+            "overturns",
+            (1.0, sign),
+            xycoords=("axes fraction", "data"),
+            xytext=(-4, -10 if sign > 0 else 3),
+            textcoords="offset points",
+            ha="right",
+            color="red",
+            fontsize="small",
+        )
+    ax.axhline(0.0, color="0.6", lw=0.6)
+    ax.set_ylim(-1.2, 1.2)
+    # the whole record, also after an overturning (the history is NaN from there)
+    ax.set_xlim(0.0, time[-1] if time.size > 1 else 1.0)
+    ax.set_xlabel("time (s)")
+    ax.set_ylabel("rotation θ/α (–)")
+    ax.set_title(f"{t.meta['building']}, record {t.meta['record']}", fontsize="medium")
+    ax.grid(alpha=0.3)
+    handles, labels = ax.get_legend_handles_labels()
+    if any(np.isfinite(v["overturn_time"]) for *_, v in curves):
+        handles.append(Line2D([], [], color="red", marker="X", mec="black", ls="none", ms=8))
+        labels.append("overturning (θ/α reaches ±1)")
+    ax.legend(handles, labels, fontsize="small", loc="lower left")
+
+
+def figure_rocking(study: Study, record_set: str) -> Figure | None:
+    """Rocking histories θ/α of the contents that rock under the set's history record, one
+    panel per building (at most :data:`MAX_COLUMNS`), or None when none rocks (or the file holds
+    no rocking histories).
+
+    θ is the block's rotation, α = atan(B/H) its slenderness: the block overturns when |θ/α|
+    reaches 1 (the dotted lines); the history ends there (NaN) and the overturning is marked.
+    """
+    order = list(study.buildings)
+    panels = []
+    for t in sorted(
+        (t for t in study.set_tasks(record_set) if t.histories is not None),
+        key=lambda t: order.index(t.meta["building"]),
+    ):
+        curves = _rocking_curves(t, study)
+        if curves:
+            panels.append((t, curves))
+    if not panels:
+        return None
+    panels, cut = _pick(panels, MAX_COLUMNS)
+    fig, axes = _new_figure(len(panels))
+    records = sorted({str(t.meta["record"]) for t, _ in panels})
+    _suptitle(
+        fig,
+        study,
+        f"Rocking — rotation over slenderness θ/α against time, record {', '.join(records)}, "
+        f"set {record_set}; the block overturns at θ/α = ±1"
+        + (" (some buildings left out)" if cut else ""),
+    )
+    for ax, (t, curves) in zip(axes, panels, strict=True):
+        _rocking_panel(ax, t, curves)
+    return fig
+
+
+def figure_overturning(study: Study, tables: DesignTables, record_set: str) -> Figure | None:
+    """Fractions of the set's records under which each content with rocking results rocked
+    (dashed, open markers) and overturned (solid), against the buildings, one series per
+    content and floor; or None when the set has no row in the ``rocking`` table.
+
+    The x axis is the isolation period when the buildings are variants of one isolated
+    building, each of its own period; else one position per building in the tables' order.
+    """
+    rows = [r for r in tables["rocking"] if r["record_set"] == record_set]
+    if not rows:
+        return None
+    bids = [b for b in study.buildings if any(r["building"] == b for r in rows)]
+    periods = [study.buildings[b].isolation_period for b in bids]
+    numeric = (
+        all(math.isfinite(p) for p in periods)
+        and len(set(periods)) == len(periods)
+        and len({study.buildings[b].base for b in bids}) == 1
+    )
+    x_of = {b: (periods[i] if numeric else float(i)) for i, b in enumerate(bids)}
+    series = list(dict.fromkeys((r["content"], r["floor"]) for r in rows))
+    fig, (ax,) = _new_figure(1, width=max(4.8, 0.75 * len(bids) + 2.0), height=4.2)
+    n = _records_of(rows)
+    _suptitle(
+        fig,
+        study,
+        f"Rocking and overturning — set {record_set}\nfraction of the {n} records under which "
+        f"the block rocked (dashed, open) and overturned (solid)"
+        + (f"; caution: only {n} records (< {MIN_RECORDS})" if n < MIN_RECORDS else ""),
+    )
+    from matplotlib import colormaps
+
+    cmap = colormaps["tab10"]
+    handles, labels = [], []
+    for k, (content, floor) in enumerate(series):
+        color = cmap(k % 10)
+        sel = sorted(
+            (r for r in rows if r["content"] == content and r["floor"] == floor),
+            key=lambda r: x_of[r["building"]],
+        )
+        x = np.array([x_of[r["building"]] for r in sel])
+        over = np.array([r["overturn_fraction"] for r in sel], dtype=float)
+        rock = np.array([r["rock_fraction"] for r in sel], dtype=float)
+        ax.plot(x, rock, "--s", color=color, mfc="none", ms=6, lw=1.0)
+        ax.plot(x, over, "-o", color=color, ms=5, lw=1.4)
+        handles.append(Line2D([], [], color=color, marker="o", ms=5))
+        labels.append(f"{content} on floor {floor} (B/H = {sel[0]['b_over_h']:.3g})")
+    handles += [
+        Line2D([], [], color="0.3", marker="o", ms=5),
+        Line2D([], [], color="0.3", marker="s", mfc="none", ls="--", ms=6),
+    ]
+    labels += ["overturned", "rocked (overturned or not)"]
+    if numeric:
+        ax.set_xlabel("isolation period T_i (s)")
+    else:
+        ax.set_xticks(range(len(bids)), bids, rotation=30, ha="right", fontsize="small")
+        ax.set_xlim(-0.5, len(bids) - 0.5)
+        ax.set_xlabel("building")
+    ax.set_ylim(-0.03, 1.03)
+    ax.set_ylabel(f"fraction of the {n} records (–)")
+    ax.grid(alpha=0.3)
+    fig.legend(
+        handles,
+        labels,
+        loc="outside lower center",
+        ncols=min(3, len(handles)),
+        title="content",
+        fontsize="small",
+    )
     return fig
 
 
@@ -781,9 +980,7 @@ def figure_slide_ratio(
         labels.append("gaps: 0/0 (neither slides) or x/0\n(only A slides), see slide_ratios")
     if rocks:
         handles.append(Line2D([], [], color="0.3", marker="x", ls="none", ms=8))
-        labels.append(
-            "x in the 'rock' strip: a median is 'rock'\n(rocking, not simulated): no ratio"
-        )
+        labels.append("x in the 'rock' strip: a median is 'rock'\n(rocking, not a slide): no ratio")
     fig.legend(
         handles,
         labels,
@@ -829,8 +1026,10 @@ def plot_figures(
     -------
     list of Path
         The files written, in order: per record set, histories (if stored), hysteresis (if
-        a building on nonlinear isolation stored its loop), FRS, peak slide versus mu,
-        oscillators (if any), then one peak-slide ratio figure per comparison.
+        a building on nonlinear isolation stored its loop), rocking (if a content rocks under
+        the history record), FRS, peak slide versus mu, oscillators (if any), overturning (if
+        the file holds rocking results), then one peak-slide ratio figure per comparison. A
+        figure without data is not drawn and not listed.
 
     Raises
     ------
@@ -877,6 +1076,9 @@ def plot_figures(
             fig = figure_hysteresis(study, rs)
             if fig is not None:
                 written.append(_save(fig, target(f"hysteresis_{s}")))
+            fig = figure_rocking(study, rs)
+            if fig is not None:
+                written.append(_save(fig, target(f"rocking_{s}")))
             if z is not None:
                 fig = figure_frs(study, rs, z)
                 if fig is not None:
@@ -887,6 +1089,9 @@ def plot_figures(
             fig = figure_oscillators(study, tables, rs)
             if fig is not None:
                 written.append(_save(fig, target(f"oscillators_{s}")))
+            fig = figure_overturning(study, tables, rs)
+            if fig is not None:
+                written.append(_save(fig, target(f"overturning_{s}")))
             for comp in tables.comparisons:
                 fig = figure_slide_ratio(study, tables, rs, comp.spec)
                 if fig is not None:

@@ -1,5 +1,6 @@
 """The per-record table: one row per record × building × floor × content × friction pair, read
-from a result file — what the ``slides`` design table summarises, record by record.
+from a result file — what the ``slides`` and ``rocking`` design tables summarise, record by
+record.
 
 ``record_table(path)`` gives it as a :class:`pandas.DataFrame`; ``floorslide table OUT.h5
 --per-record`` as CSV (or JSON). Columns and units are in :data:`RECORD_COLUMNS`.
@@ -33,7 +34,8 @@ RECORD_COLUMNS: tuple[Column, ...] = (
     Column(
         "outcome",
         "",
-        "rest (no slide), slide or rock (not simulated as a slider: its values are NaN)",
+        "rest (no slide), slide or rock (not simulated as a slider: its slide values are NaN; "
+        "what it did: observed_outcome)",
     ),
     Column("peak_slide", "m", "peak slide max|u| (of the sliding base for an oscillator)"),
     Column("residual_slide", "m", "residual slide u(end), signed"),
@@ -74,8 +76,33 @@ RECORD_COLUMNS: tuple[Column, ...] = (
         "the isolator displacement exceeds the layer's capacity (the impact that would follow "
         "is not modelled); empty (NaN) without nonlinear isolation",
     ),
+    Column(
+        "rock_peak_ratio",
+        "1",
+        "peak rotation of the rocking block max|θ|/α (1: it overturned; 0: at rest); NaN where "
+        "the object slides instead (mu_s < B/H) or the content has no width and height",
+    ),
+    Column(
+        "rock_impacts",
+        "1",
+        "impacts while rocking (up to the overturning); NaN where it slides instead or the "
+        "content has no width and height",
+    ),
+    Column("overturned", "1", "1 if the block overturned, else 0; NaN where not applicable"),
+    Column("overturn_time_s", "s", "when it overturned (NaN: it did not, or not applicable)"),
+    Column("rock_time_s", "s", "time spent rocking; NaN where not applicable"),
+    Column(
+        "observed_outcome",
+        "",
+        "what the object did in the simulation: rest, slide, rock, overturn or slide-rock "
+        "(both bounds); empty for contents without width and height and in files written "
+        "before rocking was simulated",
+    ),
 )
 """Columns of the per-record table, in order."""
+
+ROCK_VALUES = ("rock_peak_ratio", "rock_impacts", "overturned", "overturn_time_s", "rock_time_s")
+"""The per-record rocking columns (NaN where not applicable)."""
 
 
 def _outcome(mode: str, peak: float) -> str:
@@ -112,6 +139,27 @@ def isolator_values(meta: dict) -> dict:
         "isolator_residual_disp_m": _float(meta.get("isolator_residual_displacement")),
         "isolator_peak_force_ratio": _float(meta.get("isolator_peak_force_ratio")),
         "isolator_capacity_exceeded": bool(_float(meta.get("isolator_capacity_exceeded"), 0)),
+    }
+
+
+def rocking_values(c, i: int) -> dict:
+    """The rocking columns of friction pair `i` of a content result: NaN (and an empty
+    ``observed_outcome``) for a content without width and height, a file written before rocking
+    was simulated, and a friction pair under which the object slides instead (stored as NaN and
+    −1 impacts)."""
+    if c.rock_peak_ratio is None or len(c.rock_peak_ratio) <= i:
+        out: dict = dict.fromkeys(ROCK_VALUES, math.nan)
+        out["observed_outcome"] = ""
+        return out
+    impacts = float(c.rock_impacts[i])
+    observed = c.outcomes[i] if c.outcomes is not None and len(c.outcomes) > i else ""
+    return {
+        "rock_peak_ratio": float(c.rock_peak_ratio[i]),
+        "rock_impacts": impacts if impacts >= 0 else math.nan,
+        "overturned": float(c.overturned[i]),
+        "overturn_time_s": float(c.overturn_time[i]),
+        "rock_time_s": float(c.rock_time[i]),
+        "observed_outcome": str(observed),
     }
 
 
@@ -165,6 +213,7 @@ def record_rows(study: Study) -> list[dict]:
                         "scale": _float(m.get("scale")),
                         "skipped": c.skipped,
                         **isolator,
+                        **rocking_values(c, i),
                     }
                 )
 
@@ -186,9 +235,11 @@ def record_table(result: str | Path | ResultFile | Study, *, allow_incomplete: b
     """The per-record table of a result file as a :class:`pandas.DataFrame`.
 
     One row per record × building × floor × content × friction pair, columns as in
-    :data:`RECORD_COLUMNS` (SI values; the object's values are NaN where it rocks, and
-    ``outcome`` says ``rock``). ``df.attrs`` holds ``units`` (column → unit), ``source`` and
-    ``status`` (``""``, or the INCOMPLETE label).
+    :data:`RECORD_COLUMNS` (SI values; the object's slide values are NaN where it rocks, and
+    ``outcome`` says ``rock``; for contents with a width and height the rocking block's peak
+    rotation, impacts, overturning and time rocking, and ``observed_outcome`` what it did).
+    ``df.attrs`` holds ``units`` (column → unit), ``source`` and ``status`` (``""``, or the
+    INCOMPLETE label).
 
     Parameters
     ----------

@@ -88,7 +88,7 @@ def summarize_outcomes(values: Sequence[float], rock: Sequence[bool]) -> dict[st
     values
         One value per record (NaN where the object rocks).
     rock
-        One flag per record: the object rocks (not simulated).
+        One flag per record: the object rocks (not simulated as a slider).
 
     Returns
     -------

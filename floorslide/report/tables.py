@@ -32,6 +32,14 @@ Tables (one row per …, statistics over the records of a set; units in :data:`C
     force over the weight (V/W), and how many records take the layer beyond its capacity
     (the impact that would follow is not modelled: the ``note`` says so). Empty, with a note,
     when no building is on nonlinear isolation.
+``rocking``
+    record set × building × floor × content with a width and height whose static friction
+    holds its corner (``mu_s ≥ B/H``: it rocks rather than slides, Shenton 1996; one row for
+    all such friction values, the rocking does not depend on them): the slenderness, how many
+    records made it rock and overturn, the median and 84th percentile over every record of its
+    peak rotation ``max|θ|/α`` (0 at rest, 1 when it overturned) and the median number of
+    impacts (Housner's block, :func:`floorslide.rock`). Empty, with a note, without such a
+    content (or in a file written before rocking was simulated).
 
 Conventions
 -----------
@@ -39,11 +47,13 @@ Conventions
   method (Hyndman & Fan 1996, definition 7). A lognormal fit is not used because slides are
   often exactly zero (the object does not slide under some records).
 - **Rocking** is an outcome of its own, never a zero slide: an object that would rock (Shenton
-  1996, mode ``rock``) is not simulated as a slider, so its slide is unknown. Every statistic is
-  over all ``n_records`` records, the rocking ones ranked above every slide: a median or p84
-  that falls on them is the outcome ``rock`` (``median_outcome``, ``p84_outcome``; the numbers
-  are NaN), and so is the mean once any record rocks (:data:`~floorslide.report.columns.ROCK`).
-  ``n_rock`` counts them; ``n_slide_rock`` counts mode ``slide-rock`` (simulated as a slider).
+  1996, mode ``rock``) is simulated as a rocking block, not as a slider, so its slide is
+  unknown (NaN). Every statistic of the ``slides`` table is over all ``n_records`` records, the
+  rocking ones ranked above every slide: a median or p84 that falls on them is the outcome
+  ``rock`` (``median_outcome``, ``p84_outcome``; the numbers are NaN), and so is the mean once
+  any record rocks (:data:`~floorslide.report.columns.ROCK`). ``n_rock`` counts them;
+  ``n_slide_rock`` counts mode ``slide-rock`` (simulated as a slider and as a rocking block,
+  each a bound). What the rocking blocks did is the ``rocking`` table.
 - **Few records**: rows over fewer than :data:`~floorslide.report.columns.MIN_RECORDS` records
   carry ``few_records = True`` (the p84 is then set by the largest record).
 - **Ratios** are ratios of statistics (median of A / median of B), not statistics of per-record
@@ -59,6 +69,9 @@ Conventions
 
 References
 ----------
+Housner, G. W. (1963). The behavior of inverted pendulum structures during earthquakes. *Bull.
+Seismol. Soc. Am.* 53(2), 403–417.
+
 Hyndman, R. J., Fan, Y. (1996). Sample quantiles in statistical packages. *The American
 Statistician* 50(4), 361–365.
 
@@ -364,6 +377,92 @@ def isolator_table(study: Study) -> list[dict]:
             note=_isolator_note(exceeded, len(obs), row["capacity"]),
         )
         rows.append({c.name: row[c.name] for c in COLUMNS["isolators"]})
+    return rows
+
+
+def _geometry(study: Study) -> dict[str, float]:
+    """``B/H`` of every content of the stored scene that has a width and height."""
+    out = {}
+    items = study.scene.get("contents", [])
+    for item in items if isinstance(items, list) else []:
+        if not isinstance(item, dict) or not isinstance(item.get("id"), str):
+            continue
+        width, height = _float(item.get("width")), _float(item.get("height"))
+        if math.isfinite(width) and math.isfinite(height) and width > 0 and height > 0:
+            out[item["id"]] = width / height
+    return out
+
+
+def holds_corner(mu_s: float, b_over_h: float) -> bool:
+    """Whether static friction `mu_s` holds the corner of a block of slenderness `b_over_h`, so
+    that it rocks rather than slides (``mu_s ≥ B/H``, equality to 1e-12 relative as in
+    :func:`floorslide.response_mode`, where it is ``slide-rock``)."""
+    return mu_s > b_over_h or abs(mu_s - b_over_h) <= 1e-12 * b_over_h
+
+
+def rocking_table(study: Study) -> list[dict]:
+    """The ``rocking`` table (see the module docstring): one row per record set × building ×
+    floor × content with rocking results, from the per-record arrays a run stores
+    (:class:`~floorslide.run.results.ContentResult`: ``rock_peak_ratio``, ``rock_impacts``,
+    ``overturned``)."""
+    slender = _geometry(study)
+    groups: dict[tuple, list[tuple[str, float, float, float]]] = defaultdict(list)
+    holding: dict[tuple, list[float]] = {}
+    for t in study.tasks:
+        m = t.meta
+        for c in t.contents:
+            if c.content not in slender or c.rock_peak_ratio is None:
+                continue
+            b_h = slender[c.content]
+            held = [
+                i for i, mu_s in enumerate(np.asarray(c.mu_s, float)) if holds_corner(mu_s, b_h)
+            ]
+            if not held:
+                continue  # it slides rather than rocks at every friction value
+            i = held[0]  # the same block under every friction value that holds its corner
+            key = (str(m["record_set"]), str(m["building"]), int(c.floor), c.content)
+            groups[key].append(
+                (
+                    str(m["record"]),
+                    float(c.rock_peak_ratio[i]),
+                    float(c.rock_impacts[i]),
+                    float(c.overturned[i]),
+                )
+            )
+            mus = holding.setdefault(key, [])
+            mus += [float(c.mu_s[j]) for j in held if float(c.mu_s[j]) not in mus]
+    bkey = _order_key(study)
+
+    def key(k: tuple) -> tuple:
+        return (*bkey(k[0], k[1]), k[2], _rank(study.contents, k[3]), _natural(k[3]))
+
+    rows = []
+    for k in sorted(groups, key=key):
+        rs, bid, floor, content = k
+        obs = _by_record(groups[k])
+        peak, impacts, over = (np.array([o[j] for o in obs], dtype=float) for j in (1, 2, 3))
+        n = len(obs)
+        n_rock = int(np.sum((peak > 0) | (over > 0)))
+        n_over = int(np.sum(over > 0))
+        _, peak_median, peak_p84 = summarize(peak)
+        row = _building_cols(study, rs, bid)
+        row.update(
+            floor=floor,
+            content=content,
+            b_over_h=slender[content],
+            alpha=math.atan(slender[content]),
+            mu_s_values=", ".join(f"{x:g}" for x in sorted(holding[k])),
+            n_records=n,
+            few_records=n < MIN_RECORDS,
+            n_rock=n_rock,
+            rock_fraction=n_rock / n,
+            n_overturn=n_over,
+            overturn_fraction=n_over / n,
+            peak_ratio_median=peak_median,
+            peak_ratio_p84=peak_p84,
+            impacts_median=summarize(impacts)[1],
+        )
+        rows.append({c.name: row[c.name] for c in COLUMNS["rocking"]})
     return rows
 
 
@@ -723,6 +822,21 @@ def table_notes(study: Study, damping: float | None) -> list[str]:
         "the sliding base's, peak_deformation the spring's and peak_top_accel the top mass's",
         "ratios are ratios of statistics (A / B); 0/0 (neither slides) is NaN, x/0 is inf",
     ]
+    if any(c.rock_peak_ratio is not None for t in study.tasks for c in t.contents):
+        notes.append(
+            "rocking: contents with a width and height that rock are simulated as rigid blocks "
+            "(Housner 1963) — the rocking table and the per-record rock_* columns; peak_ratio "
+            "is max|θ|/α, 1 for a record under which the block overturned, 0 at rest"
+        )
+    elif any(
+        ROCK in (list(c.modes) if c.modes is not None else [c.mode])
+        for t in study.tasks
+        for c in t.contents
+    ):
+        notes.append(
+            "rocking: this file was written before rocking objects were simulated: it holds "
+            "no rocking results (the rocking table is empty)"
+        )
     if any("isolator_peak_displacement" in t.meta for t in study.tasks):
         notes.append(
             "isolators: displacements are the isolation layer's u0 relative to the ground; "
@@ -784,7 +898,7 @@ def design_tables(
     -------
     DesignTables
         ``tables`` maps ``slides``, ``pfa``, ``frs``, ``slide_ratios``, ``pfa_ratios``,
-        ``records``, ``isolators`` to
+        ``records``, ``isolators``, ``rocking`` to
         rows (dicts, SI values; columns and units in :data:`COLUMNS`), in a fixed order:
         record sets and buildings as in the scene (isolated variants by period), floors up,
         contents as in the scene, friction ascending.
@@ -803,9 +917,10 @@ def design_tables(
     Notes
     -----
     Percentiles are empirical (``numpy.percentile``, ``"linear"``; Hyndman & Fan 1996,
-    definition 7). Records in which the object rocks (not simulated as a slider; Shenton 1996)
-    are an outcome of their own, ranked above every slide; a statistic that falls on them is
-    ``rock``, never 0. Ratios are ratios of statistics; ``0/0`` is NaN, ``x/0`` is inf.
+    definition 7). Records in which the object rocks (simulated as a rocking block, not as a
+    slider; Shenton 1996, Housner 1963) are an outcome of their own in the slide statistics,
+    ranked above every slide; a statistic that falls on them is ``rock``, never 0. Ratios are
+    ratios of statistics; ``0/0`` is NaN, ``x/0`` is inf.
     """
     study = load_study(result)
     study.require_complete(allow_incomplete)
@@ -822,6 +937,7 @@ def design_tables(
         "pfa_ratios": pfa_ratio_table(study, pfa, comparisons),
         "records": records_table(study),
         "isolators": isolator_table(study),
+        "rocking": rocking_table(study),
     }
     notes = table_notes(study, z) + period_notes + study.notes
     notes += [f"{name}: {note}" for name, note in EMPTY_NOTES.items() if not tables[name]]

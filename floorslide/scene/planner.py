@@ -199,6 +199,11 @@ def decide(content: ContentSpec, pfa: float, force: bool = False):
         else:
             mode = "slide" if pfa > mub[i] * G else "rest"
         modes.append(mode)
+        if mode in ("rock", "slide-rock") and content.vertical:
+            reasons[
+                "objects with vertical = true that rock: rocked without the vertical shaking "
+                "(not modelled for rocking)"
+            ] += 1
         if mode == "rock":
             integrate[i] = False
             reasons[

@@ -36,10 +36,16 @@ def test_demo(tmp_path):
     assert (tmp_path / "d" / "figures" / "hysteresis_broad-band.png").exists()
     assert (tmp_path / "d" / "tables" / "isolators.csv").exists()
     # issue 12 item 4: 9 of 18 records rock under the cabinet at mu = 0.4 on isolated@T=2
-    # (pulse-like); the median falls on them and reads "rocks", not the 0.0 of the 9 others
+    # (pulse-like); the median falls on them and reads "rocks", not the 0.0 of the 9 others;
+    # issue 15: rocking is simulated, the cell says how many of them overturn
     row = next(ln for ln in out.stdout.splitlines()[::-1] if ln.startswith("| isolated@T=2 |"))
-    assert row.split(" | ")[7] == "rocks (9/18)", row
-    assert "never count as 0" in out.stdout
+    cell = row.split(" | ")[7]
+    assert cell.startswith("rocks (9/18; ") and cell.endswith(" overturn)"), row
+    assert "never count as 0" in out.stdout and "the rocking table" in out.stdout
+    assert "rocking objects are not simulated" not in out.stdout  # the old legend
+    assert (tmp_path / "d" / "tables" / "rocking.csv").exists()
+    for name in ("rocking_broad-band.png", "overturning_broad-band.png"):
+        assert (tmp_path / "d" / "figures" / name).exists(), name
     tables = sorted(p.name for p in (tmp_path / "d" / "tables").iterdir())
     assert "tables.md" in tables and "slides.csv" in tables
     figures = list((tmp_path / "d" / "figures").glob("*.png"))
