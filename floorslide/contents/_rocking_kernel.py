@@ -46,6 +46,7 @@ import numpy as np
 from floorslide._jit import njit
 from floorslide.building._instep import substep_inputs, taylor_coefficients
 from floorslide.numerics.polynomial import (
+    _first_positive,
     first_rise,
     max_abs_on,
     poly_der,
@@ -128,6 +129,98 @@ def _rise_from(q, deg, lo, hi, level, work):
     return first_rise(q, deg, lo, hi, level, work)
 
 
+UNDECIDED = -2.0
+HORNER_ERR = 1e-15
+"""Relative error bound of a Horner evaluation used to certify a sign (as
+:mod:`floorslide.numerics.polynomial`'s, Higham 2002 §5.1, with a margin for degree ≤ 60)."""
+
+
+@njit(cache=True)
+def _convex_rise(q, deg, lo, win):
+    """:func:`first_rise` of ``q`` above 0 on ``(lo, win]`` when ``q`` is certified convex on
+    ``[0, win]`` (``2q₂ > Σ_{j≥3} j(j−1)|q_j| win^{j−2}``) and below 0 at ``lo``: then the set
+    where ``q ≤ 0`` is an interval that holds ``lo``, so there is at most one rise — found by
+    Newton's method from its right (``q`` convex and increasing there: the iterates decrease
+    monotonically to it), bracketed, and settled on machine numbers (``_first_positive``, as
+    root isolation settles it). The return to 0 of a rocking block's excursion is such a rise.
+    Returns −1 when ``q(win) ≤ 0`` is certified (no rise), :data:`UNDECIDED` when a premise
+    fails or a sign needed is within its rounding bound (then root isolation decides)."""
+    if not (win > lo and q[2] > 0.0):
+        return UNDECIDED
+    tail = 0.0
+    for j in range(deg, 2, -1):
+        tail = tail * win + j * (j - 1) * abs(q[j])
+    if not 2.0 * q[2] > tail * win:
+        return UNDECIDED
+    # signs of q at win and at lo, certified against their rounding error (Higham 2002, §5.1)
+    v = poly_val(q, deg, win)
+    err = 0.0
+    for j in range(deg, -1, -1):
+        err = err * win + abs(q[j])
+    err *= HORNER_ERR * (deg + 2)
+    if v <= -err:
+        return -1.0
+    if not v > err:
+        return UNDECIDED
+    a = lo
+    if lo == 0.0:
+        if not q[0] < 0.0:
+            return UNDECIDED
+    elif not poly_val(q, deg, lo) < -err:
+        return UNDECIDED
+    # the terms that cannot matter on [0, win] (together below 1e-18·|q₁|·win, far below the
+    # rounding of any value near the root) are left out of the evaluations below
+    dropped = 0.0
+    d = deg
+    scale = abs(q[0]) + abs(q[1]) * win
+    while d > 2:
+        dropped += abs(q[d]) * win**d
+        if dropped > 1e-18 * scale:
+            break
+        d -= 1
+    deg = d
+    b = win
+    # Newton from the right of the root — q convex and increasing there, the iterates decrease
+    # to it — starting just right of the quadratic's root when q is positive there
+    x = b
+    disc = q[1] * q[1] - 4.0 * q[0] * q[2]
+    if disc >= 0.0:
+        guess = (-q[1] + np.sqrt(disc)) / (2.0 * q[2]) * (1.0 + 1e-3)  # the quadratic's root
+        if lo < guess < win and poly_val(q, deg, guess) > 0.0:
+            x = guess
+    for _ in range(60):
+        if not poly_val(q, deg, x) > 0.0:
+            break  # rounding-level at the root
+        b = x
+        d = poly_der(q, deg, x)
+        if not d > 0.0:
+            break
+        xn = x - poly_val(q, deg, x) / d
+        if not (a < xn < x):
+            break
+        x = xn
+    # a point just below b where q ≤ 0 (a few ulps, then farther), then bisection
+    step = 4.0 * max(abs(b) * 2.220446049250313e-16, 5e-324)
+    for _ in range(1100):
+        c = b - step
+        if c <= a:
+            break
+        if not poly_val(q, deg, c) > 0.0:
+            a = c
+            break
+        b = c
+        step *= 4.0
+    for _ in range(200):
+        m = 0.5 * (a + b)
+        if m <= a or m >= b:
+            break
+        if poly_val(q, deg, m) > 0.0:
+            b = m
+        else:
+            a = m
+    return _first_positive(q, deg, a, b)
+
+
 @njit(cache=True)
 def _block_on_part(st, par, cs, K, Lq, t_part, g, D, nonlinear, max_events, t, S, C, u, q, cw,
                    work):  # fmt: skip
@@ -183,13 +276,17 @@ def _block_on_part(st, par, cs, K, Lq, t_part, g, D, nonlinear, max_events, t, S
             if t[0] == 0.0 and s * t[1] > 0.0 and s * t[2] < 0.0:
                 win = min(L, -4.0 * t[1] / t[2])
                 if win > lo:
-                    ti = _rise_from(q, D, lo, win, 0.0, work)
+                    ti = _convex_rise(q, D, lo, win)
+                    if ti == UNDECIDED:
+                        ti = _rise_from(q, D, lo, win, 0.0, work)
                     if ti < 0.0 and win < L:
                         ti = _rise_from(q, D, win, L, 0.0, work)
                 else:
                     ti = _rise_from(q, D, lo, L, 0.0, work)
             else:
-                ti = _rise_from(q, D, lo, L, 0.0, work)
+                ti = _convex_rise(q, D, lo, L)
+                if ti == UNDECIDED:
+                    ti = _rise_from(q, D, lo, L, 0.0, work)
             for j in range(D + 1):
                 q[j] = s * t[j]
             to = _rise_from(q, D, lo, L, alpha, work)
