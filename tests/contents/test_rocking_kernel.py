@@ -40,7 +40,7 @@ def test_same_rise_as_root_isolation_on_convex_series():
         if ref < 0:
             assert got == -1.0, (q, lo, hi, got, ref)
         else:
-            assert abs(got - ref) <= 2 * np.spacing(ref), (q, lo, hi, got, ref)
+            assert got == ref, (q, lo, hi, got, ref)  # measured: 2,999 of 2,999 bit for bit
     assert decided > 2000
 
 
