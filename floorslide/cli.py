@@ -526,6 +526,26 @@ def _building(spec: str | None, floor: str | None):
     return building, number, f"on {name} of: {describe_building(building)}"
 
 
+def _record_on_floor(record, reading, processing, scale_pga, building, floor_no):
+    """The single-object commands' input: RECORD read (``reading`` = format, units, dt,
+    component) and processed, its quality flags warned about on stderr, scaled to
+    ``--scale-pga``, and the exact motion of the floor (the ground without a building),
+    integrated once. Returns ``(trace, quality report, FloorMotion)``."""
+    from floorslide.building.exact_motion import floor_motion
+    from floorslide.records.process import process
+    from floorslide.records.quality import check_record
+
+    tr = _apply_processing(_read_one(record, *reading), processing)
+    quality = check_record(tr.data, tr.stats.delta)
+    _warn_quality(record, quality)
+    if scale_pga is not None:
+        if not scale_pga > 0:
+            raise click.BadParameter("must be > 0", param_hint="--scale-pga")
+        tr = process(tr, scale_pga=scale_pga)
+    fm = floor_motion(building, tr.data, floor_no if building is not None else None, tr.stats.delta)
+    return tr, quality, fm
+
+
 @cli.command()
 @click.argument("record")
 @click.option("--mu", required=True, metavar="MU[,MU...]", help="Kinetic friction coefficient(s).")
@@ -570,25 +590,15 @@ def slide(
     clipping, truncation: floorslide inspect) are printed as warnings on stderr, with the
     processing that removes them; in JSON each row also has "qa_flags".
     """
-    from floorslide.building.exact_motion import floor_motion
     from floorslide.constants import G
     from floorslide.contents.sliding import slide as slide_exact
-    from floorslide.records.process import process
-    from floorslide.records.quality import check_record
 
     mus = _floats(mu, "--mu")
     mus_s = _floats(mu_s, "--mu-s") if mu_s else None
     building, floor_no, where = _building(building_spec, floor)
-    tr = _read_one(record, fmt, units, dt, component)
-    tr = _apply_processing(tr, _processing(detrend, taper, highpass, lowpass))
-    quality = check_record(tr.data, tr.stats.delta)
-    _warn_quality(record, quality)
-    if scale_pga is not None:
-        if not scale_pga > 0:
-            raise click.BadParameter("must be > 0", param_hint="--scale-pga")
-        tr = process(tr, scale_pga=scale_pga)
-    # the floor's exact motion, integrated once for the slides and the PFA of the header
-    fm = floor_motion(building, tr.data, floor_no if building is not None else None, tr.stats.delta)
+    processing = _processing(detrend, taper, highpass, lowpass)
+    tr, quality, fm = _record_on_floor(record, (fmt, units, dt, component), processing,
+                                       scale_pga, building, floor_no)  # fmt: skip
     res = slide_exact(fm, None, mus, mus_s, direction=direction)
     rows = res.to_records()
     if as_json:
@@ -671,25 +681,16 @@ def rock(
     end to end; uplift, impacts and overturning located inside steps. No filtering unless asked.
     The record's quality flags are printed as warnings on stderr.
     """
-    from floorslide.building.exact_motion import floor_motion
     from floorslide.constants import G
     from floorslide.contents.rocking_block import rock as rock_blocks
     from floorslide.errors import ModelError
-    from floorslide.records.process import process
-    from floorslide.records.quality import check_record
 
     widths = _floats(width, "--width")
     heights = _floats(height, "--height")
     building, floor_no, where = _building(building_spec, floor)
-    tr = _read_one(record, fmt, units, dt, component)
-    tr = _apply_processing(tr, _processing(detrend, taper, highpass, lowpass))
-    quality = check_record(tr.data, tr.stats.delta)
-    _warn_quality(record, quality)
-    if scale_pga is not None:
-        if not scale_pga > 0:
-            raise click.BadParameter("must be > 0", param_hint="--scale-pga")
-        tr = process(tr, scale_pga=scale_pga)
-    fm = floor_motion(building, tr.data, floor_no if building is not None else None, tr.stats.delta)
+    processing = _processing(detrend, taper, highpass, lowpass)
+    tr, quality, fm = _record_on_floor(record, (fmt, units, dt, component), processing,
+                                       scale_pga, building, floor_no)  # fmt: skip
     try:
         res = rock_blocks(fm, width=widths, height=heights, restitution=restitution, method=method)
     except ModelError as exc:
