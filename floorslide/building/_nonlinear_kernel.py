@@ -26,13 +26,17 @@ from floorslide.building._instep import (
 )
 from floorslide.contents._kernels import objects_on_substep
 from floorslide.contents._oscillator_kernel import O_MODE, O_U, O_Z, O_ZD, _advance_part, _shift
-from floorslide.contents._rocking_kernel import LIMIT_AT as RK_LIMIT_AT
 from floorslide.contents._rocking_kernel import MODE as RK_MODE
 from floorslide.contents._rocking_kernel import OVERTURNED as RK_OVERTURNED
-from floorslide.contents._rocking_kernel import P_P, P_TAN, _block_on_part
+from floorslide.contents._rocking_kernel import P_P, P_TAN, block_through
 from floorslide.contents._rocking_kernel import ROCK_MAX_EVENTS as RK_MAX_EVENTS
 from floorslide.contents._rocking_kernel import TH as RK_TH
-from floorslide.numerics.polynomial import first_rise, max_abs_on, poly_val, scratch, taylor_shift
+from floorslide.numerics.polynomial import (
+    max_abs_on,
+    poly_val,
+    rise_within,
+    scratch,
+)
 
 # branch codes: as floorslide.building.isolators
 LINEAR, ELASTIC, PLASTIC_POS, PLASTIC_NEG, SLIP_POS, SLIP_NEG, STICK = 0, 1, 2, 3, 4, 5, 6
@@ -54,18 +58,6 @@ def _state_at(R, B, x, a0, slope, s, K, out, c):
         out[i] = poly_val(c, K, s)
 
 
-@njit(cache=True, inline="always")
-def _rise(c, K, lo, L, level, work):
-    """:func:`first_rise` of ``p`` above `level` on ``(lo, L]``, skipped (−1) when the bound
-    ``p(0) + Σ_{j≥1} |c_j| L^j`` shows that ``p`` stays at or below `level` there."""
-    reach = 0.0
-    for j in range(K, 0, -1):
-        reach = (reach + abs(c[j])) * L
-    if c[0] + reach <= level:
-        return -1.0
-    return first_rise(c, K, lo, L, level, work)
-
-
 @njit(cache=True)
 def _event(branch, R, B, ER, EB, x, a0, slope, L, K, p, dy, limit, lo, n, c, work):
     """First event of `branch` in ``(lo, L]`` from state `x`: ``(time, kind)`` with kind +1 or
@@ -78,26 +70,26 @@ def _event(branch, R, B, ER, EB, x, a0, slope, L, K, p, dy, limit, lo, n, c, wor
         return NO_EVENT, 0
     if branch == ELASTIC:
         taylor_coefficients(R[0], B[0], x, a0, slope, c)
-        t_up = _rise(c, K, lo, L, p + dy, work)
+        t_up = rise_within(c, K, lo, L, p + dy, work)
         for j in range(K + 1):
             c[j] = -c[j]
-        t_dn = _rise(c, K, lo, L, -(p - dy), work)
+        t_dn = rise_within(c, K, lo, L, -(p - dy), work)
     elif branch == STICK:
         taylor_coefficients(ER, EB, x, a0, slope, c)
-        t_up = _rise(c, K, lo, L, limit, work)
+        t_up = rise_within(c, K, lo, L, limit, work)
         for j in range(K + 1):
             c[j] = -c[j]
-        t_dn = _rise(c, K, lo, L, limit, work)
+        t_dn = rise_within(c, K, lo, L, limit, work)
     else:
         taylor_coefficients(R[n], B[n], x, a0, slope, c)
         t_up = -1.0
         if branch == PLASTIC_POS or branch == SLIP_POS:  # velocity falls through 0
             for j in range(K + 1):
                 c[j] = -c[j]
-            t_dn = _rise(c, K, lo, L, 0.0, work)
+            t_dn = rise_within(c, K, lo, L, 0.0, work)
         else:  # velocity rises through 0
             t_dn = -1.0
-            t_up = _rise(c, K, lo, L, 0.0, work)
+            t_up = rise_within(c, K, lo, L, 0.0, work)
     best, kind = NO_EVENT, 0
     if t_up >= 0.0:
         best, kind = t_up, 1
@@ -275,9 +267,9 @@ def _rockers(OR, OB, x, a0, slope, L, K, t0, rk_out, rk_par, rk_states, g, D, no
     from state ``x`` (ground ``a0 + slope·τ``): block ``i`` stands on the floor of output row
     ``rk_out[i]`` (sorted), parameters ``rk_par[i]`` and state ``rk_states[i]`` (the columns
     of :mod:`floorslide.contents._rocking_kernel`); each goes through the segment in parts
-    with ``p·L ≤ phase`` by :func:`~floorslide.contents._rocking_kernel._block_on_part` on
-    the floor polynomial shifted to each part. ``RB``: scratch rows (floor coefficients and
-    their shifts, the series of θ, sin, cos, u, a polynomial, the root-isolation work)."""
+    with ``p·L ≤ phase`` (:func:`~floorslide.contents._rocking_kernel.block_through`).
+    ``RB``: scratch rows (floor coefficients and their shifts, the series of θ, sin, cos, u, a
+    polynomial, the root-isolation work)."""
     c, cs, cw = RB[0, : K + 1], RB[1, : K + 1], RB[2, : K + 1]
     t, S, C, u = RB[3, : D + 1], RB[4, : D + 1], RB[5, : D + 1], RB[6, : D + 1]
     q = RB[7]
@@ -299,21 +291,8 @@ def _rockers(OR, OB, x, a0, slope, L, K, t0, rk_out, rk_par, rk_states, g, D, no
         if st[RK_MODE] == 0.0 and reach <= g * par[P_TAN]:
             continue
         parts = max(1, int(np.ceil(par[P_P] * L / phase - 1e-12)))
-        Lq = L / parts
-        for qq in range(parts):
-            if qq == 0:
-                for j in range(K + 1):
-                    cs[j] = c[j]
-            else:
-                taylor_shift(c, K, qq * Lq, cs)
-            ok = _block_on_part(st, par, cs, K, Lq, t0 + qq * Lq, g, D, nonlinear, max_events,
-                                t, S, C, u, q, cw, work)  # fmt: skip
-            if not ok:
-                if st[RK_LIMIT_AT] < 0.0:
-                    st[RK_LIMIT_AT] = t0
-                break
-            if st[RK_MODE] == RK_OVERTURNED:
-                break
+        block_through(st, par, c, K, L, parts, t0, g, D, nonlinear, max_events, cs, t, S, C, u,
+                      q, cw, work)  # fmt: skip
 
 
 @njit(cache=True)

@@ -47,10 +47,10 @@ from floorslide._jit import njit
 from floorslide.building._instep import substep_inputs, taylor_coefficients
 from floorslide.numerics.polynomial import (
     _first_positive,
-    first_rise,
     max_abs_on,
     poly_der,
     poly_val,
+    rise_within,
     scratch,
     taylor_shift,
 )
@@ -113,20 +113,6 @@ def theta_series(s, th, thd, alpha, p2, cf, K, g, D, nonlinear, t, S, C, u):
             cc += j * u[j] * S[k + 1 - j]
         S[k + 1] = ss / (k + 1)
         C[k + 1] = -cc / (k + 1)
-
-
-@njit(cache=True, inline="always")
-def _rise_from(q, deg, lo, hi, level, work):
-    """:func:`first_rise` of ``q`` above `level` on ``(lo, hi]``, skipped (−1) when
-    ``q(0) + Σ_{j≥1} |q_j| hi^j ≤ level`` shows there is none (a bound on all of ``[0, hi]``,
-    so valid after an event too, where ``first_rise`` itself starts at ``lo > 0`` and applies
-    no such filter)."""
-    reach = 0.0
-    for j in range(deg, 0, -1):
-        reach = (reach + abs(q[j])) * hi
-    if q[0] + reach <= level:
-        return -1.0
-    return first_rise(q, deg, lo, hi, level, work)
 
 
 UNDECIDED = -2.0
@@ -248,8 +234,8 @@ def _block_on_part(st, par, cs, K, Lq, t_part, g, D, nonlinear, max_events, t, S
             # uplift: a_f below −g tan α (corner +1) or above g tan α (corner −1)
             for j in range(K + 1):
                 q[j] = -cw[j]
-            tp = _rise_from(q, K, lo, L, level, work)
-            tn = _rise_from(cw, K, lo, L, level, work)
+            tp = rise_within(q, K, lo, L, level, work)
+            tn = rise_within(cw, K, lo, L, level, work)
             te = -1.0
             side = 0.0
             if tp >= 0.0:
@@ -278,18 +264,18 @@ def _block_on_part(st, par, cs, K, Lq, t_part, g, D, nonlinear, max_events, t, S
                 if win > lo:
                     ti = _convex_rise(q, D, lo, win)
                     if ti == UNDECIDED:
-                        ti = _rise_from(q, D, lo, win, 0.0, work)
+                        ti = rise_within(q, D, lo, win, 0.0, work)
                     if ti < 0.0 and win < L:
-                        ti = _rise_from(q, D, win, L, 0.0, work)
+                        ti = rise_within(q, D, win, L, 0.0, work)
                 else:
-                    ti = _rise_from(q, D, lo, L, 0.0, work)
+                    ti = rise_within(q, D, lo, L, 0.0, work)
             else:
                 ti = _convex_rise(q, D, lo, L)
                 if ti == UNDECIDED:
-                    ti = _rise_from(q, D, lo, L, 0.0, work)
+                    ti = rise_within(q, D, lo, L, 0.0, work)
             for j in range(D + 1):
                 q[j] = s * t[j]
-            to = _rise_from(q, D, lo, L, alpha, work)
+            to = rise_within(q, D, lo, L, alpha, work)
             te = L
             kind = 0
             if ti >= 0.0:
@@ -328,6 +314,31 @@ def _block_on_part(st, par, cs, K, Lq, t_part, g, D, nonlinear, max_events, t, S
         if events > max_events:
             return False
     return True
+
+
+@njit(cache=True)
+def block_through(st, par, c, K, L, parts, t0, g, D, nonlinear, max_events, cs, t, S, C, u, q,
+                  cw, work):  # fmt: skip
+    """Advance one block (state ``st``, parameters ``par``) through a segment ``[0, L]`` of the
+    floor motion starting at time ``t0``, whose acceleration there has the coefficients
+    ``c[0..K]``, in `parts` equal parts (:func:`_block_on_part` on each, the polynomial shifted
+    to its start). A reached event limit is recorded in ``st[LIMIT_AT]`` (the segment's start);
+    the block stops there, as at its overturning."""
+    Lq = L / parts
+    for qq in range(parts):
+        if qq == 0:
+            for j in range(K + 1):
+                cs[j] = c[j]
+        else:
+            taylor_shift(c, K, qq * Lq, cs)
+        ok = _block_on_part(st, par, cs, K, Lq, t0 + qq * Lq, g, D, nonlinear, max_events, t, S,
+                            C, u, q, cw, work)  # fmt: skip
+        if not ok:
+            if st[LIMIT_AT] < 0.0:
+                st[LIMIT_AT] = t0
+            return
+        if st[MODE] == OVERTURNED:
+            return
 
 
 @njit(cache=True)
@@ -397,23 +408,8 @@ def rock_kernel(X, k0, R, beta, acc, substeps, h, g, par, states, hist, want_his
                     continue
                 if mode == 0.0 and reach <= g * par[i, P_TAN]:
                     continue
-                parts = int(par[i, P_PARTS])
-                Lq = h / parts
-                for qq in range(parts):
-                    if qq == 0:
-                        for j in range(K + 1):
-                            cs[j] = c[j]
-                    else:
-                        taylor_shift(c, K, qq * Lq, cs)
-                    ok = _block_on_part(states[i], par[i], cs, K, Lq, t0 + qq * Lq, g, D,
-                                        nonlinear, max_events, t, S, C, u, q, cw,
-                                        work)  # fmt: skip
-                    if not ok:
-                        if states[i, LIMIT_AT] < 0.0:
-                            states[i, LIMIT_AT] = t0
-                        break
-                    if states[i, MODE] == OVERTURNED:
-                        break
+                block_through(states[i], par[i], c, K, h, int(par[i, P_PARTS]), t0, g, D,
+                              nonlinear, max_events, cs, t, S, C, u, q, cw, work)  # fmt: skip
             if want_hist and rr == substeps - 1:
                 for i in range(nobj):
                     if states[i, MODE] == OVERTURNED:

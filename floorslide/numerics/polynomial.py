@@ -348,6 +348,20 @@ def first_rise(c, deg, lo, hi, level, work):
     return _first_rise_isolating(c, deg, lo, hi, level, work)
 
 
+@njit(cache=True, inline="always")
+def rise_within(c, deg, lo, hi, level, work):
+    """:func:`first_rise` of ``p`` above `level` on ``(lo, hi]``, skipped (−1) when the bound
+    ``p(0) + Σ_{j≥1} |c_j| hi^j ≤ level`` shows that ``p`` stays at or below `level` on all of
+    ``[0, hi]`` — valid for any ``lo`` (after an event too, where :func:`first_rise`, starting
+    at ``lo > 0``, applies no such filter itself)."""
+    reach = 0.0
+    for j in range(deg, 0, -1):
+        reach = (reach + abs(c[j])) * hi
+    if c[0] + reach <= level:
+        return -1.0
+    return first_rise(c, deg, lo, hi, level, work)
+
+
 @njit(cache=True)
 def _first_rise_isolating(c, deg, lo, hi, level, work):
     """:func:`first_rise` by rigorous root isolation (any degree; the reference of the closed
