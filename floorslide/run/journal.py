@@ -10,9 +10,11 @@ code; it is validated field by field on load and checked against its SHA-256 dig
     H bytes                               header, JSON (UTF-8)
     the rest                              the arrays' bytes, one after the other
 
-The header is ``{"version": 1, "task_id", "scene_sha256", "digest", "group"}``: the task's id,
-the SHA-256 of the scene's text it was computed for, the digest of its group
-(:func:`floorslide.run.snapshot.digest`) and the group itself, where a group is
+The header is ``{"version": 1, "task_id", "scene_sha256", "digest", "id_sha256", "group"}``:
+the task's id, the SHA-256 of the scene's text it was computed for, the digest of its group
+(:func:`floorslide.run.snapshot.digest`), the SHA-256 of the id and that digest (so that a
+damaged id is refused too: the group's digest does not cover it; entries written before it was
+kept have none and are read as before) and the group itself, where a group is
 ``{"attrs": {name: value}, "groups": {name: group}, "datasets": {name: {"value": value,
 "attrs": {...}}}}`` and a value is ``{"text": [str, ...], "shape": [...]}`` or ``{"dtype":
 "<f8", "shape": [...], "offset": bytes from the start of the arrays, "nbytes": ...}``. Only
@@ -21,6 +23,7 @@ booleans, integers, floats and complex numbers of a fixed size are accepted as a
 
 from __future__ import annotations
 
+import hashlib
 import json
 import math
 import re
@@ -106,15 +109,23 @@ def encode(task_id: str, scene_sha256: str, node: Node) -> bytes:
     """
     blobs: list[bytes] = []
     group = _encode_node(node, blobs, [0])
+    node_digest = digest(node)
     header = {
         "version": VERSION,
         "task_id": task_id,
         "scene_sha256": scene_sha256,
-        "digest": digest(node),
+        "digest": node_digest,
+        "id_sha256": _id_digest(task_id, node_digest),
         "group": group,
     }
     text = json.dumps(header, ensure_ascii=True, allow_nan=False).encode()
     return b"".join([MAGIC, struct.pack("<Q", len(text)), text, *blobs])
+
+
+def _id_digest(task_id: str, node_digest: str) -> str:
+    """SHA-256 of a task's id and its group's digest: what binds the id to the group."""
+    text = f"{task_id}\n{node_digest}".encode("utf-8", "surrogateescape")
+    return hashlib.sha256(text).hexdigest()
 
 
 # --- decoding: every field checked; nothing but numbers and text is ever built -----------
@@ -227,4 +238,9 @@ def decode(data: bytes, scene_sha256: str) -> tuple[str, Node]:
     _need(scene == scene_sha256, "written for another scene")
     node = _decode_node(header.get("group"), memoryview(data)[start + size :], 0)
     _need(digest(node) == header["digest"], "damaged (its digest does not match)")
+    if "id_sha256" in header:
+        _need(
+            header["id_sha256"] == _id_digest(task_id, header["digest"]),
+            "damaged (its task id does not match its digest)",
+        )
     return _name(task_id), node

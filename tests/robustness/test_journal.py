@@ -124,6 +124,34 @@ def test_every_damaged_entry_is_refused_or_read_right(the_plan):
     assert outcomes["refused"] > 350, outcomes
 
 
+def test_a_damaged_task_id_is_refused(the_plan):
+    """The group's digest does not cover the id in the header: a flipped bit there (found by
+    the bit-flip test above: 't00004' read as 't00000') is refused by the id's own digest;
+    an entry written before that digest was kept still reads."""
+    import json
+    import struct
+
+    from floorslide.run.task import run_task
+
+    result = run_task(the_plan.tasks[4])
+    node = task_node(result)
+    data = journal.encode(result.task_id, "a" * 64, node)
+    at = data.index(result.task_id.encode())
+    for bit in range(7):
+        damaged = bytearray(data)
+        damaged[at + len(result.task_id) - 1] ^= 1 << bit
+        with pytest.raises(journal.EntryError):
+            journal.decode(bytes(damaged), "a" * 64)
+    start = len(journal.MAGIC) + 8
+    (size,) = struct.unpack("<Q", data[len(journal.MAGIC) : start])
+    header = json.loads(data[start : start + size])
+    del header["id_sha256"]
+    text = json.dumps(header).encode()
+    old = journal.MAGIC + struct.pack("<Q", len(text)) + text + data[start + size :]
+    tid, got = journal.decode(old, "a" * 64)
+    assert tid == result.task_id and digest(got) == digest(node)
+
+
 @pytest.mark.parametrize("code", [",", "(2,)f8", "O", "V8", "f8,f8", "<U4"])
 def test_a_type_string_other_than_a_plain_number_is_refused(code):
     """NumPy's dtype parser evaluates type strings like ',' (a SyntaxError escaped the
