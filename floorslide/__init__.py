@@ -26,12 +26,14 @@ from floorslide.building import (
 from floorslide.constants import G
 from floorslide.contents import (
     OscillatorResult,
+    PlaneSlideResult,
     RockResult,
     SlideResult,
     response_mode,
     rock,
     slide,
     slide_oscillator,
+    slide_plane,
 )
 from floorslide.errors import (
     FloorslideError,
@@ -46,7 +48,16 @@ from floorslide.errors import (
     UnitsConversionWarning,
     UnitsError,
 )
-from floorslide.records import check_record, measures, process, read_catalog, read_record
+from floorslide.records import (
+    RecordPair,
+    check_record,
+    measures,
+    process,
+    read_catalog,
+    read_pair,
+    read_pairs,
+    read_record,
+)
 from floorslide.report import design_tables, plot_figures, record_table
 from floorslide.spectra import Spectrum, broaden, envelope, response_spectrum
 
@@ -68,6 +79,8 @@ __all__ = [
     "Rayleigh",
     "ShearBuilding",
     "OscillatorResult",
+    "PlaneSlideResult",
+    "RecordPair",
     "RockResult",
     "SlideResult",
     "Spectrum",
@@ -83,8 +96,11 @@ __all__ = [
     "floor_motion",
     "floor_motions",
     "peak_floor_acceleration",
+    "read_pair",
+    "read_pairs",
     "rock",
     "slide",
+    "slide_plane",
     "FloorslideError",
     "FloorslideWarning",
     "IncompleteResultError",

@@ -2,16 +2,19 @@
 and the rocking-or-sliding check."""
 
 from floorslide.contents.oscillator import OscillatorResult, slide_oscillator
+from floorslide.contents.plane import PlaneSlideResult, slide_plane
 from floorslide.contents.rocking import response_mode
 from floorslide.contents.rocking_block import RockResult, rock
 from floorslide.contents.sliding import SlideResult, slide
 
 __all__ = [
     "OscillatorResult",
+    "PlaneSlideResult",
     "RockResult",
     "SlideResult",
     "response_mode",
     "rock",
     "slide",
     "slide_oscillator",
+    "slide_plane",
 ]

@@ -8,6 +8,7 @@ mean offset, trend, clipping, truncation, sampling).
 
 from floorslide.records.catalog import RecordFailure, load_catalog, read_catalog
 from floorslide.records.measures import measures
+from floorslide.records.pairs import RecordPair, make_pair, read_pair, read_pairs
 from floorslide.records.process import process
 from floorslide.records.quality import check_record
 from floorslide.records.read import read_record
@@ -15,6 +16,10 @@ from floorslide.records.units import canonical_units, to_si_factor
 
 __all__ = [
     "RecordFailure",
+    "RecordPair",
+    "make_pair",
+    "read_pair",
+    "read_pairs",
     "canonical_units",
     "check_record",
     "load_catalog",

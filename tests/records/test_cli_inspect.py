@@ -45,11 +45,15 @@ def all_bundled():
 
 
 def test_inspect_reads_every_bundled_record(all_bundled):
-    assert len(all_bundled) == 36
-    assert {Path(row["record"]).name for row in all_bundled} == {
+    # the 36 SLAMMER components and the 10 PEER pairs' 20 components (data/records/pairs)
+    assert len(all_bundled) == 56
+    slammer = [row for row in all_bundled if Path(row["record"]).parent.name == "slammer"]
+    pairs = [row for row in all_bundled if Path(row["record"]).parent.name == "pairs"]
+    assert len(pairs) == 20 and {row["format"] for row in pairs} == {"AT2"}
+    assert {Path(row["record"]).name for row in slammer} == {
         p.name for p in SLAMMER.glob("*.txt")
     }
-    for row in all_bundled:
+    for row in slammer:
         assert set(row) == KEYS
         assert row["format"] == "text"  # the name --format takes, not the plugin FSTEXT
         assert row["pga"] == pytest.approx(row["pga_g"] * 9.80665, rel=1e-15)
@@ -69,13 +73,14 @@ def test_inspect_values_are_those_of_the_api(all_bundled):
 def test_shell_glob_and_explicit_files_read_each_record_once(all_bundled):
     """``floorslide inspect data/records/*`` and ``data/records/slammer/*``: the catalog, the
     files it lists (not read twice) and PROVENANCE.md (skipped)."""
-    for pattern in ("data/records/*", "data/records/slammer/*"):
+    for pattern, n in (("data/records/*", 56), ("data/records/slammer/*", 36)):
         paths = sorted(glob(str(ROOT / pattern)))
         result = run("--json", *paths)
         assert result.exit_code == 0, result.stderr
         rows = json.loads(result.stdout)
-        assert len(rows) == 36
-        assert sorted(r["pga"] for r in rows) == sorted(r["pga"] for r in all_bundled)
+        assert len(rows) == n
+        expect = [r["pga"] for r in all_bundled if n == 56 or "/slammer/" in r["record"]]
+        assert sorted(r["pga"] for r in rows) == sorted(expect)
     # a file given both alone and through its catalog is read once, through the catalog
     result = run("--json", str(SLAMMER / ELC_FILE), str(SLAMMER / "index.csv"))
     assert len(json.loads(result.stdout)) == 36

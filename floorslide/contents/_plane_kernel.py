@@ -1,0 +1,406 @@
+"""Compiled kernel of rigid blocks sliding in the plane: isotropic Coulomb friction under two
+horizontal components, exact to rounding.
+
+While a block slides, ``v' = −a(t) − mu_k·g·v/|v|`` (``v`` its velocity relative to the floor,
+``a`` the floor's absolute acceleration, both 2-vectors). No closed form exists, so each slip
+phase is integrated by its Taylor series (automatic differentiation: Jorba & Zou 2005) on the
+floor's exact in-step polynomials: with ``r = |v|`` and ``w = v/r``, the recurrences
+``r_k = (Σ_{j=0}^{k} v_j·v_{k−j} − Σ_{j=1}^{k−1} r_j r_{k−j})/(2 r_0)``,
+``w_k = (v_k − Σ_{j=1}^{k} r_j w_{k−j})/r_0`` and ``(k+1) v_{k+1} = −a_k − mu_k g w_k`` give the
+coefficients to a degree ``D`` whose terms have decayed below rounding on the step taken (step
+size from the coefficients' decay, Jorba & Zou's rule ``h = ρ/e²``). From rest the series is
+singular (``w`` undefined at ``v = 0``): the phase starts as ``v = τ^m y`` — ``m = 1`` when the
+floor is beyond the kinetic level (``|a₀| > mu_k g``: ``y₀ = −(|a₀| − mu_k g)â₀``), ``m = 2`` at a
+breakaway with ``mu_s = mu_k`` (``|a₀| = mu_k g``: ``y₀ = ½(ȧ₀·â₀)·(−â₀)``) — and the same
+recurrences, split along ``w₀`` and across it, give ``y``'s coefficients explicitly.
+
+A stop is the first root of the analytic ``r(τ)`` (it crosses zero; ``|v|`` only touches it),
+located by rigorous root isolation on its series; there the block sticks if ``|a| ≤ mu_b g``,
+else it slides on at once. A breakaway is the first instant ``|a|² > (mu_b g)²``, a polynomial
+of the floor's coefficients. ``mu_b = max(mu_s, mu_k)``.
+
+References
+----------
+Jorba, À., Zou, M. (2005). A software package for the numerical integration of ODEs by means of
+high-order Taylor methods. *Experimental Mathematics* 14(1), 99–117.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from floorslide._jit import njit
+from floorslide.building._instep import substep_inputs, taylor_coefficients
+from floorslide.numerics.polynomial import max_abs_on, poly_val, rise_within, scratch, taylor_shift
+
+# columns of a block's state
+MODE, UX, UY, VX, VY, PEAK, T_PEAK, ANGLE, SLIDE_TIME, SLIPS, STOPS, LIMIT_AT, START = range(13)
+"""Mode (0 stuck, 1 sliding), the slide u and velocity v (2-vectors), peak |u|, its time and
+direction (rad from h1 towards h2), time sliding, breakaways from stick, stops, start of the
+first sub-step where the event limit was reached (−1: never), and the order ``m`` of the current
+slip phase's start from rest (0: from a moving state)."""
+NCOL = 13
+MAX_EVENTS = 10000
+"""Most events (stops, breakaways, restarts) of one block inside one sub-step."""
+EVENT_GAP = 1e-12
+"""Shortest time between two events, as a fraction of the sub-step."""
+STOP_SPEED = 1e-12
+"""A sliding speed at or below ``STOP_SPEED·(|a| + mu_k g)·h`` (``h`` the sub-step) is a stop:
+the direction of a velocity that small turns on a time scale below rounding (near a stop with a
+rounding-level sideways velocity the series' radius shrinks with the speed, and the steps would
+crawl); it is the 2-D form of the 1-D solver's stop at zero velocity."""
+
+
+@njit(cache=True)
+def slip_series(a, K, vx, vy, m, mug, D, y, rho, w):
+    """Taylor coefficients ``y[0..D]`` (``(D+1, 2)``) of a slip phase's velocity about its
+    current point, ``v(τ) = τ^m Σ_k y_k τ^k``, and those of ``ρ = |y|`` (``rho``; ``w`` =
+    ``y/ρ``, scratch), under the floor acceleration with coefficients ``a[0..K]`` (``(K+1, 2)``)
+    there. ``m = 0``: from the velocity ``(vx, vy) ≠ 0``; ``m = 1``: from rest with
+    ``|a₀| > mug``; ``m = 2``: from rest at a breakaway with ``|a₀| = mug`` and ``|a|`` rising.
+    Returns False when the start is degenerate (``ρ₀ ≤ 0``)."""
+    for k in range(D + 1):
+        y[k, 0] = 0.0
+        y[k, 1] = 0.0
+        rho[k] = 0.0
+        w[k, 0] = 0.0
+        w[k, 1] = 0.0
+    if m == 0:
+        y[0, 0], y[0, 1] = vx, vy
+        rho[0] = np.hypot(vx, vy)
+        if not rho[0] > 0.0:
+            return False
+        w[0, 0], w[0, 1] = vx / rho[0], vy / rho[0]
+        for k in range(D):
+            if k > 0:
+                rk = 0.0
+                for j in range(1, k):
+                    rk += y[j, 0] * y[k - j, 0] + y[j, 1] * y[k - j, 1] - rho[j] * rho[k - j]
+                rk = rk / (2.0 * rho[0]) + w[0, 0] * y[k, 0] + w[0, 1] * y[k, 1]
+                rho[k] = rk
+                sx, sy = 0.0, 0.0
+                for j in range(1, k + 1):
+                    sx += rho[j] * w[k - j, 0]
+                    sy += rho[j] * w[k - j, 1]
+                w[k, 0] = (y[k, 0] - sx) / rho[0]
+                w[k, 1] = (y[k, 1] - sy) / rho[0]
+            ax = a[k, 0] if k <= K else 0.0
+            ay = a[k, 1] if k <= K else 0.0
+            y[k + 1, 0] = (-ax - mug * w[k, 0]) / (k + 1)
+            y[k + 1, 1] = (-ay - mug * w[k, 1]) / (k + 1)
+        # ρ_D, for the stop search over the whole degree
+        rk = 0.0
+        for j in range(1, D):
+            rk += y[j, 0] * y[D - j, 0] + y[j, 1] * y[D - j, 1] - rho[j] * rho[D - j]
+        rho[D] = rk / (2.0 * rho[0]) + w[0, 0] * y[D, 0] + w[0, 1] * y[D, 1]
+        return True
+    n0 = np.hypot(a[0, 0], a[0, 1])
+    if not n0 > 0.0:
+        return False
+    w0x, w0y = -a[0, 0] / n0, -a[0, 1] / n0
+    w[0, 0], w[0, 1] = w0x, w0y
+    if m == 1:
+        rho[0] = n0 - mug
+        if not rho[0] > 0.0:
+            return False
+        y[0, 0], y[0, 1] = rho[0] * w0x, rho[0] * w0y
+        for k in range(1, D + 1):
+            rk = 0.0
+            for j in range(1, k):
+                rk += y[j, 0] * y[k - j, 0] + y[j, 1] * y[k - j, 1] - rho[j] * rho[k - j]
+            rk /= 2.0 * rho[0]
+            sx, sy = 0.0, 0.0
+            for j in range(1, k):
+                sx += rho[j] * w[k - j, 0]
+                sy += rho[j] * w[k - j, 1]
+            ax = a[k, 0] if k <= K else 0.0
+            ay = a[k, 1] if k <= K else 0.0
+            hx = -ax + mug * (rk * w0x + sx) / rho[0]
+            hy = -ay + mug * (rk * w0y + sy) / rho[0]
+            par = (hx * w0x + hy * w0y) / (k + 1)
+            px, py = hx - (hx * w0x + hy * w0y) * w0x, hy - (hx * w0x + hy * w0y) * w0y
+            f = 1.0 / (k + 1 + mug / rho[0])
+            y[k, 0] = par * w0x + px * f
+            y[k, 1] = par * w0y + py * f
+            rho[k] = w0x * y[k, 0] + w0y * y[k, 1] + rk
+            w[k, 0] = (y[k, 0] - rho[k] * w0x - sx) / rho[0]
+            w[k, 1] = (y[k, 1] - rho[k] * w0y - sy) / rho[0]
+        return True
+    # m == 2: y₀ = ρ₀ w₀ with ρ₀ = ½ ȧ₀·â₀; order k fixes y_{k−1} along w₀ and y_k across it
+    a1x = a[1, 0] if K >= 1 else 0.0
+    a1y = a[1, 1] if K >= 1 else 0.0
+    rho[0] = -0.5 * (a1x * w0x + a1y * w0y)
+    if not rho[0] > 0.0:
+        return False
+    y[0, 0], y[0, 1] = rho[0] * w0x, rho[0] * w0y
+    d = a1x * w0x + a1y * w0y
+    y[1, 0] = -rho[0] * (a1x - d * w0x) / mug
+    y[1, 1] = -rho[0] * (a1y - d * w0y) / mug
+    for k in range(2, D + 2):
+        # a. w_{k−1} (independent of y_{k−1}'s part along w₀) and ρ_{k−1} without that part
+        rk1 = 0.0
+        for j in range(1, k - 1):
+            rk1 += y[j, 0] * y[k - 1 - j, 0] + y[j, 1] * y[k - 1 - j, 1] - rho[j] * rho[k - 1 - j]
+        rk1 /= 2.0 * rho[0]
+        dpar = y[k - 1, 0] * w0x + y[k - 1, 1] * w0y
+        rho[k - 1] = dpar + rk1
+        sx, sy = 0.0, 0.0
+        for j in range(1, k - 1):
+            sx += rho[j] * w[k - 1 - j, 0]
+            sy += rho[j] * w[k - 1 - j, 1]
+        w[k - 1, 0] = (y[k - 1, 0] - dpar * w0x - rk1 * w0x - sx) / rho[0]
+        w[k - 1, 1] = (y[k - 1, 1] - dpar * w0y - rk1 * w0y - sy) / rho[0]
+        # b, c. R_k and S_k·w₀ (y_{k−1}'s part along w₀ cancels in them)
+        rk = 0.0
+        for j in range(1, k):
+            rk += y[j, 0] * y[k - j, 0] + y[j, 1] * y[k - j, 1] - rho[j] * rho[k - j]
+        rk /= 2.0 * rho[0]
+        sx, sy = 0.0, 0.0
+        for j in range(1, k):
+            sx += rho[j] * w[k - j, 0]
+            sy += rho[j] * w[k - j, 1]
+        wk_par = (-rk - (sx * w0x + sy * w0y)) / rho[0]
+        # d. y_{k−1} along w₀
+        ax = a[k, 0] if k <= K else 0.0
+        ay = a[k, 1] if k <= K else 0.0
+        ypar = (-(ax * w0x + ay * w0y) - mug * wk_par) / (k + 1)
+        perp_x = y[k - 1, 0] - dpar * w0x
+        perp_y = y[k - 1, 1] - dpar * w0y
+        y[k - 1, 0] = perp_x + ypar * w0x
+        y[k - 1, 1] = perp_y + ypar * w0y
+        rho[k - 1] = ypar + rk1
+        if k > D:
+            break
+        # e. y_k across w₀
+        sx, sy = 0.0, 0.0
+        for j in range(1, k):
+            sx += rho[j] * w[k - j, 0]
+            sy += rho[j] * w[k - j, 1]
+        spar = sx * w0x + sy * w0y
+        dax = ax - (ax * w0x + ay * w0y) * w0x
+        day = ay - (ax * w0x + ay * w0y) * w0y
+        y[k, 0] = (sx - spar * w0x) + rho[0] / mug * (-dax - (k + 1) * perp_x)
+        y[k, 1] = (sy - spar * w0y) + rho[0] / mug * (-day - (k + 1) * perp_y)
+    return True
+
+
+@njit(cache=True)
+def _floor_square(ax, ay, K, q):
+    """Coefficients of ``|a|² = a_x² + a_y²`` (degree 2K) into ``q``."""
+    for j in range(2 * K + 1):
+        q[j] = 0.0
+    for i in range(K + 1):
+        for j in range(K + 1):
+            q[i + j] += ax[i] * ax[j] + ay[i] * ay[j]
+
+
+@njit(cache=True)
+def _step_size(y, D, L):
+    """Jorba & Zou's step: the largest ``H ≤ L`` on which the last two terms of the series are
+    below 1e-17 of its first three (two passes, the scale taken on the step itself)."""
+    H = L
+    for _ in range(2):
+        scale = 0.0
+        hk = 1.0
+        for k in range(3):
+            scale += np.hypot(y[k, 0], y[k, 1]) * hk
+            hk *= H
+        for k in (D - 1, D):
+            nk = np.hypot(y[k, 0], y[k, 1])
+            if nk > 0.0 and scale > 0.0:
+                H = min(H, (1e-17 * scale / nk) ** (1.0 / k))
+    return H
+
+
+@njit(cache=True)
+def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w, q, ux, uy,
+                   work, max_events):  # fmt: skip
+    """Advance one block through a sub-step of length ``h`` from time ``t0``, the floor's
+    acceleration there ``(ax0, ay0)`` (coefficients, degree K). False when the event limit
+    was reached."""
+    level = mub * g
+    mug = muk * g
+    s0 = 0.0
+    fresh = False
+    events = 0
+    while s0 < h:
+        L = h - s0
+        lo = EVENT_GAP * h if fresh else 0.0
+        if s0 > 0.0:
+            taylor_shift(ax0, K, s0, ax)
+            taylor_shift(ay0, K, s0, ay)
+        else:
+            for j in range(K + 1):
+                ax[j] = ax0[j]
+                ay[j] = ay0[j]
+        if st[MODE] == 0.0:
+            _floor_square(ax, ay, K, q)
+            tb = rise_within(q, 2 * K, lo, L, level * level, work)
+            if tb < 0.0:
+                return True
+            s0 += tb
+            st[MODE] = 1.0
+            st[SLIPS] += 1.0
+            st[VX] = 0.0
+            st[VY] = 0.0
+            st[START] = 2.0 if mub == muk else 1.0
+            fresh = True
+        else:
+            m = int(st[START])
+            for k in range(K + 1):
+                A[k, 0] = ax[k]
+                A[k, 1] = ay[k]
+            if not slip_series(A, K, st[VX], st[VY], m, mug, D, y, rho, w):
+                # a degenerate start (the floor exactly at the kinetic level and not rising):
+                # no slip — the block stays at rest here
+                st[MODE] = 0.0
+                st[VX] = 0.0
+                st[VY] = 0.0
+                st[START] = 0.0
+                fresh = True
+                events += 1
+                if events > max_events:
+                    return False
+                continue
+            H = _step_size(y, D, L)
+            if m == 0 and rho[0] <= STOP_SPEED * (np.hypot(ax[0], ay[0]) + mug) * h:
+                # the speed within rounding of zero: a stop here (a velocity that passes that
+                # close to zero turns on a time scale below rounding; steps would crawl)
+                ts = 0.0
+            else:
+                # a stop: the first root of ρ (r = τ^m ρ crosses zero there)
+                for k in range(D + 1):
+                    q[k] = -rho[k]
+                ts = rise_within(q, D, 0.0, H, 0.0, work)
+            tend = ts if ts >= 0.0 else H
+            # the slide on the step: u(τ) = u0 + Σ y_k τ^{k+m+1}/(k+m+1)
+            deg = D + m + 1
+            for k in range(deg + 1):
+                ux[k] = 0.0
+                uy[k] = 0.0
+            ux[0] = st[UX]
+            uy[0] = st[UY]
+            for k in range(D + 1):
+                ux[k + m + 1] = y[k, 0] / (k + m + 1)
+                uy[k + m + 1] = y[k, 1] / (k + m + 1)
+            # peak |u|: a bound first, then |u|² exactly
+            bx = 0.0
+            by = 0.0
+            for k in range(deg, -1, -1):
+                bx = bx * tend + abs(ux[k])
+                by = by * tend + abs(uy[k])
+            if bx * bx + by * by > st[PEAK] * st[PEAK]:
+                for j in range(2 * deg + 1):
+                    q[j] = 0.0
+                for i in range(deg + 1):
+                    for j in range(deg + 1):
+                        q[i + j] += ux[i] * ux[j] + uy[i] * uy[j]
+                v2, tv = max_abs_on(q, 2 * deg, tend, st[PEAK] * st[PEAK], work)
+                if v2 > st[PEAK] * st[PEAK]:
+                    st[PEAK] = np.sqrt(v2)
+                    st[T_PEAK] = t0 + s0 + tv
+                    st[ANGLE] = np.arctan2(poly_val(uy, deg, tv), poly_val(ux, deg, tv))
+            st[UX] = poly_val(ux, deg, tend)
+            st[UY] = poly_val(uy, deg, tend)
+            st[SLIDE_TIME] += tend
+            s0 += tend
+            if ts >= 0.0:
+                st[VX] = 0.0
+                st[VY] = 0.0
+                st[STOPS] += 1.0
+                ex = poly_val(ax0, K, s0)
+                ey = poly_val(ay0, K, s0)
+                if ex * ex + ey * ey <= level * level:
+                    st[MODE] = 0.0
+                    st[START] = 0.0
+                else:
+                    st[START] = 1.0  # slides on at once, from rest, beyond the kinetic level
+                fresh = True
+                events += 1
+                if events > max_events:
+                    return False
+            else:
+                events += 1
+                if events > max_events:
+                    return False
+                tm = tend**m
+                vx = 0.0
+                vy = 0.0
+                for k in range(D, -1, -1):
+                    vx = vx * tend + y[k, 0]
+                    vy = vy * tend + y[k, 1]
+                st[VX] = vx * tm
+                st[VY] = vy * tm
+                st[START] = 0.0
+                fresh = False
+    return True
+
+
+@njit(cache=True)
+def plane_kernel(X1, X2, k0, R1, b1, R2, b2, acc1, acc2, substeps, h, g, MU, states, hist,
+                 want_hist, D, max_events):  # fmt: skip
+    """Rigid blocks sliding in the plane on one floor, exact to rounding for the
+    piecewise-linear ground records of the two directions.
+
+    ``X1, X2``: one chunk each of the floor motions of direction 1 (driven by ``acc1``) and 2
+    (by ``acc2``) from record step ``k0``, on the same sub-steps
+    (:meth:`floorslide.building.exact_motion.FloorMotion.chunks`); ``R1, b1`` / ``R2, b2``
+    their Taylor rows of the floor's absolute acceleration. ``MU = [mu_b; mu_k]`` per block;
+    ``states`` ``(n, NCOL)`` in/out; ``hist[i, k] = (u_x, u_y)`` at the samples when
+    ``want_hist``."""
+    K = max(R1.shape[0], R2.shape[0]) - 1
+    nobj = MU.shape[1]
+    nsteps = (X1.shape[0] - 1) // substeps
+    degmax = 2 * (D + 3) + 2
+    work = scratch(max(degmax, 2 * K + 2))
+    c1 = np.zeros(K + 1)
+    c2 = np.zeros(K + 1)
+    ax = np.zeros(K + 1)
+    ay = np.zeros(K + 1)
+    A = np.zeros((K + 1, 2))
+    y = np.zeros((D + 1, 2))
+    rho = np.zeros(D + 1)
+    w = np.zeros((D + 1, 2))
+    q = np.zeros(degmax + 1)
+    ux = np.zeros(D + 4)
+    uy = np.zeros(D + 4)
+    if k0 == 0:
+        # a floor beyond the breakaway level at t = 0 sets the block sliding from the start
+        a1 = b1[0] * acc1[0]
+        a2 = b2[0] * acc2[0]
+        for i in range(nobj):
+            if states[i, MODE] == 0.0 and a1 * a1 + a2 * a2 > (MU[0, i] * g) ** 2:
+                states[i, MODE] = 1.0
+                states[i, SLIPS] += 1.0
+                states[i, START] = 1.0
+            if want_hist:
+                hist[i, 0, 0] = states[i, UX]
+                hist[i, 0, 1] = states[i, UY]
+    for kk in range(nsteps):
+        k = k0 + kk
+        s1 = (acc1[k + 1] - acc1[k]) / (substeps * h)
+        s2 = (acc2[k + 1] - acc2[k]) / (substeps * h)
+        for r in range(substeps):
+            t0 = (k * substeps + r) * h
+            a1, _ = substep_inputs(acc1[k], acc1[k + 1], r, substeps)
+            a2, _ = substep_inputs(acc2[k], acc2[k + 1], r, substeps)
+            for j in range(K + 1):
+                c1[j] = 0.0
+                c2[j] = 0.0
+            taylor_coefficients(R1, b1, X1[kk * substeps + r], a1, s1, c1)
+            taylor_coefficients(R2, b2, X2[kk * substeps + r], a2, s2, c2)
+            reach = 0.0
+            for j in range(K, -1, -1):
+                reach = reach * h + np.hypot(c1[j], c2[j])
+            for i in range(nobj):
+                st = states[i]
+                if st[MODE] == 0.0 and reach <= MU[0, i] * g:
+                    continue  # |a| ≤ Σ_j |c_j| h^j stays below the breakaway level
+                ok = _block_substep(st, c1, c2, K, h, t0, g, MU[0, i], MU[1, i], D, ax, ay, A, y,
+                                    rho, w, q, ux, uy, work, max_events)  # fmt: skip
+                if not ok and st[LIMIT_AT] < 0.0:
+                    st[LIMIT_AT] = t0
+            if want_hist and r == substeps - 1:
+                for i in range(nobj):
+                    hist[i, k + 1, 0] = states[i, UX]
+                    hist[i, k + 1, 1] = states[i, UY]

@@ -1,0 +1,201 @@
+"""Rigid blocks sliding in the plane under two horizontal components (isotropic Coulomb
+friction): the exact-to-rounding solver and its comparison with the 1-D slides.
+
+Conventions (docs/design.md §10d): the plane's frame has ``x`` along the pair's ``h1`` and ``y``
+along ``h2``; ``u`` is the block's displacement relative to its floor; while sliding
+``u'' = −a(t) − mu_k·g·u'/|u'|``; a block at rest breaks away when ``|a| > max(mu_s, mu_k)·g``
+(the magnitude of the floor's horizontal acceleration). Running each component alone and taking
+the larger slide is not the same: friction couples the directions (the friction circle).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from floorslide.building.exact_motion import building_motion
+from floorslide.constants import G
+from floorslide.contents import _plane_kernel as pk
+from floorslide.contents.sliding import friction_pairs, slide
+from floorslide.errors import ModelError, SolverLimitError
+from floorslide.records.pairs import RecordPair, make_pair
+
+DEGREE = 20
+"""Degree of the Taylor series of a slip phase (steps are sized so that its last terms are below
+1e-17 of its first: Jorba & Zou 2005)."""
+
+
+@dataclass(frozen=True)
+class PlaneSlideResult:
+    """Sliding in the plane, one entry per friction pair (mu_k, mu_s).
+
+    Attributes
+    ----------
+    mu_k, mu_s
+        Kinetic and static friction coefficients.
+    peak_slide
+        ``max |u|`` found inside steps, m.
+    peak_angle
+        Direction of the slide at its peak, degrees from ``h1`` towards ``h2``.
+    time_of_peak
+        When, s.
+    residual
+        ``u`` at the end of the record, ``(n, 2)``, m.
+    slide_fraction
+        Fraction of the record spent sliding.
+    slip_phases, stops
+        Breakaways from rest, and stops.
+    peak_slide_1d
+        The 1-D slides of each component alone (``(n, 2)``, m; :func:`floorslide.slide`).
+    ratio_2d_1d
+        ``peak_slide / max(peak_slide_1d)`` (NaN where both 1-D slides are 0).
+    duration
+        Duration of the record, s.
+    u
+        ``(n, npts, 2)`` slides at the samples, when requested.
+    notes
+        What was done to the components (padding).
+    """
+
+    mu_k: np.ndarray
+    mu_s: np.ndarray
+    peak_slide: np.ndarray
+    peak_angle: np.ndarray
+    time_of_peak: np.ndarray
+    residual: np.ndarray
+    slide_fraction: np.ndarray
+    slip_phases: np.ndarray
+    stops: np.ndarray
+    peak_slide_1d: np.ndarray
+    ratio_2d_1d: np.ndarray
+    duration: float
+    u: np.ndarray | None = field(default=None, repr=False)
+    notes: tuple[str, ...] = ()
+
+
+def _as_pair(acc, dt) -> RecordPair:
+    if isinstance(acc, RecordPair):
+        if dt is not None and not np.isclose(float(dt), acc.dt, rtol=1e-9, atol=0.0):
+            raise ModelError(f"dt={dt} differs from the pair's dt={acc.dt}", "dt")
+        return acc
+    if dt is None:
+        raise ModelError("dt is required with arrays", "dt")
+    if isinstance(acc, tuple | list) and len(acc) == 2:
+        return make_pair(acc[0], acc[1], float(dt))
+    arr = np.asarray(acc, dtype=float)
+    if arr.ndim == 2 and arr.shape[0] == 2:
+        return make_pair(arr[0], arr[1], float(dt))
+    raise ModelError(
+        "give the two horizontal components: a RecordPair, (a_x, a_y) or an array (2, npts)",
+        "acc",
+    )
+
+
+def slide_plane(
+    acc,
+    dt: float | None = None,
+    mu_k=None,
+    mu_s=None,
+    *,
+    building=None,
+    floor: int | None = None,
+    histories: bool = False,
+    compare_1d: bool = True,
+) -> PlaneSlideResult:
+    """Peak slide, its direction and the residual of rigid blocks sliding in the plane (isotropic
+    Coulomb friction) under two horizontal components.
+
+    Parameters
+    ----------
+    acc
+        A :class:`~floorslide.records.pairs.RecordPair`, ``(a_x, a_y)`` or an array
+        ``(2, npts)`` of ground accelerations (m/s²) along ``h1`` and ``h2``.
+    dt
+        Time step, s (with arrays).
+    mu_k, mu_s
+        Kinetic and static coefficients (as :func:`~floorslide.slide`); many values are advanced
+        in one compiled loop.
+    building, floor
+        Put the blocks on `floor` of a linear `building` (the same model in both directions;
+        uncoupled, no torsion): each direction's floor motion is its exact response to that
+        component.
+    histories
+        Also return ``u`` at the samples.
+    compare_1d
+        Also slide each component alone (:func:`~floorslide.slide`) for ``ratio_2d_1d``.
+
+    Returns
+    -------
+    PlaneSlideResult
+
+    Raises
+    ------
+    ModelError
+        Invalid friction, floor or input.
+    SolverLimitError
+        More than :data:`~floorslide.contents._plane_kernel.MAX_EVENTS` stops and breakaways of
+        one block inside one sub-step.
+
+    References
+    ----------
+    Jorba, À., Zou, M. (2005). A software package for the numerical integration of ODEs by means
+    of high-order Taylor methods. *Experimental Mathematics* 14(1), 99–117.
+    """
+    pair = _as_pair(acc, dt)
+    if mu_k is None:
+        raise ModelError("mu_k (the kinetic friction coefficient or coefficients) is required")
+    mk, ms = friction_pairs(mu_k, mu_s)
+    if building is None and floor not in (None, 0):
+        raise ModelError("floor= needs building=", "floor")
+    if building is not None and floor is None:
+        raise ModelError("floor is required with building=", "floor")
+    f = 0 if building is None else int(floor)
+    fm1 = building_motion(building, pair.h1, pair.dt, max_bytes=0, copy=False).floor(f)
+    fm2 = building_motion(building, pair.h2, pair.dt, max_bytes=0, copy=False).floor(f)
+    if fm1.substeps != fm2.substeps:  # pragma: no cover - one building model in both directions
+        raise ModelError("the two directions' floor motions have different sub-steps", "building")
+    MU = np.vstack([np.maximum(mk, ms), mk])
+    states = np.zeros((mk.size, pk.NCOL))
+    states[:, pk.LIMIT_AT] = -1.0
+    states[:, pk.T_PEAK] = np.nan
+    npts = pair.npts
+    hist = np.zeros((mk.size, npts, 2) if histories else (0, 0, 2))
+    for (k0, X1), (_, X2) in zip(fm1.chunks(), fm2.chunks(), strict=True):
+        pk.plane_kernel(
+            X1, X2, k0, fm1.R, fm1.beta, fm2.R, fm2.beta, pair.h1, pair.h2, fm1.substeps, fm1.h,
+            G, MU, states, hist, histories, DEGREE, pk.MAX_EVENTS,
+        )  # fmt: skip
+    hit = np.flatnonzero(states[:, pk.LIMIT_AT] >= 0.0)
+    if hit.size:
+        i = int(hit[0])
+        raise SolverLimitError(
+            f"slide_plane: more than {pk.MAX_EVENTS} stops and breakaways inside one sub-step at "
+            f"t = {states[i, pk.LIMIT_AT]:.6g} s (mu_k = {mk[i]:g}): stick-slip chatter the "
+            "solver cannot resolve",
+            "mu_k",
+        )
+    one_d = np.full((mk.size, 2), np.nan)
+    if compare_1d:
+        one_d[:, 0] = slide(fm1, None, mk, ms).peak_slide
+        one_d[:, 1] = slide(fm2, None, mk, ms).peak_slide
+    big = one_d.max(axis=1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = np.where(big > 0, states[:, pk.PEAK] / big, np.nan)
+    duration = (npts - 1) * pair.dt
+    return PlaneSlideResult(
+        mu_k=mk,
+        mu_s=ms,
+        peak_slide=states[:, pk.PEAK].copy(),
+        peak_angle=np.degrees(states[:, pk.ANGLE]),
+        time_of_peak=states[:, pk.T_PEAK].copy(),
+        residual=states[:, [pk.UX, pk.UY]].copy(),
+        slide_fraction=states[:, pk.SLIDE_TIME] / duration if duration > 0 else np.zeros(mk.size),
+        slip_phases=states[:, pk.SLIPS].astype(int),
+        stops=states[:, pk.STOPS].astype(int),
+        peak_slide_1d=one_d,
+        ratio_2d_1d=ratio,
+        duration=duration,
+        u=hist if histories else None,
+        notes=pair.notes,
+    )
