@@ -50,9 +50,7 @@ def test_inspect_reads_every_bundled_record(all_bundled):
     slammer = [row for row in all_bundled if Path(row["record"]).parent.name == "slammer"]
     pairs = [row for row in all_bundled if Path(row["record"]).parent.name == "pairs"]
     assert len(pairs) == 20 and {row["format"] for row in pairs} == {"AT2"}
-    assert {Path(row["record"]).name for row in slammer} == {
-        p.name for p in SLAMMER.glob("*.txt")
-    }
+    assert {Path(row["record"]).name for row in slammer} == {p.name for p in SLAMMER.glob("*.txt")}
     for row in slammer:
         assert set(row) == KEYS
         assert row["format"] == "text"  # the name --format takes, not the plugin FSTEXT
