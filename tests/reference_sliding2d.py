@@ -267,6 +267,7 @@ def slide2d_reference(
     events: list[tuple[float, str]] = []
     mode = _STICK
     refused = False  # a tie breakaway just refused (a touch): do not retry at once
+    switched = False  # a Radau segment just reached the switch level: DOP853 next
     from_stop = False  # the slide from rest follows a stop (not a breakaway from stick)
 
     def note_peak(t_abs: float, ux: float, uy: float) -> None:
@@ -415,7 +416,8 @@ def slide2d_reference(
             y0 = np.empty(N)
             y0[:n] = x
             y0[UX], y0[UY], y0[P], y0[Q], y0[WF], y0[WA] = u[0], u[1], r0, 0.0, wf, wa
-            radau = muk > 0.0 and r0 < r_switch
+            radau = muk > 0.0 and r0 < r_switch and not switched
+            switched = False
 
             def rhs(tt, yy, dx=dx, dy=dy, acc=acc, xdot=xdot):
                 ax, ay = acc(tt, yy[:n])
@@ -472,14 +474,18 @@ def slide2d_reference(
                 vy = yy[P] * dy + yy[Q] * dx
                 return yy[UX] * vx + yy[UY] * vy
 
+            def ev_floor(tt, yy):
+                return math.hypot(yy[P], yy[Q]) - v_stop
+
             def ev_switch(tt, yy):
                 return math.hypot(yy[P], yy[Q]) - r_switch
 
             ev_stop.terminal, ev_stop.direction = True, -1.0
             ev_turn.terminal, ev_turn.direction = True, -1.0
             ev_peak.terminal, ev_peak.direction = False, -1.0
+            ev_floor.terminal, ev_floor.direction = True, -1.0
             ev_switch.terminal, ev_switch.direction = True, 1.0
-            evs = [ev_stop, ev_turn, ev_peak] + ([ev_switch] if radau else [])
+            evs = [ev_stop, ev_turn, ev_peak, ev_floor] + ([ev_switch] if radau else [])
             at = np.full(N, atol)
             at[P] = at[Q] = min(atol, 1e-3 * r0)
             kw = dict(rtol=rtol, atol=at)
@@ -509,16 +515,18 @@ def slide2d_reference(
             note_peak(t_k + t, u[0], u[1])
             if sol.status != 1:
                 continue
-            hit = [bool(sol.t_events[i].size) for i in (0, 1)]
+            hit = [bool(sol.t_events[i].size) for i in (0, 1, 3)]
             spd = math.hypot(p, q)
-            if hit[1] and not hit[0] and spd > v_stop:
+            if hit[1] and not hit[0] and not hit[2] and spd > v_stop:
                 turns += 1
                 count_event()
                 continue
-            if not hit[0] and not hit[1]:
-                continue  # the switch from Radau to DOP853
+            if not any(hit):
+                switched = True  # the switch from Radau to DOP853 (|v| at the level, ± rounding)
+                continue
             # a stop
-            stop_speed_max = max(stop_speed_max, spd)
+            if hit[0]:
+                stop_speed_max = max(stop_speed_max, spd)
             stops += 1
             count_event()
             vel[:] = 0.0

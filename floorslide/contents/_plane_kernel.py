@@ -35,11 +35,14 @@ from floorslide.numerics.polynomial import max_abs_on, poly_val, rise_within, sc
 
 # columns of a block's state
 MODE, UX, UY, VX, VY, PEAK, T_PEAK, ANGLE, SLIDE_TIME, SLIPS, STOPS, LIMIT_AT, START = range(13)
+PATH, WORK_A = 13, 14
 """Mode (0 stuck, 1 sliding), the slide u and velocity v (2-vectors), peak |u|, its time and
 direction (rad from h1 towards h2), time sliding, breakaways from stick, stops, start of the
-first sub-step where the event limit was reached (−1: never), and the order ``m`` of the current
-slip phase's start from rest (0: from a moving state)."""
-NCOL = 13
+first sub-step where the event limit was reached (−1: never), the order ``m`` of the current
+slip phase's start from rest (0: from a moving state), the path slid ``∫|v| dt`` and the work
+of the floor's acceleration ``∫ a·v dt`` (per unit mass: with the friction work
+``mu_k g ∫|v| dt`` they balance the kinetic energy, ``½|v|² = −mu_k g·PATH − WORK_A``)."""
+NCOL = 15
 MAX_EVENTS = 10000
 """Most events (stops, breakaways, restarts) of one block inside one sub-step."""
 EVENT_GAP = 1e-12
@@ -52,7 +55,7 @@ crawl); it is the 2-D form of the 1-D solver's stop at zero velocity."""
 
 
 @njit(cache=True)
-def slip_series(a, K, vx, vy, m, mug, D, y, rho, w):
+def slip_series(a, K, vx, vy, m, mug, D, y, rho, w, L=0.0):
     """Taylor coefficients ``y[0..D]`` (``(D+1, 2)``) of a slip phase's velocity about its
     current point, ``v(τ) = τ^m Σ_k y_k τ^k``, and those of ``ρ = |y|`` (``rho``; ``w`` =
     ``y/ρ``, scratch), under the floor acceleration with coefficients ``a[0..K]`` (``(K+1, 2)``)
@@ -69,7 +72,7 @@ def slip_series(a, K, vx, vy, m, mug, D, y, rho, w):
         y[0, 0], y[0, 1] = vx, vy
         rho[0] = np.hypot(vx, vy)
         if not rho[0] > 0.0:
-            return False
+            return -1
         w[0, 0], w[0, 1] = vx / rho[0], vy / rho[0]
         for k in range(D):
             if k > 0:
@@ -88,21 +91,28 @@ def slip_series(a, K, vx, vy, m, mug, D, y, rho, w):
             ay = a[k, 1] if k <= K else 0.0
             y[k + 1, 0] = (-ax - mug * w[k, 0]) / (k + 1)
             y[k + 1, 1] = (-ay - mug * w[k, 1]) / (k + 1)
+            if L > 0.0 and k + 1 >= 8:
+                scale = rho[0] + np.hypot(y[1, 0], y[1, 1]) * L
+                t1 = np.hypot(y[k, 0], y[k, 1]) * L**k
+                t2 = np.hypot(y[k + 1, 0], y[k + 1, 1]) * L ** (k + 1)
+                if t1 <= 1e-18 * scale and t2 <= 1e-18 * scale:
+                    D = k + 1
+                    break
         # ρ_D, for the stop search over the whole degree
         rk = 0.0
         for j in range(1, D):
             rk += y[j, 0] * y[D - j, 0] + y[j, 1] * y[D - j, 1] - rho[j] * rho[D - j]
         rho[D] = rk / (2.0 * rho[0]) + w[0, 0] * y[D, 0] + w[0, 1] * y[D, 1]
-        return True
+        return D
     n0 = np.hypot(a[0, 0], a[0, 1])
     if not n0 > 0.0:
-        return False
+        return -1
     w0x, w0y = -a[0, 0] / n0, -a[0, 1] / n0
     w[0, 0], w[0, 1] = w0x, w0y
     if m == 1:
         rho[0] = n0 - mug
         if not rho[0] > 0.0:
-            return False
+            return -1
         y[0, 0], y[0, 1] = rho[0] * w0x, rho[0] * w0y
         for k in range(1, D + 1):
             rk = 0.0
@@ -125,13 +135,13 @@ def slip_series(a, K, vx, vy, m, mug, D, y, rho, w):
             rho[k] = w0x * y[k, 0] + w0y * y[k, 1] + rk
             w[k, 0] = (y[k, 0] - rho[k] * w0x - sx) / rho[0]
             w[k, 1] = (y[k, 1] - rho[k] * w0y - sy) / rho[0]
-        return True
+        return D
     # m == 2: y₀ = ρ₀ w₀ with ρ₀ = ½ ȧ₀·â₀; order k fixes y_{k−1} along w₀ and y_k across it
     a1x = a[1, 0] if K >= 1 else 0.0
     a1y = a[1, 1] if K >= 1 else 0.0
     rho[0] = -0.5 * (a1x * w0x + a1y * w0y)
     if not rho[0] > 0.0:
-        return False
+        return -1
     y[0, 0], y[0, 1] = rho[0] * w0x, rho[0] * w0y
     d = a1x * w0x + a1y * w0y
     y[1, 0] = -rho[0] * (a1x - d * w0x) / mug
@@ -181,7 +191,7 @@ def slip_series(a, K, vx, vy, m, mug, D, y, rho, w):
         day = ay - (ax * w0x + ay * w0y) * w0y
         y[k, 0] = (sx - spar * w0x) + rho[0] / mug * (-dax - (k + 1) * perp_x)
         y[k, 1] = (sy - spar * w0y) + rho[0] / mug * (-day - (k + 1) * perp_y)
-    return True
+    return D
 
 
 @njit(cache=True)
@@ -250,7 +260,8 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
             for k in range(K + 1):
                 A[k, 0] = ax[k]
                 A[k, 1] = ay[k]
-            if not slip_series(A, K, st[VX], st[VY], m, mug, D, y, rho, w):
+            De = slip_series(A, K, st[VX], st[VY], m, mug, D, y, rho, w, L)
+            if De < 0:
                 # a degenerate start (the floor exactly at the kinetic level and not rising):
                 # no slip — the block stays at rest here
                 st[MODE] = 0.0
@@ -262,25 +273,25 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
                 if events > max_events:
                     return False
                 continue
-            H = _step_size(y, D, L)
+            H = _step_size(y, De, L)
             if m == 0 and rho[0] <= STOP_SPEED * (np.hypot(ax[0], ay[0]) + mug) * h:
                 # the speed within rounding of zero: a stop here (a velocity that passes that
                 # close to zero turns on a time scale below rounding; steps would crawl)
                 ts = 0.0
             else:
                 # a stop: the first root of ρ (r = τ^m ρ crosses zero there)
-                for k in range(D + 1):
+                for k in range(De + 1):
                     q[k] = -rho[k]
-                ts = rise_within(q, D, 0.0, H, 0.0, work)
+                ts = rise_within(q, De, 0.0, H, 0.0, work)
             tend = ts if ts >= 0.0 else H
             # the slide on the step: u(τ) = u0 + Σ y_k τ^{k+m+1}/(k+m+1)
-            deg = D + m + 1
+            deg = De + m + 1
             for k in range(deg + 1):
                 ux[k] = 0.0
                 uy[k] = 0.0
             ux[0] = st[UX]
             uy[0] = st[UY]
-            for k in range(D + 1):
+            for k in range(De + 1):
                 ux[k + m + 1] = y[k, 0] / (k + m + 1)
                 uy[k + m + 1] = y[k, 1] / (k + m + 1)
             # peak |u|: a bound first, then |u|² exactly
@@ -303,6 +314,18 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
             st[UX] = poly_val(ux, deg, tend)
             st[UY] = poly_val(uy, deg, tend)
             st[SLIDE_TIME] += tend
+            # ∫|v| = ∫ τ^m ρ and ∫ a·v = ∫ τ^m (a·y) over the step, exactly on the series
+            path = 0.0
+            for k in range(De, -1, -1):
+                path = path * tend + rho[k] / (k + m + 1)
+            st[PATH] += path * tend ** (m + 1)
+            work_a = 0.0
+            for n in range(De + K, -1, -1):
+                cn = 0.0
+                for i in range(max(0, n - De), min(K, n) + 1):
+                    cn += ax[i] * y[n - i, 0] + ay[i] * y[n - i, 1]
+                work_a = work_a * tend + cn / (n + m + 1)
+            st[WORK_A] += work_a * tend ** (m + 1)
             s0 += tend
             if ts >= 0.0:
                 st[VX] = 0.0
@@ -326,7 +349,7 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
                 tm = tend**m
                 vx = 0.0
                 vy = 0.0
-                for k in range(D, -1, -1):
+                for k in range(De, -1, -1):
                     vx = vx * tend + y[k, 0]
                     vy = vy * tend + y[k, 1]
                 st[VX] = vx * tm

@@ -50,6 +50,11 @@ class PlaneSlideResult:
         The 1-D slides of each component alone (``(n, 2)``, m; :func:`floorslide.slide`).
     ratio_2d_1d
         ``peak_slide / max(peak_slide_1d)`` (NaN where both 1-D slides are 0).
+    path, work_floor
+        The path slid ``∫|u'| dt`` (m) and the work of the floor's acceleration ``∫ a·u' dt``
+        (m²/s², per unit mass): ``½|u'(end)|² = −mu_k g·path − work_floor`` (energy balance).
+    final_velocity
+        ``u'`` at the end, ``(n, 2)``, m/s.
     duration
         Duration of the record, s.
     u
@@ -69,6 +74,9 @@ class PlaneSlideResult:
     stops: np.ndarray
     peak_slide_1d: np.ndarray
     ratio_2d_1d: np.ndarray
+    path: np.ndarray
+    work_floor: np.ndarray
+    final_velocity: np.ndarray
     duration: float
     u: np.ndarray | None = field(default=None, repr=False)
     notes: tuple[str, ...] = ()
@@ -195,6 +203,9 @@ def slide_plane(
         stops=states[:, pk.STOPS].astype(int),
         peak_slide_1d=one_d,
         ratio_2d_1d=ratio,
+        path=states[:, pk.PATH].copy(),
+        work_floor=states[:, pk.WORK_A].copy(),
+        final_velocity=states[:, [pk.VX, pk.VY]].copy(),
         duration=duration,
         u=hist if histories else None,
         notes=pair.notes,
