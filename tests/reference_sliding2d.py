@@ -70,7 +70,7 @@ from scipy.integrate import solve_ivp
 
 from floorslide.constants import G
 
-MINI_STEP = 1e-9
+MINI_STEP = 1e-7
 """Length (s) of the analytic first step of a slide from rest."""
 
 R_SWITCH_FRACTION = 1.0 / 300.0
@@ -175,6 +175,7 @@ def slide2d_reference(
     rtol: float = 1e-12,
     atol: float = 1e-15,
     max_events: int = 100_000,
+    stiff_method: str = "LSODA",
 ) -> dict:
     """Rigid block sliding in the plane on a floor, by DOP853/Radau step by step with events.
 
@@ -226,6 +227,8 @@ def slide2d_reference(
     npts = acc_x.size
     if npts < 2 or acc_y.size != npts or not dt > 0.0:
         raise ValueError("slide2d_reference: need two records of equal length ≥ 2 and dt > 0")
+    if stiff_method not in ("LSODA", "Radau", "BDF"):
+        raise ValueError(f"slide2d_reference: unknown stiff_method {stiff_method!r}")
     if mu_k < 0.0:
         raise ValueError("slide2d_reference: mu_k must be ≥ 0")
     if accel is not None and floor_systems is not None:
@@ -399,10 +402,16 @@ def slide2d_reference(
                 if n:  # Heun's step, second order
                     xd = xdot(t, x)
                     x = x + 0.5 * tau * (xd + xdot(t + tau, x + tau * xd))
-                u = u + s2 * np.array([dx, dy])
+                # the side component: q' = -(ȧ·d⊥) τ - mu_k g q/(c0 τ) ⇒ q = -(ȧ·d⊥) φ τ²
+                den = 2.0 * c0 + muk
+                phi = c0 / den if den > 0.0 else 0.5
+                bq = -rx * dy + ry * dx  # ȧ·d⊥
+                q1 = -bq * phi * tau * tau
+                q2 = -bq * phi * tau**3 / 3.0
+                u = u + np.array([s2 * dx - q2 * dy, s2 * dy + q2 * dx])
                 wf += muk * s2
                 wa += -am * s2 - sdot * c0 * tau**3 / 3.0
-                vel[:] = s1 * dx, s1 * dy
+                vel[:] = s1 * dx - q1 * dy, s1 * dy + q1 * dx
                 if not from_stop:
                     slips += 1
                     events.append((t_k + t, "breakaway"))
@@ -487,10 +496,10 @@ def slide2d_reference(
             ev_switch.terminal, ev_switch.direction = True, 1.0
             evs = [ev_stop, ev_turn, ev_peak, ev_floor] + ([ev_switch] if radau else [])
             at = np.full(N, atol)
-            at[P] = at[Q] = min(atol, 1e-3 * r0)
+            at[P] = at[Q] = min(atol, rtol * r0)
             kw = dict(rtol=rtol, atol=at)
             if radau:
-                kw.update(method="Radau", jac=jac)
+                kw.update(method=stiff_method, jac=jac)
                 radau_segments += 1
             else:
                 kw.update(method="DOP853")
@@ -499,8 +508,10 @@ def slide2d_reference(
                 raise RuntimeError(f"slide2d_reference: solve_ivp failed: {sol.message}")
             t_end = float(sol.t[-1])
             y = sol.y[:, -1].copy()
-            if radau and sol.status == 1:  # recompute the event state to Radau's step accuracy
-                again = solve_ivp(rhs, (t, t_end), y0, **kw)
+            if radau and sol.status == 1 and sol.t.size > 1:
+                # recompute the event state to Radau's step accuracy: its last step again, from
+                # the last accepted step end, ending at the event
+                again = solve_ivp(rhs, (float(sol.t[-2]), t_end), sol.y[:, -2], **kw)
                 y = again.y[:, -1].copy()
             for te, ye in zip(sol.t_events[2], sol.y_events[2], strict=True):
                 if t < te <= t_end:
