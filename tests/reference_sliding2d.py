@@ -496,7 +496,7 @@ def slide2d_reference(
             ev_switch.terminal, ev_switch.direction = True, 1.0
             evs = [ev_stop, ev_turn, ev_peak, ev_floor] + ([ev_switch] if radau else [])
             at = np.full(N, atol)
-            at[P] = at[Q] = min(atol, rtol * r0)
+            at[P] = at[Q] = min(atol, rtol * max(r0, 0.1 * r_switch))
             kw = dict(rtol=rtol, atol=at)
             if radau:
                 kw.update(method=stiff_method, jac=jac)

@@ -45,6 +45,11 @@ of the floor's acceleration ``∫ a·v dt`` (per unit mass: with the friction wo
 NCOL = 15
 MAX_EVENTS = 10000
 """Most events (stops, breakaways, restarts) of one block inside one sub-step."""
+MAX_STEPS = 1_000_000
+"""Most series steps of one block inside one sub-step. Steps shrink with the speed where the
+floor drives the block barely beyond kinetic friction (``|a| ≈ mu_k g``: the block creeps, its
+direction follows the floor's on a time scale of ``|v|/(mu_k g)``); such a sub-step can take
+thousands of steps."""
 EVENT_GAP = 1e-12
 """Shortest time between two events, as a fraction of the sub-step."""
 STOP_SPEED = 1e-12
@@ -233,6 +238,7 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
     s0 = 0.0
     fresh = False
     events = 0
+    steps = 0
     while s0 < h:
         L = h - s0
         lo = EVENT_GAP * h if fresh else 0.0
@@ -343,8 +349,8 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
                 if events > max_events:
                     return False
             else:
-                events += 1
-                if events > max_events:
+                steps += 1
+                if steps > MAX_STEPS:
                     return False
                 tm = tend**m
                 vx = 0.0

@@ -178,9 +178,9 @@ def slide_plane(
     if hit.size:
         i = int(hit[0])
         raise SolverLimitError(
-            f"slide_plane: more than {pk.MAX_EVENTS} stops and breakaways inside one sub-step at "
-            f"t = {states[i, pk.LIMIT_AT]:.6g} s (mu_k = {mk[i]:g}): stick-slip chatter the "
-            "solver cannot resolve",
+            f"slide_plane: more than {pk.MAX_EVENTS} stops and breakaways, or {pk.MAX_STEPS} "
+            f"series steps, inside one sub-step at t = {states[i, pk.LIMIT_AT]:.6g} s "
+            f"(mu_k = {mk[i]:g}): stick-slip chatter or creep the solver cannot resolve",
             "mu_k",
         )
     one_d = np.full((mk.size, 2), np.nan)
