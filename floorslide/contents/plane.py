@@ -19,7 +19,7 @@ from floorslide.constants import G
 from floorslide.contents import _plane_kernel as pk
 from floorslide.contents.sliding import friction_pairs, slide
 from floorslide.errors import ModelError, SolverLimitError
-from floorslide.records.pairs import RecordPair, make_pair
+from floorslide.pair import RecordPair, make_pair
 
 DEGREE = 20
 """Degree of the Taylor series of a slip phase (steps are sized so that its last terms are below
