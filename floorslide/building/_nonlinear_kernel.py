@@ -738,7 +738,6 @@ def nonlinear_run(
     branch = branch0
     npts = acc.size
     n_ev = 0
-    row = 0
     for i in range(N):
         X[0, i] = x[i]
     BR[0] = branch
