@@ -10,6 +10,7 @@ from importlib.metadata import version as _version
 from floorslide.building import (
     BilinearIsolator,
     BuildingMotion,
+    BuildingPair,
     FloorMotion,
     FrictionPendulum,
     IsolatedBuilding,
@@ -81,6 +82,7 @@ __all__ = [
     "OscillatorResult",
     "PlaneSlideResult",
     "RecordPair",
+    "BuildingPair",
     "RockResult",
     "SlideResult",
     "Spectrum",

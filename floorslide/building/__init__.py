@@ -1,5 +1,6 @@
 """Buildings: fixed-base and isolated shear buildings as state space, exact floor motions."""
 
+from floorslide.building.directions import BuildingPair, per_direction, plane_motions
 from floorslide.building.exact import ExactStepper, foh_matrices
 from floorslide.building.exact_motion import (
     BuildingMotion,
@@ -24,6 +25,9 @@ from floorslide.building.nonlinear import (
 
 __all__ = [
     "BilinearIsolator",
+    "BuildingPair",
+    "per_direction",
+    "plane_motions",
     "BuildingMotion",
     "ExactStepper",
     "FloorMotion",

@@ -328,6 +328,7 @@ def building_motion(
     *,
     max_bytes: int = MAX_STATE_BYTES,
     copy: bool = True,
+    substeps: int | None = None,
 ) -> BuildingMotion:
     """Integrate `building` once under the piecewise-linear ground record.
 
@@ -350,6 +351,10 @@ def building_motion(
         Keep a read-only copy of the samples (default), so that the motion cannot change
         under the caller; ``False`` reads the caller's array in place (the solvers do this for
         a motion they build and use at once).
+    substeps
+        Sub-steps per record step of a building (default: the fewest with ``ρ(A)·h ≤ 0.5``).
+        More may be asked — the two directions of a building stepped on one time grid — fewer
+        is an error. Ignored on the ground.
 
     Returns
     -------
@@ -363,6 +368,14 @@ def building_motion(
     if building is None:  # no states: zero-width, kept whole
         return BuildingMotion(None, a, dt, 1, dt, None, max(steps, 1), notes, np.zeros((a.size, 0)))
     st = stepper(building, dt)
+    if substeps is not None and int(substeps) != st.substeps:
+        if int(substeps) < st.substeps:
+            raise ModelError(
+                f"substeps={substeps} is fewer than the {st.substeps} this building needs at "
+                f"dt={dt:g} s",
+                "substeps",
+            )
+        st = stepper(building, dt, int(substeps))
     m, n = st.substeps, st.n
     rows = steps * m + 1
     if rows * n * 8 <= max_bytes:

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from floorslide.building.exact_motion import building_motion
+from floorslide.building.directions import plane_motions
 from floorslide.constants import G
 from floorslide.contents import _plane_kernel as pk
 from floorslide.contents.sliding import friction_pairs, slide
@@ -125,9 +125,9 @@ def slide_plane(
         Kinetic and static coefficients (as :func:`~floorslide.slide`); many values are advanced
         in one compiled loop.
     building, floor
-        Put the blocks on `floor` of a linear `building` (the same model in both directions;
-        uncoupled, no torsion): each direction's floor motion is its exact response to that
-        component.
+        Put the blocks on `floor` of a linear `building`: one model for both directions, or a
+        :class:`~floorslide.building.directions.BuildingPair` (a model per direction; uncoupled,
+        no torsion). Each direction's floor motion is its exact response to that component.
     histories
         Also return ``u`` at the samples.
     compare_1d
@@ -154,15 +154,7 @@ def slide_plane(
     if mu_k is None:
         raise ModelError("mu_k (the kinetic friction coefficient or coefficients) is required")
     mk, ms = friction_pairs(mu_k, mu_s)
-    if building is None and floor not in (None, 0):
-        raise ModelError("floor= needs building=", "floor")
-    if building is not None and floor is None:
-        raise ModelError("floor is required with building=", "floor")
-    f = 0 if building is None else int(floor)
-    fm1 = building_motion(building, pair.h1, pair.dt, max_bytes=0, copy=False).floor(f)
-    fm2 = building_motion(building, pair.h2, pair.dt, max_bytes=0, copy=False).floor(f)
-    if fm1.substeps != fm2.substeps:  # pragma: no cover - one building model in both directions
-        raise ModelError("the two directions' floor motions have different sub-steps", "building")
+    fm1, fm2 = plane_motions(building, pair.h1, pair.h2, pair.dt, floor, max_bytes=0, copy=False)
     MU = np.vstack([np.maximum(mk, ms), mk])
     states = np.zeros((mk.size, pk.NCOL))
     states[:, pk.LIMIT_AT] = -1.0
