@@ -97,7 +97,9 @@ def _azimuth(name: str) -> float | None:
     try:
         value = float(text)
     except ValueError:
-        return {"N": 0.0, "E": 90.0, "S": 180.0, "W": 270.0}.get(text.upper())
+        return {"N": 0.0, "E": 90.0, "S": 180.0, "W": 270.0, "NS": 0.0, "EW": 90.0}.get(
+            text.upper()
+        )
     return value if np.isfinite(value) else None
 
 

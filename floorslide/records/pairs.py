@@ -9,13 +9,15 @@ by azimuth (``comp_h1 = 052``, ``comp_h2 = 142``) they are kept in ``azimuths``,
 whose azimuths are not perpendicular is said so in ``notes``.
 
 Pairs come from a catalog of components (``file_h1``, ``file_h2`` and optionally ``file_v``
-columns, as ``data/records/pairs/index.csv``: :func:`read_pairs`), from two (three) files
-(:func:`read_pair`) or from arrays (:func:`make_pair`).
+columns, as ``data/records/pairs/index.csv``: :func:`read_pairs`), from two (three) files, one
+multi-channel file or a K-NET recording's ``.NS``/``.EW`` files (:func:`read_pair`), or from
+arrays (:func:`make_pair`).
 """
 
 from __future__ import annotations
 
 import os
+import re
 from pathlib import Path
 
 import numpy as np
@@ -37,9 +39,65 @@ def _one(stream, path) -> tuple[np.ndarray, float, str]:
     return np.asarray(tr.data, dtype=float), float(tr.stats.delta), comp or tr.stats.channel
 
 
+_VERTICAL = {"UP", "UD", "DOWN", "DN", "Z", "V", "VER", "VERT", "VERTICAL"}
+_KNET = re.compile(r"^(?P<stem>.+)\.(?P<dir>NS|EW|UD)(?P<n>[12]?)$", re.I)
+
+
+def _component(tr) -> str:
+    rec = getattr(tr.stats, "record", None)
+    name = str(getattr(rec, "component", "") or "") if rec is not None else ""
+    return (name or tr.stats.channel or "").strip()
+
+
+def is_vertical(tr) -> bool:
+    """Whether a Trace is a vertical component, by its component name (``Up``, ``UD``, ``V``
+    ...) or a channel code ending in ``Z``."""
+    name = _component(tr).upper().replace("DEG", "").strip()
+    chan = (tr.stats.channel or "").upper()
+    return name in _VERTICAL or name.startswith(("UP", "DOWN")) or chan.endswith("Z")
+
+
+def _split(stream, path) -> tuple[list, object | None]:
+    """The horizontal traces and the vertical one (or None) of a multi-channel stream."""
+    vertical = [tr for tr in stream if is_vertical(tr)]
+    horizontal = [tr for tr in stream if not is_vertical(tr)]
+    names = ", ".join(_component(tr) or "?" for tr in stream)
+    if len(horizontal) != 2 or len(vertical) > 1:
+        raise RecordError(
+            f"{len(horizontal)} horizontal and {len(vertical)} vertical component(s) ({names}); "
+            "a pair takes two horizontal and at most one vertical",
+            str(path),
+        )
+    return horizontal, (vertical[0] if vertical else None)
+
+
+def knet_siblings(path: str | os.PathLike) -> tuple[Path, Path, Path | None] | None:
+    """The ``.NS``, ``.EW`` and ``.UD`` files of a K-NET recording (``.NS1``/``.NS2`` ... for
+    KiK-net's borehole and surface sensors) given any one of them, or None when the name is not
+    K-NET's; the vertical is None when its file is absent."""
+    p = Path(path)
+    m = _KNET.match(p.name)
+    if m is None:
+        return None
+    upper = m.group("dir").isupper()
+
+    def sib(d: str) -> Path:
+        return p.with_name(f"{m.group('stem')}.{d if upper else d.lower()}{m.group('n')}")
+
+    ns, ew, ud = sib("NS"), sib("EW"), sib("UD")
+    missing = [q.name for q in (ns, ew) if not q.is_file()]
+    if missing:
+        raise RecordError(
+            f"K-NET pair: {', '.join(missing)} not found beside it (the pair is the .NS and "
+            ".EW files of one recording)",
+            str(path),
+        )
+    return ns, ew, (ud if ud.is_file() else None)
+
+
 def read_pair(
     path_h1: str | os.PathLike,
-    path_h2: str | os.PathLike,
+    path_h2: str | os.PathLike | None = None,
     path_v: str | os.PathLike | None = None,
     *,
     format: str | None = None,
@@ -47,14 +105,55 @@ def read_pair(
     dt: float | None = None,
 ) -> RecordPair:
     """A pair from two (three) record files, each read by
-    :func:`~floorslide.records.read.read_record` (in m/s²)."""
+    :func:`~floorslide.records.read.read_record` (in m/s²), or from one file:
+
+    - a multi-channel file (a COSMOS V2 file with three channels, a MiniSEED or SAC stream of
+      ``HNN``/``HNE``/``HNZ`` ...): its two horizontal traces in the file's order, and its
+      vertical (a component named ``Up``/``UD``/``V`` or a channel ending in ``Z``);
+    - one file of a K-NET/KiK-net recording (``X.NS``, ``X.EW`` or ``X.UD``): the ``.NS``
+      and ``.EW`` files beside it (``h1`` = NS, ``h2`` = EW) and ``.UD`` when present.
+
+    Raises
+    ------
+    RecordError
+        A file that cannot be read, one file with other than two horizontal components, a
+        K-NET file whose partner is missing, components of different dt.
+    """
     from floorslide.records.read import read_record
 
-    a1, dt1, c1 = _one(read_record(path_h1, format=format, units=units, dt=dt), path_h1)
-    a2, dt2, c2 = _one(read_record(path_h2, format=format, units=units, dt=dt), path_h2)
+    def read(path):
+        return read_record(path, format=format, units=units, dt=dt)
+
+    if path_h2 is None:
+        if path_v is not None:
+            raise RecordError("path_v given without path_h2", str(path_v))
+        stream = read(path_h1)
+        if len(stream) == 1:
+            sibs = knet_siblings(path_h1)
+            if sibs is None:
+                raise RecordError(
+                    "one component in the file; a pair needs the second horizontal component "
+                    "(read_pair(h1, h2)) or a multi-channel file",
+                    str(path_h1),
+                )
+            return read_pair(*sibs, format=format, units=units, dt=dt)
+        (t1, t2), tv = _split(stream, path_h1)
+        name = Path(path_h1).name
+        return make_pair(
+            np.asarray(t1.data, dtype=float),
+            np.asarray(t2.data, dtype=float),
+            float(t1.stats.delta),
+            None if tv is None else np.asarray(tv.data, dtype=float),
+            names=(_component(t1) or "h1", _component(t2) or "h2"),
+            label=name,
+            dt2=float(t2.stats.delta),
+            dt_v=None if tv is None else float(tv.stats.delta),
+        )
+    a1, dt1, c1 = _one(read(path_h1), path_h1)
+    a2, dt2, c2 = _one(read(path_h2), path_h2)
     av = dtv = None
     if path_v is not None:
-        av, dtv, _ = _one(read_record(path_v, format=format, units=units, dt=dt), path_v)
+        av, dtv, _ = _one(read(path_v), path_v)
     label = f"{Path(path_h1).name} + {Path(path_h2).name}"
     return make_pair(
         a1, a2, dt1, av, names=(c1 or "h1", c2 or "h2"), label=label, dt2=dt2, dt_v=dtv

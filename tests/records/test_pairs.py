@@ -80,3 +80,79 @@ def test_bad_pairs_are_refused():
         make_pair(np.ones(10), np.ones(1), 0.01)
     with pytest.raises(RecordError, match="file_h1"):
         read_pairs(ROOT / "data" / "records" / "slammer" / "index.csv")
+
+
+# ------------------------------------------------------------------ one multi-channel file
+RECORDS = ROOT / "tests" / "data" / "records"
+RAW = ROOT / "tests" / "data" / "raw"
+
+
+def _cosmos_channels(tmp_path, components):
+    """A COSMOS V2 file of several channels: the El Centro fixture's channel repeated, each with
+    its own component line (and the values scaled, to tell them apart)."""
+    lines = (RECORDS / "ELC180.V2").read_text().splitlines()
+    head = next(i for i, s in enumerate(lines) if "acceleration pts" in s)
+    end = next(i for i, s in enumerate(lines) if s.startswith("End-of-data"))
+    blocks = []
+    for k, comp in enumerate(components):
+        block = lines[: end + 1]
+        block[8] = block[8].replace("180 deg", comp)
+        block[head + 1 : end] = [f"{(k + 1) * float(s):15.6e}" for s in block[head + 1 : end]]
+        blocks.append("\n".join(block))
+    path = tmp_path / "three.V2"
+    path.write_text("\n".join(blocks) + "\n")
+    return path
+
+
+def test_a_pair_from_one_cosmos_file_with_three_channels(tmp_path):
+    path = _cosmos_channels(tmp_path, ["180 deg", "090 deg", "Up"])
+    one = fs.read_record(RECORDS / "ELC180.V2")[0].data
+    p = read_pair(path)
+    assert p.names == ("180", "090")
+    assert p.azimuths == (180.0, 90.0)
+    np.testing.assert_allclose(p.h1, one, rtol=1e-6, atol=1e-12)
+    np.testing.assert_allclose(p.h2, 2 * one, rtol=1e-6, atol=1e-12)
+    np.testing.assert_allclose(p.vertical, 3 * one, rtol=1e-6, atol=1e-12)
+    # without the vertical; a file with three horizontals is refused
+    assert read_pair(_cosmos_channels(tmp_path, ["180 deg", "090 deg"])).vertical is None
+    with pytest.raises(RecordError, match="3 horizontal and 0 vertical"):
+        read_pair(_cosmos_channels(tmp_path, ["180 deg", "090 deg", "045 deg"]))
+
+
+def test_a_pair_from_a_miniseed_stream(tmp_path):
+    from obspy import Stream, Trace
+
+    rng = np.random.default_rng(3)
+    data = rng.normal(size=(3, 500))
+    st = Stream([Trace(d, header={"delta": 0.01, "channel": c, "station": "X"})
+                 for d, c in zip(data, ["HNZ", "HNN", "HNE"], strict=True)])  # fmt: skip
+    path = tmp_path / "x.mseed"
+    st.write(str(path), format="MSEED", encoding="FLOAT64")
+    p = read_pair(path, units="m/s**2")
+    np.testing.assert_array_equal(p.h1, data[1])
+    np.testing.assert_array_equal(p.h2, data[2])
+    np.testing.assert_array_equal(p.vertical, data[0])
+    assert p.azimuths is None or p.azimuths == (0.0, 90.0)
+
+
+def test_a_knet_pair_from_one_of_its_files(tmp_path):
+    ns = (RAW / "AOM0081801241951.NS").read_text()
+    (tmp_path / "AOM0081801241951.NS").write_text(ns)
+    with pytest.raises(RecordError, match=r"AOM0081801241951\.EW not found"):
+        read_pair(tmp_path / "AOM0081801241951.NS")
+    # the EW file: the same recording's layout, its direction line changed
+    ew = ns.replace("Dir.              N-S", "Dir.              E-W")
+    assert ew != ns
+    (tmp_path / "AOM0081801241951.EW").write_text(ew)
+    p = read_pair(tmp_path / "AOM0081801241951.EW")
+    one = fs.read_record(RAW / "AOM0081801241951.NS")[0].data
+    np.testing.assert_array_equal(p.h1, one)
+    np.testing.assert_array_equal(p.h2, one)
+    assert p.vertical is None
+    assert "AOM0081801241951.NS + AOM0081801241951.EW" in p.label
+    assert p.names == ("NS", "EW") and p.azimuths == (0.0, 90.0)
+
+
+def test_one_component_alone_is_not_a_pair():
+    with pytest.raises(RecordError, match="one component in the file"):
+        read_pair(RECORDS / "ELC180.V2")
