@@ -546,8 +546,131 @@ def _record_on_floor(record, reading, processing, scale_pga, building, floor_no)
     return tr, quality, fm
 
 
+def _pair_traces(record, record2, reading):
+    """The two horizontal Traces (and a label) of ``slide RECORD RECORD2`` or ``--pair``."""
+    from floorslide.records.pairs import _split, knet_siblings
+    from floorslide.records.read import read_record
+
+    fmt, units, dt, component = reading
+    if component is not None:
+        raise click.BadParameter("a pair takes both horizontal components", "--component")
+    if record2 is not None:
+        return _read_one(record, fmt, units, dt, None), _read_one(record2, fmt, units, dt, None)
+    stream = read_record(record, format=fmt, units=units, dt=dt)
+    if len(stream) == 1:
+        sibs = knet_siblings(record)
+        if sibs is None:
+            from floorslide.errors import RecordError
+
+            raise RecordError(
+                "one component in the file; --pair needs a multi-channel file or a K-NET "
+                "recording (give the second component as RECORD2)",
+                record,
+            )
+        return _read_one(str(sibs[0]), fmt, units, dt, None), _read_one(
+            str(sibs[1]), fmt, units, dt, None
+        )
+    (t1, t2), _ = _split(stream, record)
+    return t1, t2
+
+
+def _slide_pair(record, record2, mus, mus_s, scale_pga, building, building_h2, floor_no, where,
+                reading, processing, as_json):  # fmt: skip
+    """``floorslide slide`` with two horizontal components: sliding in the plane."""
+    import numpy as np
+
+    from floorslide.building.directions import BuildingPair
+    from floorslide.building.spec import describe_building, parse_building
+    from floorslide.constants import G
+    from floorslide.contents.plane import slide_plane
+    from floorslide.errors import ModelError
+    from floorslide.pair import make_pair
+
+    t1, t2 = (_apply_processing(t, processing) for t in _pair_traces(record, record2, reading))
+    labels = [record, record2 or f"{record} (2nd)"]
+    codes = []
+    for tr, label in zip((t1, t2), labels, strict=True):
+        from floorslide.records.quality import check_record
+
+        quality = check_record(tr.data, tr.stats.delta)
+        _warn_quality(label, quality)
+        codes.append(list(quality.codes))
+    names = tuple(
+        str(getattr(getattr(t.stats, "record", None), "component", "") or t.stats.channel or h)
+        for t, h in ((t1, "h1"), (t2, "h2"))
+    )
+    pair = make_pair(t1.data, t2.data, float(t1.stats.delta), names=names,
+                     label=" + ".join(labels), dt2=float(t2.stats.delta))  # fmt: skip
+    if scale_pga is not None:
+        if not scale_pga > 0:
+            raise click.BadParameter("must be > 0", param_hint="--scale-pga")
+        top = max(np.abs(pair.h1).max(), np.abs(pair.h2).max())
+        if top == 0:
+            raise click.BadParameter("both components are zero: nothing to scale",
+                                     param_hint="--scale-pga")  # fmt: skip
+        f = scale_pga * G / top
+        pair = make_pair(f * pair.h1, f * pair.h2, pair.dt, names=pair.names, label=pair.label)
+    model = building
+    if building_h2 is not None:
+        if building is None:
+            raise click.BadParameter("needs --building", param_hint="--building-h2")
+        try:
+            model = BuildingPair(building, parse_building(building_h2))
+        except ModelError as exc:
+            raise click.BadParameter(str(exc), param_hint="--building-h2") from None
+        where += f"; along {names[1]}: {describe_building(model.h2)}"
+    res = slide_plane(pair, None, mus, mus_s, building=model,
+                      floor=floor_no if building is not None else None)  # fmt: skip
+    rows = []
+    for i in range(res.mu_k.size):
+        rows.append(
+            {
+                "mu_k": float(res.mu_k[i]),
+                "mu_s": float(res.mu_s[i]),
+                "peak_slide": float(res.peak_slide[i]),
+                "peak_angle": float(res.peak_angle[i]),
+                "time_of_peak": float(res.time_of_peak[i]),
+                "residual": [float(v) for v in res.residual[i]],
+                "slide_fraction": float(res.slide_fraction[i]),
+                "slip_phases": int(res.slip_phases[i]),
+                "peak_slide_1d": [float(v) for v in res.peak_slide_1d[i]],
+                "ratio_2d_1d": float(res.ratio_2d_1d[i]),
+            }
+        )
+    if as_json:
+        for row in rows:
+            row["records"] = labels if record2 is not None else [record]
+            row["components"] = list(names)
+            row["building"] = None if building is None else describe_building(building)
+            row["floor"] = floor_no
+            row["qa_flags"] = codes
+            row["notes"] = list(res.notes)
+        click.echo(_strict_json(rows))
+        return
+    click.echo(
+        f"{pair.label}: dt = {pair.dt:g} s, {pair.npts} samples, components {names[0]} (x) and "
+        f"{names[1]} (y), sliding in the plane, {where}"
+    )
+    for note in res.notes:
+        click.echo(f"  note: {note}")
+    click.echo(
+        f"{'mu_k':>7} {'mu_s':>7} {'peak slide (m)':>15} {'dir (deg)':>9} "
+        f"{'residual x, y (m)':>23} {'sliding':>8} {'1-D ' + names[0]:>10} {'1-D ' + names[1]:>10} "
+        f"{'2-D/1-D':>8}"
+    )
+    for row in rows:
+        rx, ry = row["residual"]
+        d1, d2 = row["peak_slide_1d"]
+        click.echo(
+            f"{row['mu_k']:7.4g} {row['mu_s']:7.4g} {row['peak_slide']:15.6g} "
+            f"{row['peak_angle']:9.1f} {rx:11.4g},{ry:11.4g} {row['slide_fraction']:8.1%} "
+            f"{d1:10.4g} {d2:10.4g} {row['ratio_2d_1d']:8.3f}"
+        )
+
+
 @cli.command()
 @click.argument("record")
+@click.argument("record2", required=False)
 @click.option("--mu", required=True, metavar="MU[,MU...]", help="Kinetic friction coefficient(s).")
 @click.option("--mu-s", "mu_s", metavar="MU_S", help="Static coefficient(s) (default: --mu).")
 @click.option("--scale-pga", type=NUMBER, metavar="G", help="Scale the record to this PGA, in g.")
@@ -558,12 +681,29 @@ def _record_on_floor(record, reading, processing, scale_pga, building, floor_no)
     show_default=True,
     help="One-way sliding (Newmark slope convention) or both ways.",
 )
+@click.option(
+    "--pair",
+    "as_pair",
+    is_flag=True,
+    help="RECORD holds both horizontal components (a multi-channel file, or one file of a K-NET "
+    "recording whose .NS/.EW files are beside it): slide in the plane.",
+)
+@click.option(
+    "--building-h2",
+    "building_h2",
+    metavar="SPEC",
+    help="In the plane: the building's model along the second component (as --building; "
+    "default: the same as --building).",
+)
 @click.option("--json", "as_json", is_flag=True, help="Print a JSON list (SI values) on stdout.")
 @building_options
 @record_options
 @processing_options
 def slide(
     record,
+    record2,
+    as_pair,
+    building_h2,
     mu,
     mu_s,
     scale_pga,
@@ -589,6 +729,13 @@ def slide(
     floor, its peak floor acceleration. The record's quality flags (mean offset, trend,
     clipping, truncation: floorslide inspect) are printed as warnings on stderr, with the
     processing that removes them; in JSON each row also has "qa_flags".
+
+    With two horizontal components — RECORD and RECORD2, or --pair — the block slides in the
+    plane (isotropic Coulomb friction; docs/design.md §10d): peak slide magnitude and its
+    direction (degrees from the first component towards the second), residual vector, and
+    beside them each component's 1-D slide and the ratio 2-D / max(1-D). --scale-pga scales
+    both components by one factor, so that the larger PGA is G; --building-h2 gives the
+    building a model of its own along the second component.
     """
     from floorslide.constants import G
     from floorslide.contents.sliding import slide as slide_exact
@@ -597,6 +744,21 @@ def slide(
     mus_s = _floats(mu_s, "--mu-s") if mu_s else None
     building, floor_no, where = _building(building_spec, floor)
     processing = _processing(detrend, taper, highpass, lowpass)
+    if record2 is not None or as_pair:
+        if direction != "both":
+            raise click.BadParameter(
+                "one-way sliding is 1-D; in the plane a block slides both ways",
+                param_hint="--direction",
+            )
+        if record2 is not None and as_pair:
+            raise click.BadParameter("give RECORD2 or --pair, not both", param_hint="--pair")
+        _slide_pair(record, record2, mus, mus_s, scale_pga, building, building_h2, floor_no,
+                    where, (fmt, units, dt, component), processing, as_json)  # fmt: skip
+        return
+    if building_h2 is not None:
+        raise click.BadParameter(
+            "is for two components (RECORD2 or --pair)", param_hint="--building-h2"
+        )
     tr, quality, fm = _record_on_floor(record, (fmt, units, dt, component), processing,
                                        scale_pga, building, floor_no)  # fmt: skip
     res = slide_exact(fm, None, mus, mus_s, direction=direction)

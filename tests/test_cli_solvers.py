@@ -244,3 +244,64 @@ def test_rock_table_and_bad_geometry():
     assert out.returncode == 2 and "--width" in out.stderr and "> 0 m" in out.stderr
     out = run("rock", RECORD, "--width", "0.2", "--height", "1.2", "--restitution", "2")
     assert out.returncode == 2 and "--restitution" in out.stderr
+
+
+# ------------------------------------------------------------------ two components (issue 16)
+PAIR_DIR = SLAMMER.parent / "pairs"
+H1 = str(PAIR_DIR / "RSN1084_NORTHR_SCS052.AT2")
+H2 = str(PAIR_DIR / "RSN1084_NORTHR_SCS142.AT2")
+
+
+def test_slide_two_components_matches_slide_plane():
+    import floorslide as fs
+
+    out = run("slide", H1, H2, "--mu", "0.1,0.2", "--mu-s", "0.15,0.2", "--json")
+    assert out.returncode == 0, out.stderr
+    rows = json.loads(out.stdout)
+    ref = fs.slide_plane(fs.read_pair(H1, H2), None, [0.1, 0.2], [0.15, 0.2])
+    np.testing.assert_allclose([r["peak_slide"] for r in rows], ref.peak_slide, rtol=1e-12)
+    np.testing.assert_allclose([r["peak_angle"] for r in rows], ref.peak_angle, rtol=1e-12)
+    np.testing.assert_allclose([r["residual"] for r in rows], ref.residual, rtol=1e-12)
+    np.testing.assert_allclose([r["peak_slide_1d"] for r in rows], ref.peak_slide_1d, rtol=1e-12)
+    assert rows[0]["components"] == ["52", "142"]
+
+
+def test_slide_two_components_on_a_building_per_direction_text():
+    import floorslide as fs
+
+    args = ["slide", H1, H2, "--mu", "0.1", "--scale-pga", "0.5"]
+    args += ["--building", "fixed:period=0.4,stories=3"]
+    args += ["--building-h2", "fixed:period=1.0,stories=3"]
+    out = run(*args, "--json")
+    assert out.returncode == 0, out.stderr
+    (row,) = json.loads(out.stdout)
+    p = fs.read_pair(H1, H2)
+    f = 0.5 * fs.G / max(np.abs(p.h1).max(), np.abs(p.h2).max())
+    b = fs.BuildingPair(fs.ShearBuilding.from_period(3, 0.4), fs.ShearBuilding.from_period(3, 1.0))
+    ref = fs.slide_plane((f * p.h1, f * p.h2), p.dt, 0.1, building=b, floor=3)
+    assert abs(row["peak_slide"] - ref.peak_slide[0]) <= 1e-12 * ref.peak_slide[0]
+    text = run(*args)
+    assert text.returncode == 0, text.stderr
+    assert "sliding in the plane" in text.stdout and "along 142" in text.stdout
+    assert "2-D/1-D" in text.stdout
+
+
+@pytest.mark.parametrize(
+    ("extra", "hint"),
+    [
+        (["--direction", "positive"], "--direction"),
+        (["--building-h2", "fixed:period=1"], "--building-h2"),
+        (["--pair"], "--pair"),
+    ],
+)
+def test_slide_two_component_mistakes(extra, hint):
+    out = run("slide", H1, H2, "--mu", "0.1", *extra)
+    assert out.returncode == 2
+    assert hint in out.stderr
+
+
+def test_slide_one_record_is_not_a_pair():
+    out = run("slide", H1, "--pair", "--mu", "0.1")
+    assert out.returncode != 0
+    assert "one component in the file" in out.stderr
+    assert len(out.stderr.strip().splitlines()) == 1
