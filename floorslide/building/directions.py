@@ -128,3 +128,19 @@ def plane_motions(
     fm1 = building_motion(bx, h1, dt, substeps=m, **kw).floor(f)
     fm2 = building_motion(by, h2, dt, substeps=m, **kw).floor(f)
     return fm1, fm2
+
+
+def plane_peak(fm1: FloorMotion, fm2: FloorMotion) -> tuple[float, float]:
+    """The true peak of the floor's horizontal acceleration vector, ``max_t |a(t)|`` with
+    ``a = (a_x, a_y)``, inside steps, and its time (s): the level a block's static friction
+    must hold in the plane. Both motions must come from :func:`plane_motions` (one time
+    grid)."""
+    from floorslide.building._plane_peak import plane_peak_kernel
+
+    if fm1.substeps != fm2.substeps or fm1.acc.size != fm2.acc.size:
+        raise ModelError("the two directions' motions are not on one time grid", "building")
+    out = np.array([-1.0, 0.0])
+    for (k0, X1), (_, X2) in zip(fm1.chunks(), fm2.chunks(), strict=True):
+        plane_peak_kernel(X1, X2, k0, fm1.R, fm1.beta, fm2.R, fm2.beta, fm1.acc, fm2.acc,
+                          fm1.substeps, fm1.h, out)  # fmt: skip
+    return float(out[0]), float(out[1])
