@@ -1113,6 +1113,7 @@ REPORT_TABLES = (
     "records",
     "isolators",
     "rocking",
+    "plane",
 )
 """The design tables, in output order (floorslide.report.tables.TABLE_NAMES)."""
 

@@ -25,7 +25,15 @@ import numpy as np
 from floorslide.errors import RecordError
 from floorslide.pair import RecordPair, make_pair
 
-__all__ = ["RecordPair", "make_pair", "read_pair", "read_pairs"]
+__all__ = [
+    "RecordPair",
+    "is_pair_catalog",
+    "make_pair",
+    "pair_id",
+    "pair_rows",
+    "read_pair",
+    "read_pairs",
+]
 
 
 def _one(stream, path) -> tuple[np.ndarray, float, str]:
@@ -160,17 +168,39 @@ def read_pair(
     )
 
 
-def read_pairs(catalog: str | os.PathLike, where=None) -> list[RecordPair]:
-    """The pairs of a catalog of components (a row per recording, columns ``file_h1``,
-    ``file_h2``, optionally ``file_v``, and ``dt``, ``units``; ``comp_h1``/``comp_h2`` name
-    the components), filtered by `where` as :func:`~floorslide.records.catalog.load_catalog`.
+def is_pair_catalog(catalog: str | os.PathLike) -> bool:
+    """Whether a catalog CSV names its records by component (``file_h1``, ``file_h2``
+    columns): a set of pairs. False for a catalog with a ``file`` column or one that cannot be
+    read (its reader then says why)."""
+    import csv
 
-    Raises
-    ------
-    RecordError
-        A catalog without ``file_h1`` and ``file_h2``, a file that cannot be read, components
-        of different dt; naming the catalog line.
-    """
+    try:
+        with open(catalog, newline="", encoding="utf-8-sig") as fh:
+            for row in csv.reader(fh):
+                if row and not row[0].lstrip().startswith("#"):
+                    cols = {c.strip().lower() for c in row}
+                    return "file_h1" in cols and "file_h2" in cols
+    except (OSError, UnicodeDecodeError, csv.Error):
+        return False
+    return False
+
+
+def pair_id(path_h1: str | os.PathLike, path_h2: str | os.PathLike) -> str:
+    """A pair's record id: the common start of its components' file names (without extension)
+    up to a separator (``RSN1084_NORTHR_SCS052`` + ``…SCS142`` → ``RSN1084_NORTHR_SCS``), or
+    both names joined by ``+`` when they share none."""
+    a, b = Path(path_h1).stem, Path(path_h2).stem
+    n = 0
+    while n < min(len(a), len(b)) and a[n] == b[n]:
+        n += 1
+    common = a[:n].rstrip("_-. ")
+    return common if len(common) >= 3 and common != a and common != b else f"{a}+{b}"
+
+
+def pair_rows(catalog: str | os.PathLike, where=None) -> list[dict]:
+    """The rows of a catalog of components, not read: per row its ``line``, ``id``
+    (:func:`pair_id`) and the :class:`~floorslide.records.catalog.CatalogEntry` of each
+    component (``file_h1``, ``file_h2``, ``file_v`` or None)."""
     from floorslide.records.catalog import load_catalog
 
     entries = load_catalog(catalog, where=where, components=True)
@@ -184,15 +214,36 @@ def read_pairs(catalog: str | os.PathLike, where=None) -> list[RecordPair]:
                 "a pair needs file_h1 and file_h2 (a catalog of components)",
                 f"{catalog}:{line}",
             )
-        e1, e2, ev = cols["file_h1"], cols["file_h2"], cols.get("file_v")
-        s1, s2 = e1.read(), e2.read()
-        a1, dt1, _ = _one(s1, e1.path)
-        a2, dt2, _ = _one(s2, e2.path)
+        e1, e2 = cols["file_h1"], cols["file_h2"]
+        out.append(
+            dict(line=line, id=pair_id(e1.path, e2.path), h1=e1, h2=e2, v=cols.get("file_v"))
+        )
+    return out
+
+
+def read_pairs(catalog: str | os.PathLike, where=None) -> list[RecordPair]:
+    """The pairs of a catalog of components (a row per recording, columns ``file_h1``,
+    ``file_h2``, optionally ``file_v``, and ``dt``, ``units``; ``comp_h1``/``comp_h2`` name
+    the components), filtered by `where` as :func:`~floorslide.records.catalog.load_catalog`.
+
+    Raises
+    ------
+    RecordError
+        A catalog without ``file_h1`` and ``file_h2``, a file that cannot be read, components
+        of different dt; naming the catalog line.
+    """
+    out = []
+    for row in pair_rows(catalog, where):
+        e1, e2, ev = row["h1"], row["h2"], row["v"]
+        a1, dt1, _ = _one(e1.read(), e1.path)
+        a2, dt2, _ = _one(e2.read(), e2.path)
         av = dtv = None
         if ev is not None:
             av, dtv, _ = _one(ev.read(), ev.path)
         names = (e1.row.get("comp", "") or "h1", e2.row.get("comp", "") or "h2")
         out.append(
-            make_pair(a1, a2, dt1, av, names=names, label=f"{catalog}:{line}", dt2=dt2, dt_v=dtv)
+            make_pair(
+                a1, a2, dt1, av, names=names, label=f"{catalog}:{row['line']}", dt2=dt2, dt_v=dtv
+            )
         )
     return out

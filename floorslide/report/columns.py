@@ -45,6 +45,7 @@ TABLE_NAMES = (
     "records",
     "isolators",
     "rocking",
+    "plane",
 )
 """The tables, in output order."""
 
@@ -314,11 +315,51 @@ COLUMNS: dict[str, tuple[Column, ...]] = {
             "median number of impacts over every record (0 at rest; up to the overturning)",
         ),
     ),
+    "plane": (
+        *_BUILDING,
+        _FLOOR,
+        Column("content", "", "content (equipment) id"),
+        Column("mu_k", "1", "kinetic friction coefficient"),
+        Column("mu_s", "1", "static friction coefficient"),
+        Column("n_records", "1", "pairs of the set on this building (records that rock left out)"),
+        _FEW,
+        Column(
+            "slide_2d_median",
+            "m",
+            "median of the peak slide in the plane, max|u| (both components at once)",
+        ),
+        Column("slide_2d_p84", "m", "84th percentile of the peak slide in the plane"),
+        Column(
+            "slide_1d_median",
+            "m",
+            "median of the larger of the two components' 1-D slides (each component alone)",
+        ),
+        Column("slide_1d_p84", "m", "84th percentile of the larger 1-D slide"),
+        Column(
+            "ratio_of_medians",
+            "1",
+            "slide_2d_median / slide_1d_median (what the 1-D practice misses at the median)",
+        ),
+        Column(
+            "ratio_median",
+            "1",
+            "median over the records of the per-record ratio 2-D / max(1-D) (records where "
+            "neither component slides left out)",
+        ),
+        Column("ratio_min", "1", "smallest per-record ratio 2-D / max(1-D)"),
+        Column("ratio_max", "1", "largest per-record ratio 2-D / max(1-D)"),
+        Column(
+            "n_2d_above_1d",
+            "1",
+            "records whose slide in the plane exceeds both 1-D slides by more than 1 %",
+        ),
+    ),
 }
 """Columns of every table, in order."""
 
 EMPTY_NOTES = {
     "isolators": "no building on nonlinear isolation in this study",
+    "plane": "no set of record pairs (two horizontal components) in this study",
     "rocking": (
         "no content with a width and height whose static friction holds its corner "
         "(mu_s ≥ B/H) has rocking results in this file"
@@ -341,6 +382,7 @@ TITLES = {
     "records": "Records: quality flags (mean offset, trend, clipping, truncation, sampling)",
     "isolators": "Nonlinear isolators: peak and residual displacement, peak force / W",
     "rocking": "Rocking contents: rocking, overturning, peak rotation θ/α, impacts",
+    "plane": "Sliding in the plane (record pairs): 2-D slide against each component's 1-D",
 }
 
 

@@ -225,10 +225,17 @@ def figure_histories(study: Study, record_set: str) -> Figure | None:
         ax = axes[0][j]
         floors = np.asarray(h.floors).tolist()
         cmap = colormaps["plasma"]
+        pair = getattr(h, "floor_acceleration_h2", None) is not None
         for i, floor in enumerate(floors):
             color = cmap(0.1 + 0.75 * i / max(len(floors) - 1, 1))
-            ax.plot(time, h.floor_acceleration[i], lw=0.7, color=color, label=f"floor {floor}")
-        ax.set_title(f"{t.meta['building']}: floor absolute acceleration")
+            acc = h.floor_acceleration[i]
+            if pair:
+                acc = np.hypot(acc, h.floor_acceleration_h2[i])
+            ax.plot(time, acc, lw=0.7, color=color, label=f"floor {floor}")
+        ax.set_title(
+            f"{t.meta['building']}: floor absolute acceleration"
+            + (" |a| (both components)" if pair else "")
+        )
         ax.set_ylabel("acceleration (m/s²)")
         ax.grid(alpha=0.3)
         if floors:
@@ -253,11 +260,126 @@ def figure_histories(study: Study, record_set: str) -> Figure | None:
             ylabel, what = _HISTORY_ROWS[kind]
             if kind == "u" and k in oscillators:
                 what = "base slide relative to the floor (2-DOF)"
+            if kind == "u" and k in getattr(h, "plane", {}):
+                ylabel, what = "slide |u| (m)", "slide |u| in the plane (both components)"
             ax.set_title(f"{content} on floor {floor}: {what}")
             ax.set_ylabel(ylabel)
             ax.grid(alpha=0.3)
             ax.legend(fontsize="small", loc="upper left")
         axes[-1][j].set_xlabel("time (s)")
+    return fig
+
+
+def figure_plane(study: Study, record_set: str) -> Figure | None:
+    """The path of each block in the plane under the history record of a set of pairs: one
+    panel per building × content × floor, ``u_h2`` against ``u_h1`` (m, equal axes) for each
+    stored friction value, the peak ``max|u|`` marked (●) and the end (residual, ■); or None
+    without pair histories."""
+    order = list(study.buildings)
+    tasks = sorted(
+        (
+            t
+            for t in study.set_tasks(record_set)
+            if t.histories is not None and getattr(t.histories, "plane", None)
+        ),
+        key=lambda t: order.index(t.meta["building"]),
+    )
+    if not tasks:
+        return None
+    panels = [(t, k) for t in tasks for k in t.histories.plane]
+    panels, cut = _pick(panels, MAX_PANELS)
+    fig, axes = _new_figure(len(panels), width=4.4, height=4.4)
+    from matplotlib import colormaps
+
+    t0 = tasks[0]
+    names = [*str(t0.meta.get("component_names", "h1,h2")).split(","), "h1", "h2"]
+    record = str(t0.meta["record"])
+    _suptitle(
+        fig,
+        study,
+        f"Slide path in the plane — record {record} ({names[0]}, {names[1]}), set "
+        f"{record_set}; ● peak |u|, ■ end (residual)" + (" (some panels left out)" if cut else ""),
+    )
+    for ax, (t, k) in zip(axes, panels, strict=False):
+        u = np.asarray(t.histories.plane[k], dtype=float)
+        mus = np.atleast_1d(t.histories.mu_k.get(k, np.full(u.shape[0], np.nan)))
+        reach = 0.0
+        for m in range(u.shape[0]):
+            color = colormaps["viridis"](0.1 + 0.8 * m / max(u.shape[0] - 1, 1))
+            path = u[m]
+            if not np.isfinite(path).any():
+                ax.plot([], [], lw=0, marker="x", color=color,
+                        label=f"mu = {mus[m]:g}: rocks, not simulated as a slider")  # fmt: skip
+                continue
+            mag = np.hypot(path[:, 0], path[:, 1])
+            i = int(np.nanargmax(mag))
+            reach = max(reach, float(np.nanmax(mag)))
+            ax.plot(path[:, 0], path[:, 1], lw=0.9, color=color,
+                    label=f"mu = {mus[m]:g}: peak {mag[i]:.3g} m")  # fmt: skip
+            ax.plot(path[i, 0], path[i, 1], "o", color=color, ms=5)
+            ax.plot(path[-1, 0], path[-1, 1], "s", color=color, ms=5)
+        lim = 1.08 * reach if reach > 0 else 1e-3
+        ax.set_xlim(-lim, lim)
+        ax.set_ylim(-lim, lim)
+        ax.set_aspect("equal")
+        ax.axhline(0, color="0.7", lw=0.5)
+        ax.axvline(0, color="0.7", lw=0.5)
+        content, floor = k.rsplit("/floor_", 1)
+        ax.set_title(f"{t.meta['building']}: {content} on floor {floor}", fontsize="medium")
+        ax.set_xlabel(f"u along {names[0]} (m)")
+        ax.set_ylabel(f"u along {names[1]} (m)")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize="x-small", loc="upper left")
+    return fig
+
+
+def figure_plane_ratio(study: Study, record_set: str) -> Figure | None:
+    """Per building: each record's slide in the plane against the larger of its two
+    components' 1-D slides (log axes, every stored friction value and floor), with the 1:1
+    line and the median ratio; or None without pairs (or without slides)."""
+    points: dict[str, list[tuple[float, float, float]]] = defaultdict(list)
+    for t in study.set_tasks(record_set):
+        for c in t.contents:
+            if c.peak_angle is None:
+                continue
+            one = np.maximum(np.asarray(c.peak_slide_h1, float), np.asarray(c.peak_slide_h2, float))
+            two = np.asarray(c.peak_slide, float)
+            for i in range(two.size):
+                if np.isfinite(two[i]) and two[i] > 0 and one[i] > 0:
+                    points[str(t.meta["building"])].append((one[i], two[i], float(c.mu_k[i])))
+    bids = [b for b in study.buildings if points.get(b)]
+    if not bids:
+        return None
+    bids, cut = _pick(bids, MAX_PANELS)
+    fig, axes = _new_figure(len(bids), width=4.4, height=4.2)
+    n_rec = len({str(t.meta["record"]) for t in study.set_tasks(record_set)})
+    _suptitle(
+        fig,
+        study,
+        f"Sliding in the plane against each component alone — set {record_set}, {n_rec} "
+        "record pairs; every friction value and floor; ratio = 2-D / max(1-D)"
+        + _few(n_rec)
+        + (" (some panels left out)" if cut else ""),
+    )
+    for ax, bid in zip(axes, bids, strict=False):
+        arr = np.array(points[bid])
+        ratio = arr[:, 1] / arr[:, 0]
+        sc = ax.scatter(arr[:, 0], arr[:, 1], c=arr[:, 2], s=12, cmap="viridis")
+        lo = max(min(arr[:, 0].min(), arr[:, 1].min()), 1e-6)
+        hi = max(arr[:, 0].max(), arr[:, 1].max())
+        ax.plot([lo, hi], [lo, hi], color="0.3", lw=0.8, label="2-D = 1-D")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_title(
+            f"{bid}: ratio median {np.median(ratio):.2f}, range {ratio.min():.2f}–"
+            f"{ratio.max():.2f}",
+            fontsize="medium",
+        )
+        ax.set_xlabel("larger 1-D slide, each component alone (m)")
+        ax.set_ylabel("slide in the plane (m)")
+        ax.grid(alpha=0.3, which="both")
+        ax.legend(fontsize="small", loc="upper left")
+        fig.colorbar(sc, ax=ax, label="mu_k")
     return fig
 
 
@@ -1027,9 +1149,11 @@ def plot_figures(
     list of Path
         The files written, in order: per record set, histories (if stored), hysteresis (if
         a building on nonlinear isolation stored its loop), rocking (if a content rocks under
-        the history record), FRS, peak slide versus mu, oscillators (if any), overturning (if
-        the file holds rocking results), then one peak-slide ratio figure per comparison. A
-        figure without data is not drawn and not listed.
+        the history record), for a set of record pairs the slide path in the plane (history
+        record) and the 2-D against 1-D slides (every record), FRS, peak slide versus mu,
+        oscillators (if any), overturning (if the file holds rocking results), then one
+        peak-slide ratio figure per comparison. A figure without data is not drawn and not
+        listed.
 
     Raises
     ------
@@ -1079,6 +1203,12 @@ def plot_figures(
             fig = figure_rocking(study, rs)
             if fig is not None:
                 written.append(_save(fig, target(f"rocking_{s}")))
+            fig = figure_plane(study, rs)
+            if fig is not None:
+                written.append(_save(fig, target(f"plane_path_{s}")))
+            fig = figure_plane_ratio(study, rs)
+            if fig is not None:
+                written.append(_save(fig, target(f"plane_ratio_{s}")))
             if z is not None:
                 fig = figure_frs(study, rs, z)
                 if fig is not None:

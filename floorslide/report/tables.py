@@ -32,6 +32,11 @@ Tables (one row per …, statistics over the records of a set; units in :data:`C
     force over the weight (V/W), and how many records take the layer beyond its capacity
     (the impact that would follow is not modelled: the ``note`` says so). Empty, with a note,
     when no building is on nonlinear isolation.
+``plane``
+    record set of pairs (two horizontal components) × building × floor × content × friction
+    pair: the median and 84th percentile of the peak slide in the plane (2-D) next to those of
+    the larger of the two components' 1-D slides, the ratio of the medians, and the median,
+    smallest and largest per-record ratio 2-D / max(1-D). Empty, with a note, without pairs.
 ``rocking``
     record set × building × floor × content with a width and height whose static friction
     holds its corner (``mu_s ≥ B/H``: it rocks rather than slides, Shenton 1996; one row for
@@ -466,6 +471,60 @@ def rocking_table(study: Study) -> list[dict]:
     return rows
 
 
+def plane_table(study: Study) -> list[dict]:
+    """The ``plane`` table (see the module docstring): per record set of pairs × building ×
+    floor × content × friction pair, the slide in the plane against the larger of the two
+    components' 1-D slides. Records under which the object rocks have no slide and are left
+    out (``n_records`` counts the others)."""
+    groups: dict[tuple, list[tuple[str, float, float, float]]] = defaultdict(list)
+    for t in study.tasks:
+        m = t.meta
+        for c in t.contents:
+            if c.peak_angle is None:
+                continue
+            for i in range(np.asarray(c.mu_k).size):
+                two = float(c.peak_slide[i])
+                if not math.isfinite(two):
+                    continue  # rocks: no slide
+                one = max(float(c.peak_slide_h1[i]), float(c.peak_slide_h2[i]))
+                key = (str(m["record_set"]), str(m["building"]), int(c.floor), c.content,
+                       float(c.mu_k[i]), float(c.mu_s[i]))  # fmt: skip
+                groups[key].append((str(m["record"]), two, one, float(c.ratio_2d_1d[i])))
+    bkey = _order_key(study)
+
+    def key(k: tuple) -> tuple:
+        return (*bkey(k[0], k[1]), k[2], _rank(study.contents, k[3]), _natural(k[3]), k[4], k[5])
+
+    rows = []
+    for k in sorted(groups, key=key):
+        rs, bid, floor, content, mu_k, mu_s = k
+        obs = _by_record(groups[k])
+        two, one, per = (np.array([o[j] for o in obs], dtype=float) for j in (1, 2, 3))
+        _, two_med, two_p84 = summarize(two)
+        _, one_med, one_p84 = summarize(one)
+        finite = per[np.isfinite(per)]
+        row = _building_cols(study, rs, bid)
+        row.update(
+            floor=floor,
+            content=content,
+            mu_k=mu_k,
+            mu_s=mu_s,
+            n_records=len(obs),
+            few_records=len(obs) < MIN_RECORDS,
+            slide_2d_median=two_med,
+            slide_2d_p84=two_p84,
+            slide_1d_median=one_med,
+            slide_1d_p84=one_p84,
+            ratio_of_medians=ratio(two_med, one_med),
+            ratio_median=float(np.median(finite)) if finite.size else math.nan,
+            ratio_min=float(finite.min()) if finite.size else math.nan,
+            ratio_max=float(finite.max()) if finite.size else math.nan,
+            n_2d_above_1d=int(np.sum(two > 1.01 * one)),
+        )
+        rows.append({c.name: row[c.name] for c in COLUMNS["plane"]})
+    return rows
+
+
 def pfa_table(study: Study) -> list[dict]:
     """The ``pfa`` table (see the module docstring)."""
     groups: dict[tuple, list[tuple[str, float, float]]] = defaultdict(list)
@@ -837,6 +896,15 @@ def table_notes(study: Study, damping: float | None) -> list[str]:
             "rocking: this file was written before rocking objects were simulated: it holds "
             "no rocking results (the rocking table is empty)"
         )
+    if any(int(t.meta.get("components", 1)) == 2 for t in study.tasks):
+        notes.append(
+            "record pairs (two horizontal components): a block slides in the plane (isotropic "
+            "Coulomb friction, both components at once); its peak_slide is max|u|, its "
+            "residual_slide |u(end)| and its peak_abs_accel the breakaway level mu_s·g once it "
+            "slid; the PFA is the peak of the floor's acceleration vector; a rocking block "
+            "rocks in the plane of each component and the more severe is kept; the plane "
+            "table compares the 2-D slide with each component's 1-D slide"
+        )
     if any("isolator_peak_displacement" in t.meta for t in study.tasks):
         notes.append(
             "isolators: displacements are the isolation layer's u0 relative to the ground; "
@@ -938,6 +1006,7 @@ def design_tables(
         "records": records_table(study),
         "isolators": isolator_table(study),
         "rocking": rocking_table(study),
+        "plane": plane_table(study),
     }
     notes = table_notes(study, z) + period_notes + study.notes
     notes += [f"{name}: {note}" for name, note in EMPTY_NOTES.items() if not tables[name]]

@@ -51,10 +51,28 @@ class ContentResult:
     overturned: np.ndarray | None = None  # 1.0 or 0.0
     overturn_time: np.ndarray | None = None  # s (NaN: never)
     outcomes: np.ndarray | None = None  # observed: rest, slide, rock, overturn or slide-rock
+    # a pair of horizontal components (None for one): the block slides in the plane; then
+    # peak_slide is the peak |u|, residual_slide |u(end)|, and per friction pair
+    peak_angle: np.ndarray | None = None  # direction of the peak, degrees from h1 towards h2
+    residual_h1: np.ndarray | None = None  # the residual vector's components, m
+    residual_h2: np.ndarray | None = None
+    peak_slide_h1: np.ndarray | None = None  # each component's 1-D slide alone, m
+    peak_slide_h2: np.ndarray | None = None
+    ratio_2d_1d: np.ndarray | None = None  # peak_slide / max(1-D slides)
 
 
 ROCK_FIELDS = ("rock_peak_ratio", "rock_impacts", "rock_time", "overturned", "overturn_time")
 """The rocking arrays of a :class:`ContentResult` (present together, or all None)."""
+PLANE_FIELDS = (
+    "peak_angle",
+    "residual_h1",
+    "residual_h2",
+    "peak_slide_h1",
+    "peak_slide_h2",
+    "ratio_2d_1d",
+)
+"""The arrays of a :class:`ContentResult` of a pair of components (present together, or all
+None)."""
 
 
 @dataclass
@@ -99,6 +117,10 @@ class Histories:
 
     ``rocking`` holds, per content that rocks under the record (same keys), its rotation over
     its slenderness ``θ/α`` at the samples (NaN after it overturned).
+
+    For a pair of horizontal components ``floor_acceleration`` is along ``h1`` and
+    ``floor_acceleration_h2`` along ``h2``; ``slides`` holds the slide's magnitude ``|u|`` and
+    ``plane`` the slide vector ``(u_h1, u_h2)`` (``(n_mu, npts, 2)``, the path in the plane).
     """
 
     dt: float
@@ -111,6 +133,8 @@ class Histories:
     isolator_displacement: np.ndarray | None = None  # (npts,), m
     isolator_force_ratio: np.ndarray | None = None  # (npts,), V/W
     rocking: dict[str, np.ndarray] = field(default_factory=dict)  # θ/α, (npts,), NaN overturned
+    plane: dict[str, np.ndarray] = field(default_factory=dict)  # pairs: u, (n_mu, npts, 2), m
+    floor_acceleration_h2: np.ndarray | None = None  # pairs: along h2, (n_floors, npts), m/s²
 
 
 @dataclass
@@ -125,3 +149,6 @@ class TaskResult:
     spectra: list[SpectrumResult] = field(default_factory=list)
     histories: Histories | None = None
     seconds: float = 0.0
+    pfa_components: np.ndarray | None = None
+    """A pair's true peak floor accelerations along each component, ``(n_floors, 2)``, m/s²
+    (``pfa`` is then the peak of the vector); None for one component."""

@@ -13,7 +13,9 @@ Layout (every dataset carries a ``units`` attribute; ``1`` means dimensionless):
                              building_base (the scene's id), building_kind, stories,
                              isolation_period, isolation_damping (NaN when fixed),
                              superstructure, fixed_period, dt, npts, pga, scale, qa_flags
-                             (the record's quality flags, comma-separated; "" none), seconds;
+                             (the record's quality flags, comma-separated; "" none), seconds,
+                             components (1, or 2 for a pair; pga is then the larger
+                             component's), component_names (a pair's, e.g. "052,142");
                              on nonlinear isolation also isolator (bilinear |
                              friction_pendulum), its parameters isolator_capacity (m, NaN:
                              none), isolator_q_ratio, isolator_yield_disp (m), isolator_alpha
@@ -23,7 +25,9 @@ Layout (every dataset carries a ``units`` attribute; ``1`` means dimensionless):
                              (peak base shear / W), isolator_capacity_exceeded (0/1);
                              sha256 (the task's digest, written with it); done = 1, set last
       floors                 floors output (0 = ground or base mat)
-      pfa                    true peak floor acceleration per floor (m/s**2)
+      pfa                    true peak floor acceleration per floor (m/s**2); of a pair of
+                             components the peak of the acceleration vector, and
+      pfa_components         (pairs only) the peak along each component, (n_floors, 2)
       contents/<content>/floor_<f>/
                              mu_k, mu_s (1), peak_slide (m), residual_slide (m),
                              peak_abs_accel (m/s**2), slide_fraction (1), slip_phases (1)
@@ -33,7 +37,11 @@ Layout (every dataset carries a ``units`` attribute; ``1`` means dimensionless):
                              width and height also rock_peak_ratio (1, max|θ|/α), rock_impacts
                              (1), rock_time (s), overturned (1: 1/0), overturn_time (s, NaN:
                              never) — NaN (−1 impacts) where the object slides — and outcomes
-                             (what it did: rest/slide/rock/overturn/slide-rock); attrs
+                             (what it did: rest/slide/rock/overturn/slide-rock); for a pair
+                             of components (the block slides in the plane; peak_slide = peak
+                             |u|, residual_slide = |u(end)|) also peak_angle (deg from h1
+                             towards h2), residual_h1, residual_h2 (m), peak_slide_h1,
+                             peak_slide_h2 (m, each component's 1-D slide), ratio_2d_1d (1); attrs
                              model, mode (the common mode or "mixed"), skipped (reasons and
                              counts, or ""), vertical
       spectra/floor_<f>/     periods (s), damping (1), psa, sa (m/s**2), sv (m/s), sd (m): the
@@ -52,7 +60,10 @@ Layout (every dataset carries a ``units`` attribute; ``1`` means dimensionless):
                              to the ground) and isolator_force_ratio (1, the layer's force
                              over W) at the samples: the hysteresis loop; rocking/<content>/
                              floor_<f>/theta_ratio (1, θ/α at the samples, NaN once
-                             overturned) for contents that rock under the record
+                             overturned) for contents that rock under the record; for a pair
+                             floor_acceleration_h2 (m/s**2, along h2; floor_acceleration is
+                             along h1), and slides/.../u is |u|, u_plane (m, (n_mu, npts, 2))
+                             the path in the plane
 
 Reading stays backward compatible: a file written before the unbroadened spectra were kept
 has no ``broadening`` attr on ``spectra/floor_<f>``; if its scene asked for broadening, its
@@ -109,6 +120,7 @@ import numpy as np
 from floorslide.errors import OutputError, OutputExistsError, ResultFileError, one_line
 from floorslide.run import journal
 from floorslide.run.results import (
+    PLANE_FIELDS,
     ROCK_FIELDS,
     ContentResult,
     Histories,
@@ -157,6 +169,15 @@ UNITS = {
     "overturned": "1",
     "overturn_time": "s",
     "theta_ratio": "1",
+    "pfa_components": "m/s**2",
+    "peak_angle": "deg",
+    "residual_h1": "m",
+    "residual_h2": "m",
+    "peak_slide_h1": "m",
+    "peak_slide_h2": "m",
+    "ratio_2d_1d": "1",
+    "u_plane": "m",
+    "floor_acceleration_h2": "m/s**2",
 }
 CONTENT_FIELDS = (
     "mu_k",
@@ -249,6 +270,8 @@ def task_node(result: TaskResult) -> Node:
     g = Node({**meta, "seconds": result.seconds})
     g.children["floors"] = _data("floors", result.floors.astype(np.int64))
     g.children["pfa"] = _data("pfa", result.pfa)
+    if result.pfa_components is not None:
+        g.children["pfa_components"] = _data("pfa_components", result.pfa_components)
     contents = g.group("contents")
     for c in result.contents:
         h = contents.group(c.content).group(f"floor_{c.floor}")
@@ -263,6 +286,9 @@ def task_node(result: TaskResult) -> Node:
             for name in ROCK_FIELDS:
                 h.children[name] = _data(name, getattr(c, name))
             h.children["outcomes"] = Data(np.asarray(c.outcomes, dtype=object), {"units": "1"})
+        if c.peak_angle is not None:
+            for name in PLANE_FIELDS:
+                h.children[name] = _data(name, getattr(c, name))
         h.attrs.update(model=c.model, mode=c.mode, skipped=c.skipped, vertical=c.vertical)
     spectra = g.group("spectra")
     for s in result.spectra:
@@ -298,6 +324,12 @@ def task_node(result: TaskResult) -> Node:
                 sg.children["top_accel"] = _data("top_accel", hi.top_accel[key])
         for key, theta in hi.rocking.items():
             hg.group(f"rocking/{key}").children["theta_ratio"] = _data("theta_ratio", theta)
+        if hi.floor_acceleration_h2 is not None:
+            hg.children["floor_acceleration_h2"] = _data(
+                "floor_acceleration_h2", hi.floor_acceleration_h2
+            )
+        for key, u in hi.plane.items():
+            hg.group(f"slides/{key}").children["u_plane"] = _data("u_plane", u)
     return g
 
 
@@ -980,19 +1012,22 @@ def _read_task(g: Node, tid: str, legacy_broadening: float = 0.0) -> TaskResult:
                     peak_top_accel=_value(h, "peak_top_accel") if "peak_top_accel" in h else None,
                     modes=np.array([_s(m) for m in _value(h, "modes")]) if "modes" in h else None,
                     **_rocking_of(h),
+                    **{n: _value(h, n) for n in PLANE_FIELDS if n in h},
                 )
             )
     spectra = [_read_spectrum(k, h, legacy_broadening) for k, h in _groups(_group(g, "spectra"))]
     hist = None
     if "histories" in g:
         hg = _group(g, "histories")
-        slides, mus, deform, top = {}, {}, {}, {}
+        slides, mus, deform, top, plane = {}, {}, {}, {}, {}
         if "slides" in hg:
             for cname, cg in _groups(_group(hg, "slides")):
                 for fname, h in _groups(cg):
                     key = f"{cname}/{fname}"
                     slides[key] = _value(h, "u")
                     mus[key] = _value(h, "mu_k")
+                    if "u_plane" in h:
+                        plane[key] = _value(h, "u_plane")
                     if "z" in h:
                         deform[key], top[key] = _value(h, "z"), _value(h, "top_accel")
         rocking = {}
@@ -1010,12 +1045,17 @@ def _read_task(g: Node, tid: str, legacy_broadening: float = 0.0) -> TaskResult:
             top,
             **{n: _value(hg, n) if n in hg else None for n in ISOLATOR_HISTORIES},
             rocking=rocking,
+            plane=plane,
+            floor_acceleration_h2=_value(hg, "floor_acceleration_h2")
+            if "floor_acceleration_h2" in hg
+            else None,
         )
     return TaskResult(
         task_id=tid,
         meta=meta,
         floors=_value(g, "floors"),
         pfa=_value(g, "pfa"),
+        pfa_components=_value(g, "pfa_components") if "pfa_components" in g else None,
         contents=contents,
         spectra=spectra,
         histories=hist,

@@ -39,7 +39,11 @@ def _meta(task: Task) -> dict:
         fixed_period=b.period if b.kind == "fixed" else b.super_period,
         dt=r.dt,
         npts=int(r.acc.size),
-        pga=float(np.abs(r.acc).max()),
+        pga=float(np.abs(r.acc).max())
+        if r.acc2 is None
+        else float(max(np.abs(r.acc).max(), np.abs(r.acc2).max())),
+        components=1 if r.acc2 is None else 2,
+        component_names=",".join(r.components),
         scale=r.scale,
         qa_flags=r.qa_flags,
     )
@@ -145,6 +149,8 @@ def run_task(task: Task, force: bool = False) -> TaskResult:
     t0 = time.perf_counter()
     rec = task.record
     acc, dt = rec.acc, rec.dt
+    if rec.is_pair:
+        return _run_pair(task, force, t0)
     model = task.building.build()
     if task.building.isolator_model not in ("", "linear"):
         return _run_nonlinear(task, model, force, t0)
@@ -473,5 +479,125 @@ def _run_nonlinear(task: Task, model, force: bool, t0: float) -> TaskResult:
             isolator_force_ratio=base.isolator_force / model.weight,
             rocking=hist_rock,
         )
+    result.seconds = time.perf_counter() - t0
+    return result
+
+
+def _worse_rocking(a, b):
+    """Of a block's planar rocking along the two components, the more severe: the one that
+    overturned (the earlier, if both), else the larger peak rotation."""
+    if a.overturned[0] and b.overturned[0]:
+        return a if a.overturn_time[0] <= b.overturn_time[0] else b
+    if a.overturned[0] != b.overturned[0]:
+        return a if a.overturned[0] else b
+    return a if a.peak_ratio[0] >= b.peak_ratio[0] else b
+
+
+def _run_pair(task: Task, force: bool, t0: float) -> TaskResult:
+    """A task of a pair of horizontal components (docs/design.md §10d): rigid blocks slide in
+    the plane (:func:`floorslide.slide_plane`), beside each component's 1-D slide; a floor's
+    PFA is the true peak of its acceleration vector (:func:`~floorslide.building.directions.
+    plane_peak`), its per-direction peaks are kept too; a block that rocks rocks in the plane of
+    each component (its faces along them), and the more severe of the two is reported."""
+    from floorslide.building.directions import plane_motions, plane_peak
+    from floorslide.constants import G
+    from floorslide.contents.plane import slide_plane
+
+    rec = task.record
+    dt = rec.dt
+    model = task.building.build_plane()
+    floors = list(task.floors)
+    motions = {f: plane_motions(model, rec.acc, rec.acc2, dt, f) for f in floors}
+    pfa = np.array([plane_peak(*motions[f])[0] for f in floors])
+    per_dir = np.array([[fm.peak()[0] for fm in motions[f]] for f in floors]).reshape(-1, 2)
+    pfa_of = dict(zip(floors, pfa, strict=True))
+    result = TaskResult(task.task_id, _meta(task), np.array(floors, dtype=np.int64), pfa)
+    result.pfa_components = per_dir
+    hist_slides, hist_mu, hist_plane, hist_rock = {}, {}, {}, {}
+    for content, floor in task.contents:
+        mu = np.asarray(content.mu, dtype=float)
+        mu_s = np.asarray(content.mu_s if content.mu_s else content.mu, dtype=float)
+        modes, integrate, reasons = decide(content, pfa_of[floor], force)
+        n = mu.size
+        rocks = np.array([m == "rock" for m in modes])
+        peak, resid, frac = np.zeros(n), np.zeros(n), np.zeros(n)
+        acc_obj = np.full(n, pfa_of[floor])
+        slips = np.zeros(n, dtype=np.int64)
+        angle, r1, r2 = np.full(n, np.nan), np.zeros(n), np.zeros(n)
+        one_d = np.zeros((n, 2))
+        ratio = np.full(n, np.nan)
+        for arr in (peak, resid, acc_obj, frac, r1, r2, one_d):
+            arr[rocks] = np.nan
+        slips[rocks] = -1
+        idx = np.nonzero(integrate)[0]
+        fm1, fm2 = motions[floor]
+        if idx.size:
+            r = slide_plane((rec.acc, rec.acc2), dt, mu[idx], mu_s[idx], building=model,
+                            floor=floor if model is not None else None)  # fmt: skip
+            peak[idx], frac[idx], slips[idx] = r.peak_slide, r.slide_fraction, r.slip_phases
+            resid[idx] = np.hypot(r.residual[:, 0], r.residual[:, 1])
+            r1[idx], r2[idx] = r.residual[:, 0], r.residual[:, 1]
+            angle[idx] = r.peak_angle
+            one_d[idx] = r.peak_slide_1d
+            ratio[idx] = r.ratio_2d_1d
+            # a block in the plane is stuck while |a| ≤ mu_b g and slides at mu_k g ≤ mu_b g:
+            # once it has broken away its peak acceleration is the breakaway level
+            slid = r.slip_phases > 0
+            acc_obj[idx[slid]] = np.minimum(pfa_of[floor], np.maximum(mu[idx], mu_s[idx])[slid] * G)
+        summary = modes[0] if len(set(modes)) == 1 else "mixed"
+
+        def rocker(fm1=fm1, fm2=fm2, content=content):
+            kw = dict(width=content.width, height=content.height,
+                      restitution=content.restitution, method=content.rocking,
+                      histories=task.histories)  # fmt: skip
+            return _worse_rocking(rock_blocks(fm1, **kw), rock_blocks(fm2, **kw))
+
+        rocking = rocking_results(content, modes, rocker)
+        rock_result = rocking.pop("result", None)
+        result.contents.append(
+            ContentResult(
+                content=content.id,
+                floor=floor,
+                model=content.model,
+                mode=summary,
+                skipped="; ".join(f"{k} ({v})" for k, v in reasons.items()),
+                mu_k=mu,
+                mu_s=mu_s,
+                peak_slide=peak,
+                residual_slide=resid,
+                peak_abs_accel=acc_obj,
+                slide_fraction=frac,
+                slip_phases=slips,
+                modes=np.array(modes),
+                peak_angle=angle,
+                residual_h1=r1,
+                residual_h2=r2,
+                peak_slide_h1=one_d[:, 0].copy(),
+                peak_slide_h2=one_d[:, 1].copy(),
+                ratio_2d_1d=ratio,
+                **rocking,
+            )
+        )
+        key = f"{content.id}/floor_{floor}"
+        if task.histories and rock_result is not None:
+            hist_rock[key] = rock_result.theta[0] / rock_result.alpha[0]
+        if task.histories:
+            pick = np.unique(np.linspace(0, n - 1, min(HISTORY_MU, n)).round().astype(int))
+            r = slide_plane((rec.acc, rec.acc2), dt, mu[pick], mu_s[pick], building=model,
+                            floor=floor if model is not None else None, histories=True,
+                            compare_1d=False)  # fmt: skip
+            u = r.u
+            u[rocks[pick]] = np.nan
+            hist_plane[key] = u
+            hist_slides[key] = np.hypot(u[:, :, 0], u[:, :, 1])
+            hist_mu[key] = mu[pick]
+    if task.histories:
+        fl = np.array(floors, dtype=np.int64)
+        acc1 = np.array([motions[f][0].samples() for f in floors]).reshape(-1, rec.acc.size)
+        acc2 = np.array([motions[f][1].samples() for f in floors]).reshape(-1, rec.acc.size)
+        result.histories = Histories(
+            dt, fl, acc1, hist_slides, hist_mu, rocking=hist_rock,
+            plane=hist_plane, floor_acceleration_h2=acc2,
+        )  # fmt: skip
     result.seconds = time.perf_counter() - t0
     return result

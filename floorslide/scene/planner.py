@@ -51,7 +51,18 @@ class LoadedRecord:
     meta: dict = field(default_factory=dict)
     qa: tuple[dict, ...] = ()
     """The record's quality flags (:meth:`floorslide.records.quality.Flag.to_dict`; a flag
-    of the vertical component has its check prefixed ``vertical:``), empty when none tripped."""
+    of the vertical component has its check prefixed ``vertical:``, of a pair's second
+    horizontal component ``h2:``), empty when none tripped."""
+    acc2: np.ndarray | None = None
+    """A pair's second horizontal component (m/s², as long as ``acc``: the shorter one padded
+    with zeros); None for a single component."""
+    components: tuple[str, ...] = ()
+    """A pair's component names (``("052", "142")``)."""
+
+    @property
+    def is_pair(self) -> bool:
+        """Whether the record is a pair of horizontal components (blocks slide in the plane)."""
+        return self.acc2 is not None
 
     @property
     def qa_flags(self) -> str:
@@ -120,13 +131,31 @@ class Plan:
         ]
         for rs in self.scene.records:
             n = sum(1 for r in self.records if r.set.split("@")[0] == rs.set)
-            lines.append(f"  record set {rs.set!r}: {n} records")
+            if rs.pairs:
+                lines.append(
+                    f"  record set {rs.set!r}: {n} record pairs (two horizontal components: "
+                    "blocks slide in the plane)"
+                )
+            else:
+                lines.append(f"  record set {rs.set!r}: {n} records")
         for b in self.scene.buildings:
             extra = (
                 f", on isolation T_i = {b.period:g} s, ξ_i = {b.damping:g}"
                 if b.kind == "isolated"
                 else f", T = {b.period:g} s, ξ = {b.damping:g}"
             )
+            if b.two_way:
+                h2 = [
+                    f"{name} = {v:g}"
+                    for name, v in (
+                        ("T_h2", b.period_h2),
+                        ("ξ_h2", b.damping_h2),
+                        ("superstructure T_h2", b.super_period_h2),
+                        ("superstructure ξ_h2", b.super_damping_h2),
+                    )
+                    if v == v
+                ]
+                extra += f"; along h2: {', '.join(h2)}"
             if b.isolator_model not in ("", "linear"):
                 params = ", ".join(f"{k} = {v:g}" for k, v in b.isolator if k != "model")
                 extra += (
@@ -245,6 +274,8 @@ def _load_set(
     from floorslide.records.process import process
     from floorslide.records.read import read_record
 
+    if rs.pairs:
+        return _load_pairs(rs, processing, failures, periods, qa, rejected)
     sources = []
     if rs.catalog:
         try:
@@ -313,6 +344,96 @@ def _load_set(
                     scale=factor,
                     meta={k: str(v) for k, v in catalog_meta.items()},
                     qa=flags,
+                )
+            )
+    return out
+
+
+def _load_pairs(
+    rs: RecordSetSpec,
+    processing: dict,
+    failures: list[str],
+    periods: tuple[float, ...],
+    qa: str,
+    rejected: list[dict] | None,
+) -> list[LoadedRecord]:
+    """The pairs of a catalog of components (:func:`floorslide.records.pairs.pair_rows`): each
+    component read, processed and checked as a record of its own, the shorter padded with
+    zeros to the longer (said in ``meta["pair_notes"]``), and both scaled by one factor — the
+    larger component's PGA to ``scale_pga``."""
+    from floorslide.pair import make_pair
+    from floorslide.records.pairs import pair_rows
+    from floorslide.records.process import process
+
+    try:
+        rows = pair_rows(rs.catalog, rs.where or None)
+    except RecordError as exc:
+        failures.append(str(exc))
+        return []
+    out = []
+    for row in rows:
+        label = f"{rs.catalog}:{row['line']}"
+        try:
+            traces = []
+            for key in ("h1", "h2", "v"):
+                e = row[key]
+                if e is None:
+                    traces.append(None)
+                    continue
+                stream = e.read()
+                if len(stream) != 1:
+                    raise RecordError(f"{len(stream)} traces; a component takes one", e.where)
+                tr = stream[0]
+                traces.append(process(tr, **processing) if processing else tr)
+            t1, t2, tv = traces
+            pair = make_pair(
+                t1.data,
+                t2.data,
+                float(t1.stats.delta),
+                None if tv is None else tv.data,
+                names=(row["h1"].row.get("comp") or "h1", row["h2"].row.get("comp") or "h2"),
+                label=label,
+                dt2=float(t2.stats.delta),
+                dt_v=None if tv is None else float(tv.stats.delta),
+            )
+        except FloorslideError as exc:
+            failures.append(str(exc) if isinstance(exc, RecordError) else f"{label}: {exc}")
+            continue
+        flags = list(_quality(t1, tv, periods))
+        from floorslide.records.quality import check_record
+
+        for f in check_record(t2.data, t2.stats.delta, periods=periods).flags:
+            flags.append({**f.to_dict(), "check": f"h2:{f.check}"})
+        flags = tuple(flags)
+        record_id = row["id"]
+        if flags and qa == "reject":
+            if rejected is not None:
+                rejected.append(dict(set=rs.set, record=record_id, label=label, flags=list(flags)))
+            codes = ", ".join(f["check"] for f in flags)
+            failures.append(f"{label}: rejected by the quality checks ({codes}{REJECTED_SUFFIX}")
+            continue
+        pga = float(max(np.abs(pair.h1).max(), np.abs(pair.h2).max()))
+        meta = {k: str(v) for k, v in row["h1"].row.items() if k not in ("file", "comp")}
+        meta["files"] = f"{row['h1'].path.name} + {row['h2'].path.name}"
+        if pair.notes:
+            meta["pair_notes"] = "; ".join(pair.notes)
+        scales = rs.scale_pga or (None,)
+        for sc in scales:
+            factor = 1.0 if sc is None else (sc * G / pga if pga > 0 else 1.0)
+            set_name = rs.set if sc is None or len(scales) == 1 else f"{rs.set}@{sc:g}g"
+            out.append(
+                LoadedRecord(
+                    set=set_name,
+                    record=record_id,
+                    label=label,
+                    acc=pair.h1 * factor,
+                    dt=pair.dt,
+                    vertical=None if pair.vertical is None else pair.vertical * factor,
+                    scale=factor,
+                    meta=meta,
+                    qa=flags,
+                    acc2=pair.h2 * factor,
+                    components=pair.names,
                 )
             )
     return out
@@ -410,6 +531,24 @@ def plan(scene: Scene, *, force: bool = False, evaluate: bool = True) -> Plan:
             if not t.contents:
                 continue
             floors = sorted({f for _, f in t.contents})
+            if t.record.is_pair:
+                from floorslide.building.directions import plane_motions, plane_peak
+
+                model = t.building.build_plane()
+                r = t.record
+                peaks = [
+                    plane_peak(*plane_motions(model, r.acc, r.acc2, r.dt, f))[0] for f in floors
+                ]
+                pfa = dict(zip(floors, peaks, strict=True))
+                for c, f in t.contents:
+                    _modes, integrate, reasons = decide(c, pfa[f], force)
+                    p.skipped.update(reasons)
+                    p.runs["rigid blocks sliding in the plane (object × floor × task)"] += int(
+                        integrate.sum()
+                    )
+                    if any(m in ("rock", "slide-rock") for m in _modes):
+                        p.runs["rocking blocks, planar in each component's direction"] += 1
+                continue
             model = t.building.build()
             if t.building.isolator_model not in ("", "linear"):
                 from floorslide.building.nonlinear import isolator_response

@@ -51,8 +51,33 @@ PROCESSING_KEYS = {
     "scale_pga",
     "scale",
 }
-FIXED_KEYS = {"id", "kind", "stories", "period", "damping", "mass", "stiffness", "profile"}
-ISOLATED_KEYS = {"id", "kind", "superstructure", "base_mass_ratio", "period", "damping", "isolator"}
+FIXED_KEYS = {
+    "id",
+    "kind",
+    "stories",
+    "period",
+    "damping",
+    "mass",
+    "stiffness",
+    "profile",
+    "period_h2",
+    "damping_h2",
+}
+ISOLATED_KEYS = {
+    "id",
+    "kind",
+    "superstructure",
+    "base_mass_ratio",
+    "period",
+    "damping",
+    "isolator",
+    "period_h2",
+    "damping_h2",
+}
+DIRECTION_KEYS = ("period_h2", "damping_h2")
+"""A building's model along the second horizontal component of a pair (uncoupled, no
+torsion): ``period`` and ``damping`` are those along the first; without them, the same both
+ways. A single-component record runs on the first direction's model."""
 ISOLATOR_KEYS = {
     "linear": {"model"},
     "bilinear": {"model", "q_ratio", "yield_disp", "alpha", "capacity"},
@@ -101,6 +126,9 @@ class RecordSetSpec:
     dt: float | None = None
     component: str | None = None
     vertical_component: str | None = None
+    pairs: bool = False
+    """A catalog of components (``file_h1``, ``file_h2``, optionally ``file_v``): each record
+    is a pair of horizontal components, and its blocks slide in the plane."""
 
 
 @dataclass(frozen=True)
@@ -129,6 +157,21 @@ class BuildingSpec:
     isolator: tuple[tuple[str, object], ...] = ()
     """A nonlinear isolation layer: ``(("model", "bilinear" | "friction_pendulum"), (key,
     value) …)``; empty for the linear isolator."""
+    period_h2: float = math.nan
+    """Along the second horizontal component: the fixed-base period (the isolation period of
+    an isolated building); NaN: as along the first."""
+    damping_h2: float = math.nan
+    """Along the second horizontal component: the damping ratio (NaN: as along the first)."""
+    super_period_h2: float = math.nan
+    super_damping_h2: float = math.nan
+
+    @property
+    def two_way(self) -> bool:
+        """Whether the model differs between the two horizontal directions."""
+        return not all(
+            math.isnan(v)
+            for v in (self.period_h2, self.damping_h2, self.super_period_h2, self.super_damping_h2)
+        )
 
     @property
     def isolator_model(self) -> str:
@@ -167,6 +210,39 @@ class BuildingSpec:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", ModelWarning)
             return IsolatedBuilding(sup, self.base_mass_ratio, self.period, self.damping)
+
+    def build_plane(self):
+        """The building in the plane: :meth:`build` when it is the same both ways, else a
+        :class:`~floorslide.building.directions.BuildingPair` of the models along the two
+        horizontal components (a linear building)."""
+        first = self.build()
+        if not self.two_way:
+            return first
+        from floorslide.building.directions import BuildingPair
+        from floorslide.building.model import IsolatedBuilding
+        from floorslide.errors import ModelWarning
+
+        def pick(v, default):
+            return default if math.isnan(v) else v
+
+        if self.kind == "fixed":
+            second = self._shear_building(
+                pick(self.period_h2, self.period), pick(self.damping_h2, self.damping)
+            )
+        else:
+            sup = self._shear_building(
+                pick(self.super_period_h2, self.super_period),
+                pick(self.super_damping_h2, self.super_damping),
+            )
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", ModelWarning)
+                second = IsolatedBuilding(
+                    sup,
+                    self.base_mass_ratio,
+                    pick(self.period_h2, self.period),
+                    pick(self.damping_h2, self.damping),
+                )
+        return BuildingPair(first, second)
 
 
 @dataclass(frozen=True)
@@ -366,6 +442,30 @@ def parse_scene(text: str, path: str | Path = "scene.toml") -> Scene:
                     f"vertical shaking on a building on nonlinear isolation ({nonlinear[0]}) "
                     "is not available yet (rigid blocks and 2-DOF oscillators without it are)",
                 )
+    pair_sets = [r.set for r in records if r.pairs]
+    if pair_sets and spectra is not None:
+        ck.add(
+            "spectra",
+            f"floor spectra of record pairs (set {pair_sets[0]!r}) are not available yet; run "
+            "the spectra on a set of single components",
+        )
+    if pair_sets:
+        for i, c in enumerate(contents):
+            what = (
+                ("model", "a 2-DOF sliding oscillator slides in 1-D")
+                if c.model == "oscillator"
+                else ("vertical", "vertical shaking is not modelled in the plane yet")
+                if c.vertical
+                else ("direction", "one-way sliding is 1-D")
+                if c.direction != "both"
+                else None
+            )
+            if what:
+                ck.add(
+                    f"contents[{i}].{what[0]}",
+                    f"{what[1]}; the record set {pair_sets[0]!r} is a set of pairs (two "
+                    "horizontal components: rigid blocks slide in the plane)",
+                )
     if not contents and spectra is None:
         ck.add("contents", "the scene asks for nothing: give [[contents]] or [spectra]")
     if ck.problems:
@@ -391,7 +491,9 @@ def record_id_of(path: str | Path) -> str:
     return Path(path).stem
 
 
-def _catalog_ids(catalog: str, where: dict, w: str, ck: _Checker) -> list[str] | None:
+def _catalog_ids(
+    catalog: str, where: dict, w: str, ck: _Checker, pairs: bool = False
+) -> list[str] | None:
     """Record ids of the catalog rows `where` selects, or None when the catalog cannot be read
     (a problem: a malformed catalog, duplicate rows ...). `where` must name columns of the
     catalog, each of its values must occur in its column (a value that matches no row is a
@@ -400,8 +502,15 @@ def _catalog_ids(catalog: str, where: dict, w: str, ck: _Checker) -> list[str] |
     from floorslide.records.catalog import load_catalog
 
     try:
-        rows = load_catalog(catalog)
-        entries = load_catalog(catalog, where=where or None) if where else rows
+        rows = load_catalog(catalog, components=pairs)
+        entries = load_catalog(catalog, where=where or None, components=pairs) if where else rows
+        if pairs:
+            from floorslide.records.pairs import pair_rows
+
+            chosen = pair_rows(catalog, where or None)
+            ids = [row["id"] for row in chosen]
+            if where and not chosen:
+                entries = []
     except RecordError as exc:
         if exc.message.startswith("where: "):
             ck.add(f"{w}.where", exc.message.removeprefix("where: "))
@@ -421,6 +530,9 @@ def _catalog_ids(catalog: str, where: dict, w: str, ck: _Checker) -> list[str] |
                 ck.add(key_path, f"no row has {key} = {value!r} (values: {listing})")
     if not entries and not typos:
         ck.add(f"{w}.where" if where else f"{w}.catalog", f"selects no row of {catalog}")
+    if pairs:
+        _unique_ids(ids, [f"{r['h1'].path}+{r['h2'].path}" for r in chosen], f"{w}.catalog", ck)
+        return ids
     ids = [record_id_of(e.path) for e in entries]
     _unique_ids(ids, [str(e.path) for e in entries], f"{w}.catalog", ck)
     return ids
@@ -523,8 +635,20 @@ def _records(value, ck: _Checker, base: Path) -> tuple[tuple[RecordSetSpec, ...]
             ck.add(f"{w}.where", "must be a table of column = value")
             where = {}
         where = _where_values(where, w, ck)
+        pairs = False
+        if catalog and Path(catalog).is_file():
+            from floorslide.records.pairs import is_pair_catalog
+
+            pairs = is_pair_catalog(catalog)
+            for key in ("component", "vertical_component"):
+                if pairs and key in r:
+                    ck.add(
+                        f"{w}.{key}",
+                        "a catalog of components (file_h1, file_h2, file_v) names each "
+                        "component's file; this key is for multi-trace files",
+                    )
         if catalog:
-            got = _catalog_ids(catalog, where, w, ck) if Path(catalog).is_file() else None
+            got = _catalog_ids(catalog, where, w, ck, pairs) if Path(catalog).is_file() else None
             ids = None if got is None or ids is None else ids + got
         elif ids is not None:
             ids += [record_id_of(f) for f in files]
@@ -554,6 +678,7 @@ def _records(value, ck: _Checker, base: Path) -> tuple[tuple[RecordSetSpec, ...]
                 where=dict(where),
                 scale_pga=scale,
                 dt=dt,
+                pairs=pairs,
                 **opts,
             )
         )
@@ -713,6 +838,7 @@ def _buildings(value, ck: _Checker) -> tuple[tuple[BuildingSpec, ...], set[str]]
         if model is None or not damps or not bid:
             continue
         stories, masses, stiffnesses, periods, profile = model
+        p2, z2 = _direction_h2(b, w, ck, "stiffness" in b, nonlinear=False)
         variants = []
         for T, z in itertools.product(periods, damps):
             vid = bid
@@ -735,6 +861,8 @@ def _buildings(value, ck: _Checker) -> tuple[tuple[BuildingSpec, ...], set[str]]
                     profile,
                     masses=masses,
                     stiffnesses=stiffnesses,
+                    period_h2=p2,
+                    damping_h2=z2,
                 )
             )
         fixed[bid] = variants
@@ -757,6 +885,7 @@ def _buildings(value, ck: _Checker) -> tuple[tuple[BuildingSpec, ...], set[str]]
         damps = ck.numbers(
             b.get("damping", 0.0 if nonlinear else 0.1), f"{w}.damping", lo=0, hi=1, hi_open=True
         )
+        p2, z2 = _direction_h2(b, w, ck, False, nonlinear=nonlinear)
         if isinstance(sup, str) and sup in unknown_kind:
             continue  # the superstructure's kind is invalid: reported there
         if not isinstance(sup, str) or sup not in declared_fixed:
@@ -809,9 +938,39 @@ def _buildings(value, ck: _Checker) -> tuple[tuple[BuildingSpec, ...], set[str]]
                     masses=s.masses,
                     stiffnesses=s.stiffnesses,
                     isolator=layer,
+                    period_h2=p2,
+                    damping_h2=z2,
+                    super_period_h2=s.period_h2,
+                    super_damping_h2=s.damping_h2,
                 )
             )
     return tuple(out), ids
+
+
+def _direction_h2(b: dict, w: str, ck: _Checker, storeys_given: bool, nonlinear: bool):
+    """``period_h2`` and ``damping_h2`` of a building (NaN when absent): its model along the
+    second horizontal component of a pair, one value each."""
+    out = []
+    for key, hi in (("period_h2", None), ("damping_h2", 1)):
+        if key not in b:
+            out.append(math.nan)
+            continue
+        if isinstance(b[key], list):
+            ck.add(f"{w}.{key}", "one value (the second direction is not swept)")
+            out.append(math.nan)
+            continue
+        if nonlinear:
+            ck.add(
+                f"{w}.{key}",
+                "a nonlinear isolation layer couples the two directions (it yields or slides "
+                "under the resultant force): one model both ways",
+            )
+        elif key == "period_h2" and storeys_given:
+            ck.add(f"{w}.{key}", "needs period (a building scaled to its period), not stiffness")
+        lo_open = key == "period_h2"
+        got = ck.number(b[key], f"{w}.{key}", lo=0, lo_open=lo_open, hi=hi, hi_open=hi is not None)
+        out.append(math.nan if got is None else float(got))
+    return tuple(out)
 
 
 def _isolator(value, where: str, ck: _Checker) -> list:
