@@ -1,6 +1,6 @@
 """Hard cases of sliding in the plane (issue 16): friction from 1e-4 to 2, components of very
-different amplitude, a velocity that passes near zero while the floor still drives it, a
-million-sample pair."""
+different amplitude, a velocity that passes near zero while the floor still drives it, sticking
+just below the static limit for a long time, a million-sample pair."""
 
 from __future__ import annotations
 
@@ -75,3 +75,24 @@ def test_a_million_sample_pair_in_bounded_memory(sylmar):
     one = slide_plane(sylmar, None, 0.2, compare_1d=False)
     assert r.slip_phases[0] >= whole * one.slip_phases[0]
     assert np.isfinite(r.peak_slide[0]) and r.peak_slide[0] >= one.peak_slide[0]
+
+
+@pytest.mark.parametrize("mu_k", [0.2, 0.15])
+def test_sticking_just_below_the_static_limit_for_a_long_time(mu_k):
+    """A floor acceleration of constant magnitude turning in the plane, 1e-9 below mu_s·g for
+    200 s (40,000 samples): the block never moves — no chatter, no creeping — and 1e-9 above
+    it breaks away at once and slides."""
+    mu_s = 0.2
+    dt = 0.005
+    t = np.arange(40_001) * dt
+    w = 2 * np.pi * 0.7
+    for factor, moves in ((1 - 1e-9, False), (1 + 1e-9, True)):
+        A = factor * mu_s * fs.G
+        r = fs.slide_plane((A * np.cos(w * t), A * np.sin(w * t)), dt, mu_k, mu_s,
+                           compare_1d=False)  # fmt: skip
+        if not moves:
+            assert r.peak_slide[0] == 0.0
+            assert r.slip_phases[0] == 0 and r.slide_fraction[0] == 0.0
+        else:
+            assert r.slip_phases[0] >= 1 and r.peak_slide[0] > 0.0
+            assert np.isfinite(r.peak_slide[0])
