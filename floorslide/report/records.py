@@ -37,8 +37,12 @@ RECORD_COLUMNS: tuple[Column, ...] = (
         "rest (no slide), slide or rock (not simulated as a slider: its slide values are NaN; "
         "what it did: observed_outcome)",
     ),
-    Column("peak_slide", "m", "peak slide max|u| (of the sliding base for an oscillator)"),
-    Column("residual_slide", "m", "residual slide u(end), signed"),
+    Column(
+        "peak_slide",
+        "m",
+        "peak slide max|u| (of the sliding base for an oscillator; in the plane for a pair)",
+    ),
+    Column("residual_slide", "m", "residual slide u(end), signed; |u(end)| for a pair"),
     Column("peak_abs_accel", "m/s**2", "peak absolute acceleration of the object (base)"),
     Column("peak_abs_accel_g", "g", "peak absolute acceleration of the object (base)"),
     Column("slide_fraction", "1", "fraction of the record spent sliding"),
@@ -98,8 +102,34 @@ RECORD_COLUMNS: tuple[Column, ...] = (
         "(both bounds); empty for contents without width and height and in files written "
         "before rocking was simulated",
     ),
+    Column(
+        "peak_angle",
+        "deg",
+        "a pair (two horizontal components): direction of the peak slide, from h1 towards h2; "
+        "NaN for one component",
+    ),
+    Column("residual_h1", "m", "a pair: the residual slide along h1 (NaN for one component)"),
+    Column("residual_h2", "m", "a pair: the residual slide along h2 (NaN for one component)"),
+    Column("peak_slide_h1", "m", "a pair: the 1-D slide of component h1 alone (NaN for one)"),
+    Column("peak_slide_h2", "m", "a pair: the 1-D slide of component h2 alone (NaN for one)"),
+    Column(
+        "ratio_2d_1d",
+        "1",
+        "a pair: peak_slide / max(peak_slide_h1, peak_slide_h2) (NaN for one component, or "
+        "when neither slides)",
+    ),
 )
 """Columns of the per-record table, in order."""
+
+PLANE_VALUES = (
+    "peak_angle",
+    "residual_h1",
+    "residual_h2",
+    "peak_slide_h1",
+    "peak_slide_h2",
+    "ratio_2d_1d",
+)
+"""The per-record columns of a pair (NaN for one component)."""
 
 ROCK_VALUES = ("rock_peak_ratio", "rock_impacts", "overturned", "overturn_time_s", "rock_time_s")
 """The per-record rocking columns (NaN where not applicable)."""
@@ -140,6 +170,13 @@ def isolator_values(meta: dict) -> dict:
         "isolator_peak_force_ratio": _float(meta.get("isolator_peak_force_ratio")),
         "isolator_capacity_exceeded": bool(_float(meta.get("isolator_capacity_exceeded"), 0)),
     }
+
+
+def plane_values(c, i: int) -> dict:
+    """The pair columns of friction pair `i` of a content result (NaN for one component)."""
+    if getattr(c, "peak_angle", None) is None:
+        return dict.fromkeys(PLANE_VALUES, math.nan)
+    return {name: float(getattr(c, name)[i]) for name in PLANE_VALUES}
 
 
 def rocking_values(c, i: int) -> dict:
@@ -214,6 +251,7 @@ def record_rows(study: Study) -> list[dict]:
                         "skipped": c.skipped,
                         **isolator,
                         **rocking_values(c, i),
+                        **plane_values(c, i),
                     }
                 )
 
