@@ -224,3 +224,11 @@ def test_direction_keys_are_checked():
     )
     with pytest.raises(SceneError, match=r"buildings\[2\]\.period_h2: a nonlinear isolation"):
         parse_scene(fps, ROOT / "scene.toml")
+
+
+def test_the_bundled_pairs_scene_plans_every_pair():
+    p = plan(load_scene(ROOT / "data" / "scenes" / "pairs.toml"), evaluate=False)
+    assert len(p.records) == 10 and all(r.is_pair for r in p.records)
+    assert len(p.tasks) == 20 and not p.failures
+    # six of the ten pairs have components of different lengths: padded, and said so
+    assert sum("pair_notes" in r.meta for r in p.records) == 6
