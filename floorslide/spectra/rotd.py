@@ -3,8 +3,8 @@ building's floor, exact with peaks inside steps (docs/design.md §10d).
 
 For an oscillator of period ``T`` and damping ``ξ``, ``q1(t)`` and ``q2(t)`` are its relative
 displacements under each direction's (floor) motion; along the angle ``θ`` (from ``h1`` towards
-``h2``) the response is ``q_θ(t) = q1(t) cos θ + q2(t) sin θ`` (Boore 2010, eq. 1: the rotation
-of the oscillator's responses, equal by linearity to the response to the rotated motion). Then
+``h2``) the response is ``q_θ(t) = q1(t) cos θ + q2(t) sin θ`` (Boore 2010: the oscillator's two
+responses rotated, equal by linearity to its response to the motion along θ). Then
 
 - ``RotD100 = ω² · max_t |(q1, q2)|``: the largest response over *all* angles (the continuous
   maximum: no angle grid), the peak of the response vector;
@@ -41,6 +41,9 @@ METHODS = ("exact", "samples")
 
 MAX_ANGLES = 3600
 """Most angles of one RotD spectrum (0.05° apart)."""
+
+MAX_VALUES = 20_000_000
+"""Most per-angle peaks (oscillators × angles) of one RotD spectrum (160 MB)."""
 
 
 @dataclass(frozen=True)
@@ -247,7 +250,7 @@ def rotd_spectrum(
     -----
     For each oscillator the responses ``q1``, ``q2`` to the two directions' motions are stepped
     exactly (on a floor together with each direction's building), and along ``θ``
-    ``q_θ = q1 cos θ + q2 sin θ`` (Boore 2010, eq. 1). ``RotD100 = ω²·max_t |(q1, q2)|`` is the
+    ``q_θ = q1 cos θ + q2 sin θ`` (Boore 2010). ``RotD100 = ω²·max_t |(q1, q2)|`` is the
     continuous maximum over all angles (``max_θ max_t |q_θ| = max_t max_θ |q_θ|``), found inside
     steps; ``RotD50 = ω²·median_j max_t |q_θj|``, each maximum found inside steps; at period 0
     the same of the floor acceleration ``(a1, a2)`` (RotD100: the peak of ``|a(t)|``). With
@@ -267,6 +270,12 @@ def rotd_spectrum(
     Z = damping_ratios(damping)
     check_oscillators(T, Z, pair.dt)
     n_ang = _angle_count(angles)
+    if T.size * Z.size * n_ang > MAX_VALUES:
+        raise ModelError(
+            f"{T.size} periods x {Z.size} damping ratios x {n_ang} angles = "
+            f"{T.size * Z.size * n_ang} peaks: at most {MAX_VALUES}",
+            "angles",
+        )
     if method not in METHODS:
         raise ModelError(f"unknown method {method!r}; expected one of {', '.join(METHODS)}")
     fm1, fm2 = plane_motions(building, pair.h1, pair.h2, pair.dt, floor)
