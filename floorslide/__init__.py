@@ -60,7 +60,14 @@ from floorslide.records import (
     read_record,
 )
 from floorslide.report import design_tables, plot_figures, record_table
-from floorslide.spectra import Spectrum, broaden, envelope, response_spectrum
+from floorslide.spectra import (
+    RotDSpectrum,
+    Spectrum,
+    broaden,
+    envelope,
+    response_spectrum,
+    rotd_spectrum,
+)
 
 try:
     __version__ = _version("floorslide")
@@ -93,6 +100,8 @@ __all__ = [
     "envelope",
     "response_mode",
     "response_spectrum",
+    "rotd_spectrum",
+    "RotDSpectrum",
     "slide_oscillator",
     "building_motion",
     "floor_motion",

@@ -467,14 +467,14 @@ def _exact(fm, T, Z, search_all=False, counts=None):
         up = 1
     pos = T > 0
     h = dt / up
-    setup = _kernel_data(
-        float(h), np.asarray(T[pos], float).tobytes(), np.asarray(Z, float).tobytes(), *system
-    )
-    nosc = setup.w.size
-    out = np.zeros((nosc, 3))
-    S = spectrum_state(setup.C.shape[0], fm.beta[0] * a[0])
-    for k0, X in fm.chunks():
-        spectrum_kernel(setup, X, k0, a, up, h, search_all, S, out, counts)
+    out = np.zeros((int(pos.sum()) * Z.size, 3))
+    if pos.any():  # (periods 0 only: no oscillator)
+        setup = _kernel_data(
+            float(h), np.asarray(T[pos], float).tobytes(), np.asarray(Z, float).tobytes(), *system
+        )
+        S = spectrum_state(setup.C.shape[0], fm.beta[0] * a[0])
+        for k0, X in fm.chunks():
+            spectrum_kernel(setup, X, k0, a, up, h, search_all, S, out, counts)
     sd = np.zeros((Z.size, T.size))
     sv = np.zeros((Z.size, T.size))
     sa = np.zeros((Z.size, T.size))
