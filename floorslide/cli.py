@@ -579,28 +579,14 @@ def _slide_pair(record, record2, mus, mus_s, scale_pga, building, building_h2, f
     """``floorslide slide`` with two horizontal components: sliding in the plane."""
     import numpy as np
 
-    from floorslide.building.directions import BuildingPair
-    from floorslide.building.spec import describe_building, parse_building
+    from floorslide.building.spec import describe_building
     from floorslide.constants import G
     from floorslide.contents.plane import slide_plane
-    from floorslide.errors import ModelError
     from floorslide.pair import make_pair
 
-    t1, t2 = (_apply_processing(t, processing) for t in _pair_traces(record, record2, reading))
-    labels = [record, record2 or f"{record} (2nd)"]
-    codes = []
-    for tr, label in zip((t1, t2), labels, strict=True):
-        from floorslide.records.quality import check_record
-
-        quality = check_record(tr.data, tr.stats.delta)
-        _warn_quality(label, quality)
-        codes.append(list(quality.codes))
-    names = tuple(
-        str(getattr(getattr(t.stats, "record", None), "component", "") or t.stats.channel or h)
-        for t, h in ((t1, "h1"), (t2, "h2"))
-    )
-    pair = make_pair(t1.data, t2.data, float(t1.stats.delta), names=names,
-                     label=" + ".join(labels), dt2=float(t2.stats.delta))  # fmt: skip
+    pair, model, where, codes = _pair_input(record, record2, reading, processing, building,
+                                            building_h2, where)  # fmt: skip
+    names, labels = pair.names, [record, record2 or f"{record} (2nd)"]
     if scale_pga is not None:
         if not scale_pga > 0:
             raise click.BadParameter("must be > 0", param_hint="--scale-pga")
@@ -610,15 +596,6 @@ def _slide_pair(record, record2, mus, mus_s, scale_pga, building, building_h2, f
                                      param_hint="--scale-pga")  # fmt: skip
         f = scale_pga * G / top
         pair = make_pair(f * pair.h1, f * pair.h2, pair.dt, names=pair.names, label=pair.label)
-    model = building
-    if building_h2 is not None:
-        if building is None:
-            raise click.BadParameter("needs --building", param_hint="--building-h2")
-        try:
-            model = BuildingPair(building, parse_building(building_h2))
-        except ModelError as exc:
-            raise click.BadParameter(str(exc), param_hint="--building-h2") from None
-        where += f"; along {names[1]}: {describe_building(model.h2)}"
     res = slide_plane(pair, None, mus, mus_s, building=model,
                       floor=floor_no if building is not None else None)  # fmt: skip
     rows = []
@@ -921,6 +898,20 @@ def _spectrum_grid(periods: str | None, damping: str):
 
 @cli.command()
 @click.argument("record")
+@click.argument("record2", required=False)
+@click.option(
+    "--pair",
+    "as_pair",
+    is_flag=True,
+    help="RECORD holds both horizontal components (a multi-channel file, or one file of a K-NET "
+    "recording): RotD50 and RotD100 spectra.",
+)
+@click.option(
+    "--building-h2",
+    "building_h2",
+    metavar="SPEC",
+    help="With two components: the building's model along the second (default: --building).",
+)
 @click.option(
     "--damping", default="0.05", show_default=True, metavar="Z[,Z...]", help="Damping ratio(s)."
 )
@@ -935,6 +926,9 @@ def _spectrum_grid(periods: str | None, damping: str):
 @processing_options
 def spectrum(
     record,
+    record2,
+    as_pair,
+    building_h2,
     damping,
     periods,
     as_json,
@@ -956,6 +950,11 @@ def spectrum(
     is applied unless asked (--detrend, --taper, --highpass, --lowpass). The header says which
     motion the spectra are of. The record's quality flags (mean offset, trend, clipping,
     truncation, periods below 4·dt) are printed as warnings on stderr; in JSON under "qa".
+
+    With two horizontal components — RECORD and RECORD2, or --pair — the spectra are RotD50
+    and RotD100 (Boore 2010: the median and the largest over every direction of the peak
+    response along it, exact with peaks inside steps) beside each component's PSA;
+    --building-h2 gives the building its own model along the second component.
     """
     from floorslide.constants import G
     from floorslide.errors import ModelError
@@ -964,6 +963,17 @@ def spectrum(
 
     grid, zetas = _spectrum_grid(periods, damping)
     building, floor_no, where = _building(building_spec, floor)
+    if record2 is not None or as_pair:
+        if record2 is not None and as_pair:
+            raise click.BadParameter("give RECORD2 or --pair, not both", param_hint="--pair")
+        _spectrum_pair(record, record2, grid, zetas, building, building_h2, floor_no, where,
+                       (fmt, units, dt, component),
+                       _processing(detrend, taper, highpass, lowpass), as_json)  # fmt: skip
+        return
+    if building_h2 is not None:
+        raise click.BadParameter(
+            "is for two components (RECORD2 or --pair)", param_hint="--building-h2"
+        )
     tr = _read_one(record, fmt, units, dt, component)
     tr = _apply_processing(tr, _processing(detrend, taper, highpass, lowpass))
     try:
@@ -1003,6 +1013,88 @@ def spectrum(
             click.echo(
                 f"{t:9.4g} {sp.psa[i, j] / G:9.4f} {sp.sa[i, j] / G:9.4f} "
                 f"{sp.sv[i, j]:10.4g} {sp.sd[i, j]:10.4g}"
+            )
+
+
+def _pair_input(record, record2, reading, processing, building, building_h2, where):
+    """Two components read and processed (each checked, flags warned on stderr), as a pair,
+    and the building in the plane (with ``--building-h2``); returns ``(pair, model, where,
+    qa)``."""
+    from floorslide.building.directions import BuildingPair
+    from floorslide.building.spec import describe_building, parse_building
+    from floorslide.errors import ModelError
+    from floorslide.pair import make_pair
+    from floorslide.records.quality import check_record
+
+    t1, t2 = (_apply_processing(t, processing) for t in _pair_traces(record, record2, reading))
+    labels = [record, record2 or f"{record} (2nd)"]
+    codes = []
+    for tr, label in zip((t1, t2), labels, strict=True):
+        quality = check_record(tr.data, tr.stats.delta)
+        _warn_quality(label, quality)
+        codes.append(list(quality.codes))
+    names = tuple(
+        str(getattr(getattr(t.stats, "record", None), "component", "") or t.stats.channel or h)
+        for t, h in ((t1, "h1"), (t2, "h2"))
+    )
+    pair = make_pair(t1.data, t2.data, float(t1.stats.delta), names=names,
+                     label=" + ".join(labels), dt2=float(t2.stats.delta))  # fmt: skip
+    model = building
+    if building_h2 is not None:
+        if building is None:
+            raise click.BadParameter("needs --building", param_hint="--building-h2")
+        try:
+            model = BuildingPair(building, parse_building(building_h2))
+        except ModelError as exc:
+            raise click.BadParameter(str(exc), param_hint="--building-h2") from None
+        where += f"; along {names[1]}: {describe_building(model.h2)}"
+    return pair, model, where, codes
+
+
+def _spectrum_pair(record, record2, grid, zetas, building, building_h2, floor_no, where,
+                   reading, processing, as_json):  # fmt: skip
+    """``floorslide spectrum`` with two horizontal components: RotD50 and RotD100."""
+    from floorslide.constants import G
+    from floorslide.errors import ModelError
+    from floorslide.spectra.core import check_oscillators
+    from floorslide.spectra.rotd import rotd_spectrum
+
+    pair, model, where, codes = _pair_input(record, record2, reading, processing, building,
+                                            building_h2, where)  # fmt: skip
+    try:
+        check_oscillators(grid, zetas, pair.dt)
+    except ModelError as exc:
+        raise click.BadParameter(exc.message, param_hint="--periods") from None
+    r = rotd_spectrum(pair, None, grid, zetas, building=model,
+                      floor=floor_no if building is not None else None)  # fmt: skip
+    if as_json:
+        out = {
+            "records": [record] + ([record2] if record2 else []),
+            "components": list(pair.names),
+            "floor": floor_no,
+            **r.to_dict(),
+            "qa_flags": codes,
+            "notes": list(pair.notes),
+        }
+        out.pop("psa_angles", None)
+        click.echo(_strict_json(out))
+        return
+    click.echo(
+        f"{pair.label}: dt = {pair.dt:g} s, {pair.npts} samples, components {pair.names[0]} and "
+        f"{pair.names[1]}: RotD50 and RotD100 (Boore 2010), {where}"
+    )
+    for note in pair.notes:
+        click.echo(f"  note: {note}")
+    for i, z in enumerate(r.damping):
+        click.echo(f"damping {z:g}")
+        click.echo(
+            f"{'T (s)':>9} {'RotD50 (g)':>11} {'RotD100 (g)':>12} {'dir100 (deg)':>13} "
+            f"{'PSA ' + pair.names[0] + ' (g)':>12} {'PSA ' + pair.names[1] + ' (g)':>12}"
+        )
+        for j, t in enumerate(r.periods):
+            click.echo(
+                f"{t:9.4g} {r.rotd50[i, j] / G:11.4f} {r.rotd100[i, j] / G:12.4f} "
+                f"{r.angle100[i, j]:13.1f} {r.h1.psa[i, j] / G:12.4f} {r.h2.psa[i, j] / G:12.4f}"
             )
 
 

@@ -305,3 +305,20 @@ def test_slide_one_record_is_not_a_pair():
     assert out.returncode != 0
     assert "one component in the file" in out.stderr
     assert len(out.stderr.strip().splitlines()) == 1
+
+
+def test_spectrum_of_two_components_is_rotd():
+    import floorslide as fs
+
+    out = run("spectrum", H1, H2, "--periods", "0,0.2,1.0", "--damping", "0.05", "--json")
+    assert out.returncode == 0, out.stderr
+    got = json.loads(out.stdout)
+    ref = fs.rotd_spectrum(fs.read_pair(H1, H2), None, [0.0, 0.2, 1.0], 0.05)
+    np.testing.assert_allclose(got["rotd50"], ref.rotd50, rtol=1e-13)
+    np.testing.assert_allclose(got["rotd100"], ref.rotd100, rtol=1e-13)
+    np.testing.assert_allclose(got["h1"]["psa"], ref.h1.psa, rtol=1e-13)
+    assert got["components"] == ["52", "142"]
+    text = run("spectrum", H1, H2, "--periods", "0.5", "--building", "fixed:period=0.4,stories=2",
+               "--building-h2", "fixed:period=0.8,stories=2")  # fmt: skip
+    assert text.returncode == 0, text.stderr
+    assert "RotD50 and RotD100" in text.stdout and "along 142" in text.stdout

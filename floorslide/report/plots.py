@@ -719,11 +719,15 @@ def figure_frs(study: Study, record_set: str, damping: float) -> Figure | None:
         if broadening
         else "unbroadened (no peak broadening)"
     )
+    rotd = any(getattr(s, "orientation", "") for t in tasks for s in t.spectra)
     _suptitle(
         fig,
         study,
-        f"Floor response spectra — set {record_set}\nmedian PSA over {n_records} records, "
-        f"{damping * 100:g} % damping; {wide}{_few(n_records)}"
+        f"Floor response spectra — set {record_set}\nmedian "
+        + ("RotD50 PSA over {n} record pairs" if rotd else "PSA over {n} records").format(
+            n=n_records
+        )
+        + f", {damping * 100:g} % damping; {wide}{_few(n_records)}"
         + (" (some floors left out)" if cut else ""),
     )
     handles = {}

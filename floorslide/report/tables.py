@@ -922,6 +922,12 @@ def table_notes(study: Study, damping: float | None) -> list[str]:
             f"FRS: PSA at {damping:g} damping, interpolated linearly in ln(period) between stored "
             f"periods; psa_* are the unbroadened spectra, {wide}"
         )
+        if any(getattr(s, "orientation", "") for t in study.tasks for s in t.spectra):
+            notes.append(
+                "FRS of record pairs: psa is RotD50 (Boore 2010: the median over 180 directions "
+                "of the peak response along each, exact with in-step peaks); RotD100 and each "
+                "direction's PSA are in the result file"
+            )
         lost = any(
             s.broadening and np.isnan(np.asarray(s.psa, dtype=float)).all()
             for t in study.tasks

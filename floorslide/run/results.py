@@ -97,6 +97,14 @@ class SpectrumResult:
     sa_broadened: np.ndarray | None = None
     sv_broadened: np.ndarray | None = None
     sd_broadened: np.ndarray | None = None
+    orientation: str = ""
+    """``""`` for one component; ``"RotD50"`` for a pair of horizontal components: then ``psa``
+    is RotD50 (Boore 2010), ``sd = psa/ω²`` the same for the displacement, ``sa`` and ``sv``
+    are NaN (not defined by RotD), and ``rotd100``, ``psa_h1``, ``psa_h2`` hold RotD100 and
+    each direction's PSA."""
+    rotd100: np.ndarray | None = None
+    psa_h1: np.ndarray | None = None
+    psa_h2: np.ndarray | None = None
 
 
 @dataclass

@@ -47,7 +47,10 @@ Layout (every dataset carries a ``units`` attribute; ``1`` means dimensionless):
       spectra/floor_<f>/     periods (s), damping (1), psa, sa (m/s**2), sv (m/s), sd (m): the
                              spectra as computed, unbroadened (rows: damping, columns:
                              periods); attr broadening (the scene's ±fraction, 0 for none).
-                             Every spectrum dataset has an attr broadening: 0 here.
+                             Every spectrum dataset has an attr broadening: 0 here. For a
+                             pair of components attr orientation = "RotD50": psa is RotD50
+                             (Boore 2010), sd = psa/ω², sa and sv NaN, and rotd100, psa_h1,
+                             psa_h2 (m/s**2) RotD100 and each direction's PSA.
         broadened/           only when broadening > 0: psa, sa, sv, sd widened by ±broadening
                              in frequency (floorslide.spectra.broaden; ASCE 4, US NRC RG
                              1.122); attr broadening on the group and on every dataset
@@ -190,6 +193,8 @@ CONTENT_FIELDS = (
 )
 SPECTRUM_FIELDS = ("periods", "damping", "psa", "sa", "sv", "sd")
 ORDINATE_FIELDS = ("psa", "sa", "sv", "sd")
+ROTD_FIELDS = ("rotd100", "psa_h1", "psa_h2")
+"""The spectra of a pair beside RotD50 (``psa``): RotD100 and each direction's PSA."""
 ISOLATOR_HISTORIES = ("isolator_displacement", "isolator_force_ratio")
 """Histories of a building on nonlinear isolation (absent for other buildings)."""
 
@@ -298,6 +303,10 @@ def task_node(result: TaskResult) -> Node:
             h.children[name] = _data(name, getattr(s, name))
             if name in ORDINATE_FIELDS:
                 h.children[name].attrs["broadening"] = 0.0
+        if s.orientation:
+            h.attrs["orientation"] = s.orientation
+            for name in ROTD_FIELDS:
+                h.children[name] = _data("psa", getattr(s, name))
         if s.broadening:
             b = h.group("broadened")
             b.attrs["broadening"] = float(s.broadening)
@@ -973,6 +982,10 @@ def _read_spectrum(k: str, h: Node, legacy_broadening: float) -> SpectrumResult:
         lost = {n: np.full_like(fields[n], np.nan, dtype=float) for n in ORDINATE_FIELDS}
         return SpectrumResult(floor, **{**fields, **lost}, broadening=legacy_broadening, **wide)
     out = SpectrumResult(floor, **fields, broadening=float(h.attrs.get("broadening", 0.0)))
+    if "orientation" in h.attrs:
+        out.orientation = _s(h.attrs["orientation"])
+        for name in ROTD_FIELDS:
+            setattr(out, name, _value(h, name))
     if "broadened" in h:
         b = _group(h, "broadened")
         for n in ORDINATE_FIELDS:

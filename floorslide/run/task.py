@@ -591,6 +591,8 @@ def _run_pair(task: Task, force: bool, t0: float) -> TaskResult:
             hist_plane[key] = u
             hist_slides[key] = np.hypot(u[:, :, 0], u[:, :, 1])
             hist_mu[key] = mu[pick]
+    for floor in task.spectra_floors:
+        result.spectra.append(_pair_spectrum(task, model, floor))
     if task.histories:
         fl = np.array(floors, dtype=np.int64)
         acc1 = np.array([motions[f][0].samples() for f in floors]).reshape(-1, rec.acc.size)
@@ -601,3 +603,30 @@ def _run_pair(task: Task, force: bool, t0: float) -> TaskResult:
         )  # fmt: skip
     result.seconds = time.perf_counter() - t0
     return result
+
+
+def _pair_spectrum(task: Task, model, floor: int) -> SpectrumResult:
+    """The floor spectrum of a pair (:func:`floorslide.rotd_spectrum`): RotD50 as ``psa`` (and
+    ``sd = psa/ω²``), RotD100 and each direction's PSA beside it; ``sa`` and ``sv`` are NaN
+    (RotD is defined on the oscillator's displacement)."""
+    from floorslide.spectra.core import Spectrum
+    from floorslide.spectra.rotd import rotd_spectrum
+
+    rec, sc = task.record, task.spectra
+    r = rotd_spectrum((rec.acc, rec.acc2), rec.dt, np.asarray(sc.periods), list(sc.damping),
+                      building=model, floor=floor if model is not None else None)  # fmt: skip
+    T = r.periods
+    w2 = np.where(T > 0, (2 * np.pi / np.where(T > 0, T, 1.0)) ** 2, np.inf)
+    psa = r.rotd50
+    sd = psa / w2
+    nan = np.full_like(psa, np.nan)
+    out = SpectrumResult(floor, T, r.damping, psa, nan, nan.copy(), sd)
+    out.orientation = "RotD50"
+    out.rotd100, out.psa_h1, out.psa_h2 = r.rotd100, r.h1.psa, r.h2.psa
+    if sc.broadening:
+        wide = broaden(Spectrum(T, r.damping, psa, nan, nan, sd, psa / np.sqrt(w2)),
+                       sc.broadening)  # fmt: skip
+        out.broadening = float(sc.broadening)
+        out.psa_broadened, out.sa_broadened = wide.psa, wide.sa
+        out.sv_broadened, out.sd_broadened = wide.sv, wide.sd
+    return out

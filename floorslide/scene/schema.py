@@ -443,12 +443,6 @@ def parse_scene(text: str, path: str | Path = "scene.toml") -> Scene:
                     "is not available yet (rigid blocks and 2-DOF oscillators without it are)",
                 )
     pair_sets = [r.set for r in records if r.pairs]
-    if pair_sets and spectra is not None:
-        ck.add(
-            "spectra",
-            f"floor spectra of record pairs (set {pair_sets[0]!r}) are not available yet; run "
-            "the spectra on a set of single components",
-        )
     if pair_sets:
         for i, c in enumerate(contents):
             what = (

@@ -61,6 +61,12 @@ mu = [0.15, 0.3]
 width = {WIDTH}
 height = {HEIGHT}
 
+[spectra]
+floors = "roof"
+damping = [0.05]
+periods = [0.0, 0.1, 0.3, 1.0, 3.0]
+broadening = 0.15
+
 [report]
 history_record = "RSN1084_NORTHR_SCS"
 """
@@ -157,6 +163,27 @@ def test_a_rocking_block_rocks_in_each_component_and_keeps_the_worse(run):
                 assert np.isnan(c.peak_slide[i])  # a rocker is never a 0 slide
                 checked += 1
     assert checked >= 1
+
+
+def test_floor_spectra_of_a_pair_are_rotd50_beside_rotd100_and_each_direction(run):
+    _, rf, _ = run
+    n = 0
+    for t in rf.tasks():
+        pair = _pair(_rsn(t.meta["record"]))
+        (s,) = t.spectra
+        assert s.orientation == "RotD50" and s.floor == 2
+        ref = fs.rotd_spectrum(pair, None, s.periods, list(s.damping), building=_model(
+            t.meta["building"]), floor=2)  # fmt: skip
+        np.testing.assert_allclose(s.psa, ref.rotd50, rtol=1e-13)
+        np.testing.assert_allclose(s.rotd100, ref.rotd100, rtol=1e-13)
+        np.testing.assert_allclose(s.psa_h1, ref.h1.psa, rtol=1e-13)
+        np.testing.assert_allclose(s.psa_h2, ref.h2.psa, rtol=1e-13)
+        w2 = (2 * np.pi / s.periods[1:]) ** 2
+        np.testing.assert_allclose(s.sd[:, 1:], s.psa[:, 1:] / w2, rtol=1e-15)
+        assert np.isnan(s.sa).all() and np.isnan(s.sv).all()
+        assert (s.psa_broadened >= s.psa).all()
+        n += 1
+    assert n == 6
 
 
 def test_histories_keep_the_path_in_the_plane(run):
