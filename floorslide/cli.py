@@ -1653,16 +1653,17 @@ def demo(out_dir, workers):
 def bench(quick, as_json, out):
     """The accuracy-versus-cost study (docs/design.md §6): for every solver (rigid-block sliding on
     the
-    ground, a stiff floor and an isolated roof; the 2-DOF sliding oscillator; floor motions;
-    response and floor response spectra) the exact method and each approximate one over a
-    range of steps or tolerances, on bundled real records: relative error in peak and residual
+    ground, a stiff floor and an isolated roof, and in the plane under pairs of components; the
+    2-DOF sliding oscillator; floor motions; response and floor response spectra) the exact
+    method and each approximate one over a range of steps or tolerances, on bundled real
+    records: relative error in peak and residual
     slide, spring deformation, PFA, floor samples and PSA against the exact method, and CPU
     time (median of repeats after a warm-up call, one thread; numba compilation apart — on a
     fresh cache in a child process, except with --quick).
 
     Writes a table (CSV, Markdown, JSON) and one work-precision figure per solver (error versus
     CPU time, log-log) to DIR, and prints the Markdown table (or, with --json, the JSON).
-    --quick runs one record and fewer settings, in under a minute.
+    --quick runs one record (and one pair) and fewer settings, in under a minute.
     """
     from floorslide.bench import run_bench, to_json, to_markdown, write_outputs
     from floorslide.bench.compile import fresh_compile_times

@@ -33,8 +33,9 @@ METRICS = {
 }
 """Metric key → what it measures. Relative errors: peak slide, peak deformation, PFA and PSA
 against the exact value of the same object, floor or period; the residual slide against the
-exact *peak* slide (a residual can be near zero); samples: ``max|y − y_exact| / max|y_exact|``
-per floor. Each is the maximum over objects (or floors, periods) and records."""
+exact *peak* slide (a residual can be near zero; in the plane, the length of the difference of
+the residual vectors); samples: ``max|y − y_exact| / max|y_exact|`` per floor. Each is the
+maximum over objects (or floors, periods) and records."""
 
 ETA = (0.2, 0.5)
 """Friction as a fraction of the peak acceleration of the motion the object stands on:
@@ -96,6 +97,10 @@ class Solver:
         The exact method first, then the approximate ones.
     context
         ``context(acc, dt) → dict`` of per-record settings (friction values, periods).
+    pair
+        Whether it takes two horizontal components: ``acc`` is then ``(2, npts)`` (x along the
+        pair's ``h1``, y along ``h2``), and the study runs it on bundled pairs of components
+        (:data:`floorslide.bench.study.PAIRS`) instead of single records.
     """
 
     key: str
@@ -103,6 +108,7 @@ class Solver:
     metrics: tuple[str, ...]
     methods: tuple[Method, ...]
     context: Callable[[np.ndarray, float], dict] = field(repr=False, compare=False)
+    pair: bool = False
 
 
 @dataclass(frozen=True)
@@ -144,9 +150,12 @@ def isolated_building() -> IsolatedBuilding:
 
 
 def resample(acc: np.ndarray, k: int) -> np.ndarray:
-    """The same piecewise-linear record sampled at ``dt/k``."""
+    """The same piecewise-linear record sampled at ``dt/k`` (along the last axis: a pair of
+    components ``(2, npts)`` too)."""
     if k == 1:
         return acc
+    if acc.ndim > 1:
+        return np.stack([resample(a, k) for a in acc])
     return np.interp(np.arange((acc.size - 1) * k + 1) / k, np.arange(acc.size), acc)
 
 
@@ -217,6 +226,70 @@ def sliding_solver(
     ]
     return Solver(
         key, title, ("peak_slide", "residual_slide"), tuple(methods), _mus(building, floor)
+    )
+
+
+def _plane_mus(building: LinearBuilding | None, floor: int):
+    """``mu = eta·max|a_f|/g`` with ``|a_f|`` the magnitude of the floor's horizontal
+    acceleration (both directions' exact floor samples; at the samples, where the peak of a
+    piecewise-linear vector on the ground is)."""
+
+    def context(acc: np.ndarray, dt: float) -> dict:
+        if building is None:
+            af = acc
+        else:
+            af = np.stack([floor_motions(building, a, dt, floors=[floor])[0] for a in acc])
+        return {"mu": np.array(ETA) * float(np.hypot(af[0], af[1]).max()) / G}
+
+    return context
+
+
+def plane_solver(
+    key: str, title: str, building: LinearBuilding | None, floor: int, ladder: Ladder
+) -> Solver:
+    """Rigid blocks sliding in the plane under a pair of components (``mu = eta·max|a_f|/g``),
+    on the ground or on a floor (one model both ways): the exact Taylor-series solver, the
+    Moreau–Jean scheme at ``dt/k`` (friction as a return map), SciPy's RK45 at ``rtol`` with
+    events, and each component slid alone by the exact 1-D solver
+    (:mod:`floorslide.contents.plane_approx`)."""
+    from floorslide.contents.plane import slide_plane
+
+    kw = {} if building is None else {"building": building, "floor": floor}
+
+    def run(method: str, **settings) -> Run:
+        def go(acc, dt, ctx):
+            r = slide_plane(acc, dt, ctx["mu"], method=method, compare_1d=False, **settings, **kw)
+            return {"peak_slide": r.peak_slide, "residual_slide": r.residual}
+
+        return go
+
+    methods = [Method("exact", "exact", "", run("exact"))]
+    methods += [
+        Method(
+            "newmark",
+            "Moreau–Jean return map, dt/k",
+            f"dt/{k}",
+            run("newmark", substeps=k),
+            k,
+        )
+        for k in ladder.substeps
+    ]
+    methods += [
+        Method(
+            "solve_ivp", "solve_ivp RK45, rtol", f"rtol {r:.0e}", run("solve_ivp", rtol=r), rtol=r
+        )
+        for r in ladder.rtols
+    ]
+    methods.append(
+        Method("components", "each component alone (1-D exact), as a vector", "", run("components"))
+    )
+    return Solver(
+        key,
+        title,
+        ("peak_slide", "residual_slide"),
+        tuple(methods),
+        _plane_mus(building, floor),
+        pair=True,
     )
 
 
@@ -587,6 +660,16 @@ def solvers(ladder: Ladder) -> tuple[Solver, ...]:
             ladder,
         ),
         rocking_solver(ladder),
+        plane_solver(
+            "plane-ground", "Rigid block sliding in the plane on the ground", None, 0, ladder
+        ),
+        plane_solver(
+            "plane-roof",
+            "Rigid block sliding in the plane on the roof of the 3-storey isolated building",
+            iso,
+            3,
+            ladder,
+        ),
     )
 
 
@@ -607,7 +690,10 @@ def error(metric: str, got: dict, ref: dict) -> float:
     g = np.asarray(got[metric], dtype=float)
     r = np.asarray(ref[metric], dtype=float)
     if metric == "residual_slide":
-        return float(np.max(np.abs(g - r) / np.asarray(ref["peak_slide"], dtype=float)))
+        diff = (
+            np.abs(g - r) if g.ndim == 1 else np.hypot(g[..., 0] - r[..., 0], g[..., 1] - r[..., 1])
+        )
+        return float(np.max(diff / np.asarray(ref["peak_slide"], dtype=float)))
     if metric == "samples":
         return float(np.max(np.abs(g - r).max(axis=-1) / np.abs(r).max(axis=-1)))
     return float(np.max(np.abs(g - r) / np.abs(r)))

@@ -23,15 +23,17 @@ from floorslide.errors import FloorslideError
 
 def measure_here(record: str = "PET-090", prefix: int = 64) -> list[dict]:
     """Call each method (first setting of each) once in this process, in the study's order, and
-    record the numba compilation each call triggers."""
+    record the numba compilation each call triggers (the solvers in the plane on the first
+    bundled pair of :data:`~floorslide.bench.study.PAIRS`)."""
     from floorslide.bench.cases import FULL, solvers
-    from floorslide.bench.study import load_records
+    from floorslide.bench.study import PAIRS, load_pairs, load_records
     from floorslide.bench.timing import CompileTimer
 
     (rec,) = load_records((record,))
-    acc, dt = rec.acc[:prefix], rec.dt
+    (two,) = load_pairs(PAIRS[:1])
     rows = []
     for solver in solvers(FULL):
+        acc, dt = (two.acc[:, :prefix], two.dt) if solver.pair else (rec.acc[:prefix], rec.dt)
         with CompileTimer() as setup:  # friction from the floor's PFA: counted with "exact"
             ctx = solver.context(acc, dt)
         seen = set()

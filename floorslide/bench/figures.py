@@ -83,14 +83,15 @@ def work_precision_figure(result: BenchResult, solver: str, path: str | Path) ->
     )
     ax.set_xscale("log")
     ax.set_yscale("log")
-    n = len(result.records)
+    recs = result.records_of(solver)
+    n = len(recs)
     ax.set_xlabel(f"CPU time per run, ms (median, one thread; sum over {n} record{'s' * (n > 1)})")
     names = " and ".join(METRICS[m] for m in result.metrics[solver])
     metrics = result.metrics[solver]
     over = "periods" if "psa" in metrics else "floors" if "pfa" in metrics else "objects"
     ax.set_ylabel(f"relative error of {names}\n(max over records and {over})")
-    recs = ", ".join(r["station_id"] for r in result.records)
-    ax.set_title(f"{result.solvers[solver]}\nrecords: {recs}", fontsize=10)
+    ids = ", ".join(r["station_id"] for r in recs)
+    ax.set_title(f"{result.solvers[solver]}\nrecords: {ids}", fontsize=10)
     ax.grid(True, which="major", lw=0.4, alpha=0.6)
     ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2, frameon=False)
     path = Path(path)

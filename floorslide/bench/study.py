@@ -9,6 +9,8 @@ anything.
 
 from __future__ import annotations
 
+import csv
+import io
 import os
 import platform
 import time
@@ -29,18 +31,40 @@ RECORDS = ("PET-090", "ELC-180")
 Petrolia (pulse-like, PGA 0.66 g, 1,800 samples at dt = 0.02 s) and Imperial Valley 1940,
 El Centro (broad-band, PGA 0.31 g, 3,949 samples at dt = 0.01 s). ``--quick`` runs the first."""
 
+PAIRS = ("511", "1084")
+"""Bundled PEER pairs of horizontal components of the default run for the solvers in the plane
+(catalog ``rsn``): N. Palm Springs 1986, Anza - Red Mountain (2,207 samples at dt = 0.005 s)
+and Northridge 1994, Sylmar Converter Station (near-fault, PGA 0.92 g, 8,773 samples).
+``--quick`` runs the first."""
+
 PREFIX = 64
 """Samples of the record the warm-up call runs on."""
 
 
 @dataclass(frozen=True)
 class Record:
-    """A bench record: its catalog id, description, samples (m/s²) and step (s)."""
+    """A bench record: its catalog id, description, samples (m/s²; ``(2, npts)`` for a pair of
+    horizontal components) and step (s)."""
 
     station_id: str
     label: str
     acc: np.ndarray = field(repr=False)
     dt: float
+
+    @property
+    def npts(self) -> int:
+        """Samples (of each component)."""
+        return int(self.acc.shape[-1])
+
+    def to_dict(self) -> dict:
+        """What the study reports of it."""
+        return dict(
+            station_id=self.station_id,
+            label=self.label,
+            dt=self.dt,
+            npts=self.npts,
+            components=1 if self.acc.ndim == 1 else int(self.acc.shape[0]),
+        )
 
 
 @dataclass(frozen=True)
@@ -106,11 +130,14 @@ class BenchResult:
     metrics
         ``solver key → its metric keys``.
     records
-        The records used (``station_id``, description, dt, npts).
+        The records used (``station_id``, description, dt, npts, components).
     quick
         Whether this was the ``--quick`` study.
     machine
         Where it ran (platform, Python, CPU count).
+    inputs
+        ``solver key → the station_id of each record it ran on`` (single records, or pairs of
+        components for the solvers in the plane).
     """
 
     rows: tuple[Row, ...]
@@ -119,6 +146,14 @@ class BenchResult:
     records: tuple[dict, ...]
     quick: bool
     machine: dict
+    inputs: dict[str, tuple[str, ...]] = field(default_factory=dict)
+
+    def records_of(self, solver: str) -> tuple[dict, ...]:
+        """The records `solver` ran on."""
+        ids = self.inputs.get(solver)
+        if ids is None:
+            return self.records
+        return tuple(r for r in self.records if r["station_id"] in ids)
 
     @classmethod
     def from_dict(cls, data: dict) -> BenchResult:
@@ -144,6 +179,7 @@ class BenchResult:
             records=tuple(data["records"]),
             quick=bool(data["quick"]),
             machine=dict(data["machine"]),
+            inputs={k: tuple(v) for k, v in data.get("inputs", {}).items()},
         )
 
     def to_dict(self) -> dict:
@@ -154,6 +190,7 @@ class BenchResult:
             records=list(self.records),
             solvers=self.solvers,
             metrics={k: list(v) for k, v in self.metrics.items()},
+            inputs={k: list(v) for k, v in self.inputs.items()},
             rows=[r.to_dict() for r in self.rows],
         )
 
@@ -175,11 +212,32 @@ def load_records(ids: tuple[str, ...]) -> tuple[Record, ...]:
     return tuple(out)
 
 
+def load_pairs(rsns: tuple[str, ...]) -> tuple[Record, ...]:
+    """The bundled PEER pairs of horizontal components with these catalog ``rsn`` values, in
+    m/s², as records of ``(2, npts)`` samples (``station_id`` ``RSN<rsn>``)."""
+    from floorslide.records.pairs import read_pairs
+
+    index = files("floorslide.data") / "records" / "pairs" / "index.csv"
+    rows = {r["rsn"]: r for r in csv.DictReader(io.StringIO(index.read_text(encoding="utf-8")))}
+    out = []
+    for rsn in rsns:
+        pairs = read_pairs(str(index), where={"rsn": str(rsn)})
+        if len(pairs) != 1:
+            raise ModelError(f"no single bundled pair with rsn {rsn!r}", "records")
+        p, row = pairs[0], rows[str(rsn)]
+        sid = f"RSN{rsn}"
+        label = f"{row['event']}, {row['station']} ({sid}, {row['comp_h1']}/{row['comp_h2']})"
+        acc = np.ascontiguousarray(np.stack([p.h1, p.h2]), dtype=float)
+        out.append(Record(sid, label, acc, float(p.dt)))
+    return tuple(out)
+
+
 def run_bench(
     quick: bool = False,
     records: tuple[str, ...] | None = None,
     only: tuple[str, ...] | None = None,
     progress: Callable[[str], None] | None = None,
+    pairs: tuple[str, ...] | None = None,
 ) -> BenchResult:
     """Run the accuracy-versus-cost study.
 
@@ -194,6 +252,9 @@ def run_bench(
         Keys of the solvers to run (default: all).
     progress
         Called with a short message before each method.
+    pairs
+        Catalog ``rsn`` values of bundled pairs of components for the solvers in the plane
+        (default :data:`PAIRS`, or its first with `quick`).
 
     Returns
     -------
@@ -206,7 +267,6 @@ def run_bench(
     """
     ladder: Ladder = QUICK if quick else FULL
     ids = records or (RECORDS[:1] if quick else RECORDS)
-    recs = load_records(tuple(ids))
     all_solvers = make_solvers(ladder)
     if only:
         unknown = set(only) - {s.key for s in all_solvers}
@@ -214,19 +274,24 @@ def run_bench(
             known = ", ".join(s.key for s in all_solvers)
             raise ModelError(f"unknown solver(s) {sorted(unknown)}; expected some of {known}")
         all_solvers = tuple(s for s in all_solvers if s.key in only)
+    singles = load_records(tuple(ids)) if any(not s.pair for s in all_solvers) else ()
+    rsns = pairs or (PAIRS[:1] if quick else PAIRS)
+    doubles = load_pairs(tuple(rsns)) if any(s.pair for s in all_solvers) else ()
     repeats, budget = (3, 1.0) if quick else (7, 4.0)
     rows: list[Row] = []
     with threadpool_limits(limits=1):
         for solver in all_solvers:
+            recs = doubles if solver.pair else singles
             rows += _run_solver(solver, recs, repeats, budget, progress)
     return BenchResult(
         rows=tuple(rows),
         solvers={s.key: s.title for s in all_solvers},
         metrics={s.key: s.metrics for s in all_solvers},
-        records=tuple(
-            dict(station_id=r.station_id, label=r.label, dt=r.dt, npts=int(r.acc.size))
-            for r in recs
-        ),
+        records=tuple(r.to_dict() for r in singles + doubles),
+        inputs={
+            s.key: tuple(r.station_id for r in (doubles if s.pair else singles))
+            for s in all_solvers
+        },
         quick=quick,
         machine=dict(
             platform=platform.platform(),
@@ -260,7 +325,7 @@ def _run_solver(
         for rec, ctx in zip(recs, contexts, strict=True):
             timing, result = measure(
                 lambda m=method, rec=rec, ctx=ctx: m.run(rec.acc, rec.dt, ctx),
-                lambda m=method, rec=rec, ctx=ctx: m.run(rec.acc[:PREFIX], rec.dt, ctx),
+                lambda m=method, rec=rec, ctx=ctx: m.run(rec.acc[..., :PREFIX], rec.dt, ctx),
                 repeats=repeats,
                 budget=budget,
             )

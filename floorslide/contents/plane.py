@@ -17,6 +17,7 @@ import numpy as np
 from floorslide.building.directions import plane_motions
 from floorslide.constants import G
 from floorslide.contents import _plane_kernel as pk
+from floorslide.contents import plane_approx
 from floorslide.contents.sliding import friction_pairs, slide
 from floorslide.errors import ModelError, SolverLimitError
 from floorslide.pair import RecordPair, make_pair
@@ -24,6 +25,10 @@ from floorslide.pair import RecordPair, make_pair
 DEGREE = 20
 """Degree of the Taylor series of a slip phase (steps are sized so that its last terms are below
 1e-17 of its first: Jorba & Zou 2005)."""
+
+METHODS = ("exact", *plane_approx.METHODS)
+"""``method=`` of :func:`slide_plane`: the exact solver and the approximate ones of
+:mod:`floorslide.contents.plane_approx`."""
 
 
 @dataclass(frozen=True)
@@ -61,6 +66,9 @@ class PlaneSlideResult:
         ``(n, npts, 2)`` slides at the samples, when requested.
     notes
         What was done to the components (padding).
+    method
+        How it was computed (``"exact"`` or an approximate method: NaN, or −1 for counts,
+        where a method cannot give a field; :mod:`floorslide.contents.plane_approx`).
     """
 
     mu_k: np.ndarray
@@ -80,6 +88,7 @@ class PlaneSlideResult:
     duration: float
     u: np.ndarray | None = field(default=None, repr=False)
     notes: tuple[str, ...] = ()
+    method: str = "exact"
 
 
 def _as_pair(acc, dt) -> RecordPair:
@@ -110,6 +119,10 @@ def slide_plane(
     floor: int | None = None,
     histories: bool = False,
     compare_1d: bool = True,
+    method: str = "exact",
+    substeps: int = 4,
+    rtol: float = 1e-6,
+    integrator: str = "RK45",
 ) -> PlaneSlideResult:
     """Peak slide, its direction and the residual of rigid blocks sliding in the plane (isotropic
     Coulomb friction) under two horizontal components.
@@ -132,6 +145,14 @@ def slide_plane(
         Also return ``u`` at the samples.
     compare_1d
         Also slide each component alone (:func:`~floorslide.slide`) for ``ratio_2d_1d``.
+    method
+        ``"exact"`` (default); approximate (:mod:`floorslide.contents.plane_approx`, for the
+        accuracy-versus-cost study): ``"components"`` (each component slid alone by the exact
+        1-D solver, the two slides taken as a vector — the common practice, a different model),
+        ``"newmark"`` (Moreau–Jean steps of ``dt/substeps`` with the friction as a return
+        map), ``"solve_ivp"`` (SciPy's `integrator` at `rtol` with events).
+    substeps, rtol, integrator
+        Settings of the approximate methods.
 
     Returns
     -------
@@ -154,7 +175,14 @@ def slide_plane(
     if mu_k is None:
         raise ModelError("mu_k (the kinetic friction coefficient or coefficients) is required")
     mk, ms = friction_pairs(mu_k, mu_s)
+    if method not in METHODS:
+        raise ModelError(f"unknown method {method!r}; expected one of {', '.join(METHODS)}")
     fm1, fm2 = plane_motions(building, pair.h1, pair.h2, pair.dt, floor, max_bytes=0, copy=False)
+    if method != "exact":
+        return _approximate(
+            pair, mk, ms, building, floor, fm1, fm2, method, histories, compare_1d,
+            substeps, rtol, integrator,
+        )  # fmt: skip
     MU = np.vstack([np.maximum(mk, ms), mk])
     states = np.zeros((mk.size, pk.NCOL))
     states[:, pk.LIMIT_AT] = -1.0
@@ -201,4 +229,44 @@ def slide_plane(
         duration=duration,
         u=hist if histories else None,
         notes=pair.notes,
+    )
+
+
+def _approximate(
+    pair, mk, ms, building, floor, fm1, fm2, method, histories, compare_1d, substeps, rtol,
+    integrator,
+) -> PlaneSlideResult:  # fmt: skip
+    """:func:`slide_plane` by an approximate method, with the same 1-D comparison."""
+    r = plane_approx.approximate(
+        method, pair.h1, pair.h2, pair.dt, mk, ms, building, floor, fm1, fm2, G, histories,
+        substeps, rtol, integrator,
+    )  # fmt: skip
+    one_d = r.peak_slide_1d
+    if one_d is None:
+        one_d = np.full((mk.size, 2), np.nan)
+        if compare_1d:
+            one_d[:, 0] = slide(fm1, None, mk, ms).peak_slide
+            one_d[:, 1] = slide(fm2, None, mk, ms).peak_slide
+    big = one_d.max(axis=1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = np.where(big > 0, r.peak_slide / big, np.nan)
+    return PlaneSlideResult(
+        mu_k=mk,
+        mu_s=ms,
+        peak_slide=r.peak_slide,
+        peak_angle=r.peak_angle,
+        time_of_peak=r.time_of_peak,
+        residual=r.residual,
+        slide_fraction=r.slide_fraction,
+        slip_phases=r.slip_phases,
+        stops=r.stops,
+        peak_slide_1d=one_d,
+        ratio_2d_1d=ratio,
+        path=r.path,
+        work_floor=r.work_floor,
+        final_velocity=r.final_velocity,
+        duration=(pair.npts - 1) * pair.dt,
+        u=r.u,
+        notes=pair.notes,
+        method=method,
     )

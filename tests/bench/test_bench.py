@@ -73,12 +73,18 @@ def test_every_solver_and_method_is_in_the_table(quick):
         "spectra-ground",
         "frs-stiff-floor",
         "frs-isolated-roof",
+        "plane-ground",
+        "plane-roof",
     } <= set(keys)
     # every solver has its exact method and at least one approximate one
     for key in keys:
         methods = {r.method for r in quick.rows if r.solver == key}
         assert "exact" in methods and len(methods) >= 2
-    assert len(quick.records) == 1 and quick.records[0]["station_id"] == "PET-090"
+    # one single record, and one pair of components for the solvers in the plane
+    assert [r["station_id"] for r in quick.records] == ["PET-090", "RSN511"]
+    assert [r["components"] for r in quick.records] == [1, 2]
+    for s in solvers(QUICK):
+        assert quick.inputs[s.key] == (("RSN511",) if s.pair else ("PET-090",))
 
 
 def test_numbers_are_finite(quick):
@@ -108,8 +114,9 @@ def test_errors_shrink_as_steps_and_tolerances_shrink(quick):
     """Coarsest against finest setting of each family (in between, a switch or a peak moving
     across a step boundary makes the error non-monotone). Step families refined 16× or more
     (dt/1 → dt/64; first order or better, so ≥ 16× expected: measured 54–29,000× smaller) must
-    gain 10×; the others (FFT dt → dt/4, rtol 1e-3 → 1e-7, grip 50 → 800 Hz: measured 2.4–290×)
-    2×; unless the fine error is at :data:`FLOOR`."""
+    gain 10×; the others (FFT dt → dt/4, rtol 1e-3 → 1e-7, grip 50 → 800 Hz: measured 2.4–290×,
+    and 5,100–7,600× for solve_ivp in the plane) 2×; unless the fine error is at
+    :data:`FLOOR`."""
     fams = families(quick)
     assert len(fams) >= 20
     for (solver, family), rows in fams.items():
@@ -137,6 +144,11 @@ def test_coarse_approximations_are_visibly_wrong(quick):
     assert by[("frs-stiff-floor", "reinterpolated", "dt/1")] > 0.05
     assert by[("slide-ground", "newmark", "dt/1")] > 0.01
     assert by[("oscillator-ground", "newmark", "dt/1")] > 0.05
+    # in the plane: the record's step costs percents too, and sliding each component alone
+    # misses the 2-D slide by tens of percents (measured 51 % and 69 %), whatever its cost
+    assert by[("plane-ground", "newmark", "dt/1")] > 0.01
+    assert by[("plane-ground", "components", "")] > 0.2
+    assert by[("plane-roof", "components", "")] > 0.2
 
 
 def test_outputs_are_written(quick, tmp_path):
