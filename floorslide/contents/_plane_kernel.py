@@ -59,56 +59,112 @@ rounding-level sideways velocity the series' radius shrinks with the speed, and 
 crawl); it is the 2-D form of the 1-D solver's stop at zero velocity."""
 
 
+_INV = np.array([0.0] + [1.0 / k for k in range(1, 128)])
+"""``1/k`` (``_INV[0]`` unused): the recurrences multiply instead of dividing."""
+STOP_TOL = 1e-16
+"""A sliding block whose stop is certain within the rest of the sub-step, and whose remaining
+path is at most ``STOP_TOL`` of its slide (peak or current), is stopped at once: the slide
+dropped is below the rounding of the slide itself (:func:`_negligible_stop`)."""
+STEP_TOL = 1e-17
+"""Jorba & Zou's step rule: the last two terms of the series on the step are below ``STEP_TOL``
+of its first three (:func:`_step_size`)."""
+SHORT_TOL = 1e-18
+"""The series stops at a lower degree (at least 8) when two consecutive terms on the whole rest
+of the sub-step are below ``SHORT_TOL`` of its first two: the step then takes the rest of the
+sub-step, as :func:`_step_size` would grant."""
+
+
 @njit(cache=True)
-def slip_series(a, K, vx, vy, m, mug, D, y, rho, w, L=0.0):
-    """Taylor coefficients ``y[0..D]`` (``(D+1, 2)``) of a slip phase's velocity about its
-    current point, ``v(τ) = τ^m Σ_k y_k τ^k``, and those of ``ρ = |y|`` (``rho``; ``w`` =
-    ``y/ρ``, scratch), under the floor acceleration with coefficients ``a[0..K]`` (``(K+1, 2)``)
-    there. ``m = 0``: from the velocity ``(vx, vy) ≠ 0``; ``m = 1``: from rest with
-    ``|a₀| > mug``; ``m = 2``: from rest at a breakaway with ``|a₀| = mug`` and ``|a|`` rising.
-    Returns False when the start is degenerate (``ρ₀ ≤ 0``)."""
+def moving_series(ax, ay, K, vx, vy, mug, D, L, y, rho, w):
+    """Taylor coefficients ``y[0..De]`` of a sliding block's velocity ``v`` about its current
+    point (``v(0) = (vx, vy) ≠ 0``) and those of ``ρ = |v|`` (``rho``; ``w = v/ρ`` in ``w``),
+    under the floor acceleration with coefficients ``ax[0..K]``, ``ay[0..K]`` there.
+
+    The recurrences (Jorba & Zou 2005), order by order: ``(k+1) v_{k+1} = −a_k − mug w_k``,
+    ``ρ_k = w₀·v_k + Σ_{j=1}^{k−1} (v_j·v_{k−j} − ρ_j ρ_{k−j}) / (2ρ₀)`` (the sum is symmetric
+    in ``j ↔ k−j``: half of it is formed, doubled), ``w_k = (v_k − Σ_{j=1}^{k} ρ_j w_{k−j})/ρ₀``.
+    The degree is ``D``, or lower (``De ≥ 8``) as soon as two consecutive terms on ``[0, L]``
+    are below :data:`SHORT_TOL` of the first two (``L > 0``). Returns ``De`` (``ρ`` is formed to
+    ``De`` too, for the stop search), or −1 when ``v(0) = 0``."""
+    r0 = np.hypot(vx, vy)
+    if not r0 > 0.0:
+        return -1
+    ir0 = 1.0 / r0
+    h0 = 0.5 * ir0
+    w0x = vx * ir0
+    w0y = vy * ir0
+    y[0, 0] = vx
+    y[0, 1] = vy
+    rho[0] = r0
+    w[0, 0] = w0x
+    w[0, 1] = w0y
+    y1x = -ax[0] - mug * w0x
+    y1y = -ay[0] - mug * w0y
+    y[1, 0] = y1x
+    y[1, 1] = y1y
+    # the early end: squared terms on [0, L] against (SHORT_TOL·(|v₀| + |v₁| L))²
+    tiny = SHORT_TOL * (r0 + np.hypot(y1x, y1y) * L)
+    tiny2 = tiny * tiny
+    L2 = L * L
+    L2k = L2
+    t_prev = (y1x * y1x + y1y * y1y) * L2k
+    De = D
+    for k in range(1, D):
+        # ρ_k
+        s = 0.0
+        for j in range(1, (k + 1) // 2):
+            s += y[j, 0] * y[k - j, 0] + y[j, 1] * y[k - j, 1] - rho[j] * rho[k - j]
+        s += s
+        if k % 2 == 0:
+            j = k // 2
+            s += y[j, 0] * y[j, 0] + y[j, 1] * y[j, 1] - rho[j] * rho[j]
+        rk = s * h0 + (w0x * y[k, 0] + w0y * y[k, 1])
+        rho[k] = rk
+        # w_k
+        sx = rk * w0x
+        sy = rk * w0y
+        for j in range(1, k):
+            sx += rho[j] * w[k - j, 0]
+            sy += rho[j] * w[k - j, 1]
+        wkx = (y[k, 0] - sx) * ir0
+        wky = (y[k, 1] - sy) * ir0
+        w[k, 0] = wkx
+        w[k, 1] = wky
+        # v_{k+1}
+        akx = ax[k] if k <= K else 0.0
+        aky = ay[k] if k <= K else 0.0
+        ykx = (-akx - mug * wkx) * _INV[k + 1]
+        yky = (-aky - mug * wky) * _INV[k + 1]
+        y[k + 1, 0] = ykx
+        y[k + 1, 1] = yky
+        L2k *= L2
+        t = (ykx * ykx + yky * yky) * L2k
+        if k + 1 >= 8 and t <= tiny2 and t_prev <= tiny2:
+            De = k + 1
+            break
+        t_prev = t
+    # ρ_De, for the stop search over the whole degree
+    s = 0.0
+    for j in range(1, De):
+        s += y[j, 0] * y[De - j, 0] + y[j, 1] * y[De - j, 1] - rho[j] * rho[De - j]
+    rho[De] = s * h0 + (w0x * y[De, 0] + w0y * y[De, 1])
+    return De
+
+
+@njit(cache=True)
+def start_series(a, K, m, mug, D, y, rho, w):
+    """Taylor coefficients ``y[0..D]`` of a slip phase's velocity from rest,
+    ``v(τ) = τ^m Σ_k y_k τ^k``, and those of ``ρ = |y|`` (``rho``; ``w = y/ρ``, scratch), under
+    the floor acceleration with coefficients ``a[0..K]`` (``(K+1, 2)``) there: ``m = 1`` with
+    ``|a₀| > mug``; ``m = 2`` at a breakaway with ``|a₀| = mug`` and ``|a|`` rising. The
+    recurrences of :func:`moving_series`, split along ``w₀`` and across it, give each order
+    explicitly. Returns ``D``, or −1 when the start is degenerate (``ρ₀ ≤ 0``)."""
     for k in range(D + 1):
         y[k, 0] = 0.0
         y[k, 1] = 0.0
         rho[k] = 0.0
         w[k, 0] = 0.0
         w[k, 1] = 0.0
-    if m == 0:
-        y[0, 0], y[0, 1] = vx, vy
-        rho[0] = np.hypot(vx, vy)
-        if not rho[0] > 0.0:
-            return -1
-        w[0, 0], w[0, 1] = vx / rho[0], vy / rho[0]
-        for k in range(D):
-            if k > 0:
-                rk = 0.0
-                for j in range(1, k):
-                    rk += y[j, 0] * y[k - j, 0] + y[j, 1] * y[k - j, 1] - rho[j] * rho[k - j]
-                rk = rk / (2.0 * rho[0]) + w[0, 0] * y[k, 0] + w[0, 1] * y[k, 1]
-                rho[k] = rk
-                sx, sy = 0.0, 0.0
-                for j in range(1, k + 1):
-                    sx += rho[j] * w[k - j, 0]
-                    sy += rho[j] * w[k - j, 1]
-                w[k, 0] = (y[k, 0] - sx) / rho[0]
-                w[k, 1] = (y[k, 1] - sy) / rho[0]
-            ax = a[k, 0] if k <= K else 0.0
-            ay = a[k, 1] if k <= K else 0.0
-            y[k + 1, 0] = (-ax - mug * w[k, 0]) / (k + 1)
-            y[k + 1, 1] = (-ay - mug * w[k, 1]) / (k + 1)
-            if L > 0.0 and k + 1 >= 8:
-                scale = rho[0] + np.hypot(y[1, 0], y[1, 1]) * L
-                t1 = np.hypot(y[k, 0], y[k, 1]) * L**k
-                t2 = np.hypot(y[k + 1, 0], y[k + 1, 1]) * L ** (k + 1)
-                if t1 <= 1e-18 * scale and t2 <= 1e-18 * scale:
-                    D = k + 1
-                    break
-        # ρ_D, for the stop search over the whole degree
-        rk = 0.0
-        for j in range(1, D):
-            rk += y[j, 0] * y[D - j, 0] + y[j, 1] * y[D - j, 1] - rho[j] * rho[D - j]
-        rho[D] = rk / (2.0 * rho[0]) + w[0, 0] * y[D, 0] + w[0, 1] * y[D, 1]
-        return D
     n0 = np.hypot(a[0, 0], a[0, 1])
     if not n0 > 0.0:
         return -1
@@ -212,19 +268,48 @@ def _floor_square(ax, ay, K, q):
 @njit(cache=True)
 def _step_size(y, D, L):
     """Jorba & Zou's step: the largest ``H ≤ L`` on which the last two terms of the series are
-    below 1e-17 of its first three (two passes, the scale taken on the step itself)."""
+    below :data:`STEP_TOL` of its first three (two passes, the scale taken on the step itself;
+    the root is taken only for a term that limits the step)."""
     H = L
     for _ in range(2):
-        scale = 0.0
-        hk = 1.0
-        for k in range(3):
-            scale += np.hypot(y[k, 0], y[k, 1]) * hk
-            hk *= H
+        H0 = H
+        scale = np.hypot(y[0, 0], y[0, 1]) + H * (
+            np.hypot(y[1, 0], y[1, 1]) + H * np.hypot(y[2, 0], y[2, 1])
+        )
         for k in (D - 1, D):
             nk = np.hypot(y[k, 0], y[k, 1])
-            if nk > 0.0 and scale > 0.0:
-                H = min(H, (1e-17 * scale / nk) ** (1.0 / k))
+            if nk > 0.0 and scale > 0.0 and nk * H**k > STEP_TOL * scale:
+                H = min(H, (STEP_TOL * scale / nk) ** (1.0 / k))
+        if H == H0:
+            break  # the same scale again: the same step
     return H
+
+
+@njit(cache=True, inline="always")
+def _negligible_stop(r0, ax, ay, K, L, mug, U):
+    """Whether a block sliding at speed ``r0`` under the floor acceleration ``ax, ay`` (degree
+    K, on ``[0, L]``) certainly stops within ``T ≤ L`` after sliding at most ``STOP_TOL·U``,
+    and then sticks (``mub ≥ mu_k``): if ``|a| ≤ A < mug`` on ``[0, T]``, the speed falls at
+    least at ``mug − A`` (``r' = −a·w − mug``), so the block stops before ``r0/(mug − A)`` after
+    a path ``≤ r0²/(2(mug − A))`` (``(½r²)' ≤ −(mug − A) r``), where it sticks. ``A`` is bounded
+    by ``Σ_j |a_j| T^j`` on ``T = 2 r0/(mug − |a₀|)``. Returns that ``T`` (the time
+    to the stop is at most it), or −1."""
+    if r0 * r0 > 2.0 * mug * STOP_TOL * U:
+        return -1.0
+    a0 = np.hypot(ax[0], ay[0])
+    if not mug > a0:
+        return -1.0
+    T = 2.0 * r0 / (mug - a0)
+    if T > L:
+        return -1.0
+    A = 0.0
+    for j in range(K, -1, -1):
+        A = A * T + np.hypot(ax[j], ay[j])
+    if not (A < mug and r0 <= (mug - A) * T):
+        return -1.0
+    if r0 * r0 > 2.0 * (mug - A) * STOP_TOL * U:
+        return -1.0
+    return T
 
 
 @njit(cache=True)
@@ -242,6 +327,7 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
     while s0 < h:
         L = h - s0
         lo = EVENT_GAP * h if fresh else 0.0
+        # the floor's acceleration about the current point
         if s0 > 0.0:
             taylor_shift(ax0, K, s0, ax)
             taylor_shift(ay0, K, s0, ay)
@@ -250,6 +336,7 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
                 ax[j] = ax0[j]
                 ay[j] = ay0[j]
         if st[MODE] == 0.0:
+            # stuck: the first instant |a|² rises above the breakaway level
             _floor_square(ax, ay, K, q)
             tb = rise_within(q, 2 * K, lo, L, level * level, work)
             if tb < 0.0:
@@ -261,107 +348,153 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
             st[VY] = 0.0
             st[START] = 2.0 if mub == muk else 1.0
             fresh = True
+            continue
+        m = int(st[START])
+        stop_now = False
+        if m == 0:
+            r0 = np.hypot(st[VX], st[VY])
+            if r0 <= STOP_SPEED * (np.hypot(ax[0], ay[0]) + mug) * h:
+                # the speed within rounding of zero: a stop here (a velocity that passes that
+                # close to zero turns on a time scale below rounding; steps would crawl)
+                stop_now = True
+            else:
+                U = max(st[PEAK], np.hypot(st[UX], st[UY]))
+                T = _negligible_stop(r0, ax, ay, K, L, mug, U)
+                if T >= 0.0:
+                    # a certain stop whose remaining slide is below the slide's rounding (the
+                    # series would only crawl towards it: the stop is a branch point of v)
+                    stop_now = True
+                    # the time to it (≤ T): that of a straight deceleration, the first order
+                    dec = mug + (ax[0] * st[VX] + ay[0] * st[VY]) / r0
+                    st[SLIDE_TIME] += min(r0 / dec, T)
+        if stop_now:
+            De = -2
+        elif m == 0:
+            De = moving_series(ax, ay, K, st[VX], st[VY], mug, D, L, y, rho, w)
         else:
-            m = int(st[START])
             for k in range(K + 1):
                 A[k, 0] = ax[k]
                 A[k, 1] = ay[k]
-            De = slip_series(A, K, st[VX], st[VY], m, mug, D, y, rho, w, L)
-            if De < 0:
-                # a degenerate start (the floor exactly at the kinetic level and not rising):
-                # no slip — the block stays at rest here
-                st[MODE] = 0.0
-                st[VX] = 0.0
-                st[VY] = 0.0
-                st[START] = 0.0
-                fresh = True
-                events += 1
-                if events > max_events:
-                    return False
-                continue
-            H = _step_size(y, De, L)
-            if m == 0 and rho[0] <= STOP_SPEED * (np.hypot(ax[0], ay[0]) + mug) * h:
-                # the speed within rounding of zero: a stop here (a velocity that passes that
-                # close to zero turns on a time scale below rounding; steps would crawl)
-                ts = 0.0
-            else:
-                # a stop: the first root of ρ (r = τ^m ρ crosses zero there)
+            De = start_series(A, K, m, mug, D, y, rho, w)
+        if De == -1:
+            # a degenerate start (the floor exactly at the kinetic level and not rising):
+            # no slip — the block stays at rest here
+            st[MODE] = 0.0
+            st[VX] = 0.0
+            st[VY] = 0.0
+            st[START] = 0.0
+            fresh = True
+            events += 1
+            if events > max_events:
+                return False
+            continue
+        ts = -1.0
+        if De >= 0:
+            H = _step_size(y, De, L) if De == D or m != 0 else L
+            # a stop: the first root of ρ on [0, H] (r = τ^m ρ crosses zero there); none
+            # when ρ₀ > Σ_{j≥1} |ρ_j| H^j
+            reach = 0.0
+            for j in range(De, 0, -1):
+                reach = (reach + abs(rho[j])) * H
+            if reach >= rho[0]:
                 for k in range(De + 1):
                     q[k] = -rho[k]
                 ts = rise_within(q, De, 0.0, H, 0.0, work)
             tend = ts if ts >= 0.0 else H
             # the slide on the step: u(τ) = u0 + Σ y_k τ^{k+m+1}/(k+m+1)
             deg = De + m + 1
-            for k in range(deg + 1):
+            for k in range(m + 1):
                 ux[k] = 0.0
                 uy[k] = 0.0
             ux[0] = st[UX]
             uy[0] = st[UY]
             for k in range(De + 1):
-                ux[k + m + 1] = y[k, 0] / (k + m + 1)
-                uy[k + m + 1] = y[k, 1] / (k + m + 1)
-            # peak |u|: a bound first, then |u|² exactly
-            bx = 0.0
-            by = 0.0
-            for k in range(deg, -1, -1):
-                bx = bx * tend + abs(ux[k])
-                by = by * tend + abs(uy[k])
-            if bx * bx + by * by > st[PEAK] * st[PEAK]:
-                for j in range(2 * deg + 1):
-                    q[j] = 0.0
-                for i in range(deg + 1):
-                    for j in range(deg + 1):
-                        q[i + j] += ux[i] * ux[j] + uy[i] * uy[j]
-                v2, tv = max_abs_on(q, 2 * deg, tend, st[PEAK] * st[PEAK], work)
-                if v2 > st[PEAK] * st[PEAK]:
-                    st[PEAK] = np.sqrt(v2)
-                    st[T_PEAK] = t0 + s0 + tv
-                    st[ANGLE] = np.arctan2(poly_val(uy, deg, tv), poly_val(ux, deg, tv))
-            st[UX] = poly_val(ux, deg, tend)
-            st[UY] = poly_val(uy, deg, tend)
-            st[SLIDE_TIME] += tend
+                ux[k + m + 1] = y[k, 0] * _INV[k + m + 1]
+                uy[k + m + 1] = y[k, 1] * _INV[k + m + 1]
             # ∫|v| = ∫ τ^m ρ and ∫ a·v = ∫ τ^m (a·y) over the step, exactly on the series
             path = 0.0
             for k in range(De, -1, -1):
-                path = path * tend + rho[k] / (k + m + 1)
-            st[PATH] += path * tend ** (m + 1)
+                path = path * tend + rho[k] * _INV[k + m + 1]
+            path *= tend ** (m + 1)
             work_a = 0.0
             for n in range(De + K, -1, -1):
                 cn = 0.0
                 for i in range(max(0, n - De), min(K, n) + 1):
                     cn += ax[i] * y[n - i, 0] + ay[i] * y[n - i, 1]
-                work_a = work_a * tend + cn / (n + m + 1)
+                work_a = work_a * tend + cn * _INV[n + m + 1]
+            st[PATH] += path
             st[WORK_A] += work_a * tend ** (m + 1)
+            # peak |u|: two bounds of |u| on the step first (|u0| + ∫|v|, and the coefficients'
+            # magnitudes); then, moving away (u·v > 0 on the whole step), the end; else the
+            # maximum of |u|² on the step, exactly
+            uex = poly_val(ux, deg, tend)
+            uey = poly_val(uy, deg, tend)
+            peak2 = st[PEAK] * st[PEAK]
+            u0 = np.hypot(ux[0], uy[0])
+            if (u0 + path) ** 2 > peak2:
+                bx = 0.0
+                by = 0.0
+                for k in range(deg, -1, -1):
+                    bx = bx * tend + abs(ux[k])
+                    by = by * tend + abs(uy[k])
+                if bx * bx + by * by > peak2:
+                    # u·v ≥ u0·v0 − |u0| δv − ∫|v|·(|v0| + δv), δv = Σ_{k≥1} |y_k| τ^k ≥ |v − v0|
+                    moving_out = False
+                    if m == 0:
+                        dv = 0.0
+                        for k in range(De, 0, -1):
+                            dv = (dv + np.hypot(y[k, 0], y[k, 1])) * tend
+                        uv = ux[0] * y[0, 0] + uy[0] * y[0, 1]
+                        moving_out = uv - u0 * dv - path * (rho[0] + dv) > 0.0
+                    if moving_out:
+                        v2 = uex * uex + uey * uey
+                        tv = tend
+                    else:
+                        for j in range(2 * deg + 1):
+                            q[j] = 0.0
+                        for i in range(deg + 1):
+                            for j in range(deg + 1):
+                                q[i + j] += ux[i] * ux[j] + uy[i] * uy[j]
+                        v2, tv = max_abs_on(q, 2 * deg, tend, peak2, work)
+                    if v2 > peak2:
+                        st[PEAK] = np.sqrt(v2)
+                        st[T_PEAK] = t0 + s0 + tv
+                        st[ANGLE] = np.arctan2(poly_val(uy, deg, tv), poly_val(ux, deg, tv))
+            st[UX] = uex
+            st[UY] = uey
+            st[SLIDE_TIME] += tend
             s0 += tend
-            if ts >= 0.0:
-                st[VX] = 0.0
-                st[VY] = 0.0
-                st[STOPS] += 1.0
-                ex = poly_val(ax0, K, s0)
-                ey = poly_val(ay0, K, s0)
-                if ex * ex + ey * ey <= level * level:
-                    st[MODE] = 0.0
-                    st[START] = 0.0
-                else:
-                    st[START] = 1.0  # slides on at once, from rest, beyond the kinetic level
-                fresh = True
-                events += 1
-                if events > max_events:
-                    return False
-            else:
-                steps += 1
-                if steps > MAX_STEPS:
-                    return False
-                tm = tend**m
-                vx = 0.0
-                vy = 0.0
-                for k in range(De, -1, -1):
-                    vx = vx * tend + y[k, 0]
-                    vy = vy * tend + y[k, 1]
-                st[VX] = vx * tm
-                st[VY] = vy * tm
+        if De == -2 or ts >= 0.0:
+            # a stop: the block sticks if the floor is at or below the breakaway level there,
+            # else it slides on at once, from rest, beyond the kinetic level
+            st[VX] = 0.0
+            st[VY] = 0.0
+            st[STOPS] += 1.0
+            ex = poly_val(ax0, K, s0)
+            ey = poly_val(ay0, K, s0)
+            if ex * ex + ey * ey <= level * level:
+                st[MODE] = 0.0
                 st[START] = 0.0
-                fresh = False
+            else:
+                st[START] = 1.0
+            fresh = True
+            events += 1
+            if events > max_events:
+                return False
+        else:
+            steps += 1
+            if steps > MAX_STEPS:
+                return False
+            tm = tend**m
+            vx = 0.0
+            vy = 0.0
+            for k in range(De, -1, -1):
+                vx = vx * tend + y[k, 0]
+                vy = vy * tend + y[k, 1]
+            st[VX] = vx * tm
+            st[VY] = vy * tm
+            st[START] = 0.0
+            fresh = False
     return True
 
 
@@ -387,9 +520,9 @@ def plane_kernel(X1, X2, k0, R1, b1, R2, b2, acc1, acc2, substeps, h, g, MU, sta
     ax = np.zeros(K + 1)
     ay = np.zeros(K + 1)
     A = np.zeros((K + 1, 2))
-    y = np.zeros((D + 1, 2))
-    rho = np.zeros(D + 1)
-    w = np.zeros((D + 1, 2))
+    y = np.zeros((D + 2, 2))
+    rho = np.zeros(D + 2)
+    w = np.zeros((D + 2, 2))
     q = np.zeros(degmax + 1)
     ux = np.zeros(D + 4)
     uy = np.zeros(D + 4)
