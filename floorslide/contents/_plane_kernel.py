@@ -68,6 +68,17 @@ dropped is below the rounding of the slide itself (:func:`_negligible_stop`)."""
 STEP_TOL = 1e-17
 """Jorba & Zou's step rule: the last two terms of the series on the step are below ``STEP_TOL``
 of its first three (:func:`_step_size`)."""
+SLOW_TOL = 2.0**-26
+"""A slow-manifold step (:func:`slow_series`) is taken only when it moves the block's velocity by
+at most ``SLOW_TOL`` of the speed, sideways (its speed then changes by at most ``SLOW_TOL²/2``,
+the rounding of the speed), and when the fast transient so dropped slides the block by at most
+:data:`STOP_TOL` of its slide."""
+STIFF = 60.0
+"""A slip step is stiff when ``|a|·L/|v| > STIFF`` (``L`` the rest of the sub-step): the
+direction of a slow block relaxes at the rate ``|a|/|v|``, and the series of
+:func:`moving_series` reach only ≈ 6·|v|/|a| — a slow-manifold step is tried then."""
+SLOW_SWEEPS = 40
+"""Most sweeps of :func:`slow_series`."""
 SHORT_TOL = 1e-18
 """The series stops at a lower degree (at least 8) when two consecutive terms on the whole rest
 of the sub-step are below ``SHORT_TOL`` of its first two: the step then takes the rest of the
@@ -149,6 +160,106 @@ def moving_series(ax, ay, K, vx, vy, mug, D, L, y, rho, w):
         s += y[j, 0] * y[De - j, 0] + y[j, 1] * y[De - j, 1] - rho[j] * rho[De - j]
     rho[De] = s * h0 + (w0x * y[De, 0] + w0y * y[De, 1])
     return De
+
+
+@njit(cache=True)
+def slow_series(ax, ay, K, vx, vy, mug, D, L, y, rho, sl):
+    """Taylor coefficients ``y[0..D]`` of a slow block's velocity on its slow manifold — the
+    solution whose direction follows the floor's without the fast transient — through a point
+    beside ``(vx, vy)``, and those of its speed ``ρ`` (``rho``); ``sl`` is scratch ``(5, D+2)``.
+
+    In the frame ``e = v/|v|``, ``n`` (``e`` turned by +90°), ``v = ρ (cos φ e + sin φ n)`` with
+    ``α = a·e``, ``β = a·n``: ``ρ' = −(α cos φ + β sin φ) − mug`` and
+    ``ρ φ' = α sin φ − β cos φ``. The second is stiff (``φ`` relaxes at the rate ``|a|/ρ``); its
+    order ``k`` is solved for ``φ_k`` instead of ``φ_{k+1}``:
+    ``φ_k (a·w₀ − k ρ₁) = ρ₀ (k+1) φ_{k+1} + …`` (lower orders), order 0 for the slow
+    direction, ``sin(φ₀ − γ) = −ρ₀ φ₁/|a₀|`` (``γ`` that of ``−a₀``), and the small term in
+    ``φ_{k+1}`` is taken from the previous sweep (Gauss–Seidel; it contracts by about
+    ``(k+1) ρ₀/(|a| R)``, ``R`` the reach of the series). ``ρ_{k+1}`` follows explicitly, with
+    ``sin φ``, ``cos φ`` by their recurrences — no division by the small speed anywhere.
+
+    The block's own velocity is ``ρ₀ e`` (``φ = 0``); the slow point differs from it by
+    ``2ρ₀ |sin(φ₀/2)|``, sideways (``φ₀ ≈ π`` for a block moving along the floor's
+    acceleration, away from the slow manifold). Returns ``(D, φ₀)``, or ``(−1, 0)`` when the
+    slow manifold is not found (no floor acceleration, a near-resonant order, no convergence)."""
+    phi = sl[0]
+    sn = sl[1]
+    cs = sl[2]
+    al = sl[3]
+    be = sl[4]
+    r0 = np.hypot(vx, vy)
+    ex = vx / r0
+    ey = vy / r0
+    for k in range(D + 2):
+        al[k] = 0.0
+        be[k] = 0.0
+        phi[k] = 0.0
+    for k in range(min(K, D) + 1):
+        al[k] = ax[k] * ex + ay[k] * ey
+        be[k] = ay[k] * ex - ax[k] * ey
+    A0 = np.hypot(al[0], be[0])
+    if not A0 > 0.0:
+        return -1, 0.0
+    gam = np.arctan2(-be[0], -al[0])  # the direction of −a₀ in the frame
+    rho[0] = r0
+    # the change of a sweep, Σ_k |Δφ_k| L^k (radians on the step), against Σ_k |φ_k| L^k
+    for sweep in range(SLOW_SWEEPS):
+        x = r0 * phi[1] / A0
+        if not abs(x) < 1.0:
+            return -1, 0.0
+        f0 = gam - np.arcsin(x)
+        change = abs(f0 - phi[0])
+        size = abs(f0)
+        phi[0] = f0
+        sn[0] = np.sin(f0)
+        cs[0] = np.cos(f0)
+        d0 = al[0] * cs[0] + be[0] * sn[0]  # a₀·w₀
+        rho[1] = -d0 - mug
+        Lk = 1.0
+        for k in range(1, D + 1):
+            Lk *= L
+            # sin φ, cos φ at order k but for their φ_k terms
+            sp = 0.0
+            cp = 0.0
+            for j in range(1, k):
+                sp += j * phi[j] * cs[k - j]
+                cp += j * phi[j] * sn[k - j]
+            sp *= _INV[k]
+            cp *= -_INV[k]
+            # order k of ρ φ' = α sin φ − β cos φ, for φ_k
+            lhs = al[0] * sp - be[0] * cp
+            for i in range(1, min(k, K) + 1):
+                lhs += al[i] * sn[k - i] - be[i] * cs[k - i]
+            rhs = r0 * (k + 1) * phi[k + 1]
+            for j in range(2, k + 1):
+                rhs += rho[j] * (k - j + 1) * phi[k - j + 1]
+            den = d0 - k * rho[1]
+            if not abs(den) > 1e-3 * A0:
+                return -1, 0.0
+            fk = (rhs - lhs) / den
+            change += abs(fk - phi[k]) * Lk
+            size += abs(fk) * Lk
+            phi[k] = fk
+            sn[k] = fk * cs[0] + sp
+            cs[k] = cp - fk * sn[0]
+            # ρ_{k+1} = −Σ_i (α_i cos φ + β_i sin φ)_{k−i} / (k+1)
+            if k < D:
+                t = 0.0
+                for i in range(min(k, K) + 1):
+                    t += al[i] * cs[k - i] + be[i] * sn[k - i]
+                rho[k + 1] = -t * _INV[k + 1]
+        if sweep > 0 and change <= 2.0**-52 * size:
+            # v = ρ w, back in x, y
+            for k in range(D + 1):
+                pc = 0.0
+                ps = 0.0
+                for j in range(k + 1):
+                    pc += rho[j] * cs[k - j]
+                    ps += rho[j] * sn[k - j]
+                y[k, 0] = pc * ex - ps * ey
+                y[k, 1] = pc * ey + ps * ex
+            return D, phi[0]
+    return -1, 0.0
 
 
 @njit(cache=True)
@@ -313,8 +424,8 @@ def _negligible_stop(r0, ax, ay, K, L, mug, U):
 
 
 @njit(cache=True)
-def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w, q, ux, uy,
-                   work, max_events):  # fmt: skip
+def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w, sl, q, ux,
+                   uy, work, max_events):  # fmt: skip
     """Advance one block through a sub-step of length ``h`` from time ``t0``, the floor's
     acceleration there ``(ax0, ay0)`` (coefficients, degree K). False when the event limit
     was reached."""
@@ -324,6 +435,8 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
     fresh = False
     events = 0
     steps = 0
+    decay = 0.0  # the decay exponent of a fast transient since the last slow-manifold trial
+    decay_need = 0.0  # the exponent needed before the next trial
     while s0 < h:
         L = h - s0
         lo = EVENT_GAP * h if fresh else 0.0
@@ -367,10 +480,43 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
                     # the time to it (≤ T): that of a straight deceleration, the first order
                     dec = mug + (ax[0] * st[VX] + ay[0] * st[VY]) / r0
                     st[SLIDE_TIME] += min(r0 / dec, T)
+        slow = False
+        must_stop = False
         if stop_now:
             De = -2
         elif m == 0:
-            De = moving_series(ax, ay, K, st[VX], st[VY], mug, D, L, y, rho, w)
+            De = -1
+            a0 = np.hypot(ax[0], ay[0])
+            if a0 * L > STIFF * r0 and decay >= decay_need:
+                # stiff: the block's direction relaxes much faster than the step; a step on the
+                # slow manifold, once the transient of the last change of the floor's motion has
+                # died out (the sideways offset of the slow point is that transient)
+                De, phi0 = slow_series(ax, ay, K, st[VX], st[VY], mug, D, L, y, rho, sl)
+                if De >= 0:
+                    off = 2.0 * r0 * abs(np.sin(0.5 * phi0))  # |v_slow − v|
+                    U = max(st[PEAK], np.hypot(st[UX], st[UY]))
+                    rho1 = -(ax[0] * st[VX] + ay[0] * st[VY]) / r0 - mug
+                    # (a) the transient's slide below STOP_TOL of the slide: it decays at the
+                    # rate |a|/ρ, ρ = r0 + ρ'τ, as (1 + ρ'τ/r0)^(−|a|/ρ'), which slides the block
+                    # by off·r0/(|a| − ρ') ≤ off·r0/mug in all (ρ' ≤ |a| − mug)
+                    tol_a = 0.5 * STOP_TOL * U * mug / r0
+                    if off <= min(tol_a, SLOW_TOL * r0):
+                        slow = True  # (b) the speed moved by ≤ SLOW_TOL²/2 of itself
+                    elif rho1 < 0.0 and off <= tol_a and off * off <= 0.5 * STOP_TOL * U * -rho1:
+                        # (b') decelerating: if the step ends in a stop, the speed moved by
+                        # off²/(2 r0) moves that stop by ≤ off²/(2|ρ'|) only, and is then gone
+                        slow = True
+                        must_stop = True
+                    else:
+                        # explicit steps until the transient has decayed by e^−need
+                        target = min(tol_a, SLOW_TOL * r0)
+                        decay_need = np.log(off / target) + 1.0 if target > 0.0 else np.inf
+                        decay = 0.0
+                        De = -1
+                else:
+                    decay_need = np.inf  # no slow manifold found: explicit steps
+            if not slow:
+                De = moving_series(ax, ay, K, st[VX], st[VY], mug, D, L, y, rho, w)
         else:
             for k in range(K + 1):
                 A[k, 0] = ax[k]
@@ -390,7 +536,7 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
             continue
         ts = -1.0
         if De >= 0:
-            H = _step_size(y, De, L) if De == D or m != 0 else L
+            H = _step_size(y, De, L) if De == D or m != 0 or slow else L
             # a stop: the first root of ρ on [0, H] (r = τ^m ρ crosses zero there); none
             # when ρ₀ > Σ_{j≥1} |ρ_j| H^j
             reach = 0.0
@@ -400,6 +546,19 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
                 for k in range(De + 1):
                     q[k] = -rho[k]
                 ts = rise_within(q, De, 0.0, H, 0.0, work)
+            if must_stop and ts < 0.0:
+                # no stop on the slow step after all: an explicit step instead
+                De = moving_series(ax, ay, K, st[VX], st[VY], mug, D, L, y, rho, w)
+                slow = False
+                decay_need = np.inf
+                H = _step_size(y, De, L) if De == D else L
+                reach = 0.0
+                for j in range(De, 0, -1):
+                    reach = (reach + abs(rho[j])) * H
+                if reach >= rho[0]:
+                    for k in range(De + 1):
+                        q[k] = -rho[k]
+                    ts = rise_within(q, De, 0.0, H, 0.0, work)
             tend = ts if ts >= 0.0 else H
             # the slide on the step: u(τ) = u0 + Σ y_k τ^{k+m+1}/(k+m+1)
             deg = De + m + 1
@@ -494,6 +653,9 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
             st[VX] = vx * tm
             st[VY] = vy * tm
             st[START] = 0.0
+            if m == 0 and not slow:
+                # the decay of a fast transient over the step: e^−∫|a|/|v|
+                decay += np.hypot(ax[0], ay[0]) * tend / max(rho[0], np.hypot(st[VX], st[VY]))
             fresh = False
     return True
 
@@ -523,6 +685,7 @@ def plane_kernel(X1, X2, k0, R1, b1, R2, b2, acc1, acc2, substeps, h, g, MU, sta
     y = np.zeros((D + 2, 2))
     rho = np.zeros(D + 2)
     w = np.zeros((D + 2, 2))
+    sl = np.zeros((5, D + 2))
     q = np.zeros(degmax + 1)
     ux = np.zeros(D + 4)
     uy = np.zeros(D + 4)
@@ -559,7 +722,7 @@ def plane_kernel(X1, X2, k0, R1, b1, R2, b2, acc1, acc2, substeps, h, g, MU, sta
                 if st[MODE] == 0.0 and reach <= MU[0, i] * g:
                     continue  # |a| ≤ Σ_j |c_j| h^j stays below the breakaway level
                 ok = _block_substep(st, c1, c2, K, h, t0, g, MU[0, i], MU[1, i], D, ax, ay, A, y,
-                                    rho, w, q, ux, uy, work, max_events)  # fmt: skip
+                                    rho, w, sl, q, ux, uy, work, max_events)  # fmt: skip
                 if not ok and st[LIMIT_AT] < 0.0:
                     st[LIMIT_AT] = t0
             if want_hist and r == substeps - 1:
