@@ -85,7 +85,7 @@ of the sub-step are below ``SHORT_TOL`` of its first two: the step then takes th
 sub-step, as :func:`_step_size` would grant."""
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def moving_series(ax, ay, K, vx, vy, mug, D, L, y, rho, w):
     """Taylor coefficients ``y[0..De]`` of a sliding block's velocity ``v`` about its current
     point (``v(0) = (vx, vy) ≠ 0``) and those of ``ρ = |v|`` (``rho``; ``w = v/ρ`` in ``w``),
@@ -113,8 +113,9 @@ def moving_series(ax, ay, K, vx, vy, mug, D, L, y, rho, w):
     y1y = -ay[0] - mug * w0y
     y[1, 0] = y1x
     y[1, 1] = y1y
-    # the early end: squared terms on [0, L] against (SHORT_TOL·(|v₀| + |v₁| L))²
-    tiny = SHORT_TOL * (r0 + np.hypot(y1x, y1y) * L)
+    # the early end: squared terms on [0, L] against (SHORT_TOL·(|v₀| + |v₁| L))² (|v₁| bounded
+    # from below by its larger component)
+    tiny = SHORT_TOL * (r0 + max(abs(y1x), abs(y1y)) * L)
     tiny2 = tiny * tiny
     L2 = L * L
     L2k = L2
@@ -162,7 +163,7 @@ def moving_series(ax, ay, K, vx, vy, mug, D, L, y, rho, w):
     return De
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def slow_series(ax, ay, K, vx, vy, mug, D, L, y, rho, sl):
     """Taylor coefficients ``y[0..D]`` of a slow block's velocity on its slow manifold — the
     solution whose direction follows the floor's without the fast transient — through a point
@@ -262,7 +263,7 @@ def slow_series(ax, ay, K, vx, vy, mug, D, L, y, rho, sl):
     return -1, 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def start_series(a, K, m, mug, D, y, rho, w):
     """Taylor coefficients ``y[0..D]`` of a slip phase's velocity from rest,
     ``v(τ) = τ^m Σ_k y_k τ^k``, and those of ``ρ = |y|`` (``rho``; ``w = y/ρ``, scratch), under
@@ -366,7 +367,7 @@ def start_series(a, K, m, mug, D, y, rho, w):
     return D
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _floor_square(ax, ay, K, q):
     """Coefficients of ``|a|² = a_x² + a_y²`` (degree 2K) into ``q``."""
     for j in range(2 * K + 1):
@@ -376,19 +377,22 @@ def _floor_square(ax, ay, K, q):
             q[i + j] += ax[i] * ax[j] + ay[i] * ay[j]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _step_size(y, D, L):
     """Jorba & Zou's step: the largest ``H ≤ L`` on which the last two terms of the series are
     below :data:`STEP_TOL` of its first three (two passes, the scale taken on the step itself;
-    the root is taken only for a term that limits the step)."""
+    the root is taken only for a term that limits the step). Norms are bounded without a
+    square root: ``|x| + |y|`` from above for the terms, ``max(|x|, |y|)`` from below for the
+    scale (a step at most that much shorter)."""
     H = L
+    n0 = max(abs(y[0, 0]), abs(y[0, 1]))
+    n1 = max(abs(y[1, 0]), abs(y[1, 1]))
+    n2 = max(abs(y[2, 0]), abs(y[2, 1]))
     for _ in range(2):
         H0 = H
-        scale = np.hypot(y[0, 0], y[0, 1]) + H * (
-            np.hypot(y[1, 0], y[1, 1]) + H * np.hypot(y[2, 0], y[2, 1])
-        )
+        scale = n0 + H * (n1 + H * n2)
         for k in (D - 1, D):
-            nk = np.hypot(y[k, 0], y[k, 1])
+            nk = abs(y[k, 0]) + abs(y[k, 1])
             if nk > 0.0 and scale > 0.0 and nk * H**k > STEP_TOL * scale:
                 H = min(H, (STEP_TOL * scale / nk) ** (1.0 / k))
         if H == H0:
@@ -397,16 +401,18 @@ def _step_size(y, D, L):
 
 
 @njit(cache=True, inline="always")
-def _negligible_stop(r0, ax, ay, K, L, mug, U):
+def _negligible_stop(r0, ax, ay, K, L, mug, peak, ux, uy):
     """Whether a block sliding at speed ``r0`` under the floor acceleration ``ax, ay`` (degree
-    K, on ``[0, L]``) certainly stops within ``T ≤ L`` after sliding at most ``STOP_TOL·U``,
-    and then sticks (``mub ≥ mu_k``): if ``|a| ≤ A < mug`` on ``[0, T]``, the speed falls at
-    least at ``mug − A`` (``r' = −a·w − mug``), so the block stops before ``r0/(mug − A)`` after
-    a path ``≤ r0²/(2(mug − A))`` (``(½r²)' ≤ −(mug − A) r``), where it sticks. ``A`` is bounded
-    by ``Σ_j |a_j| T^j`` on ``T = 2 r0/(mug − |a₀|)``. Returns that ``T`` (the time
-    to the stop is at most it), or −1."""
-    if r0 * r0 > 2.0 * mug * STOP_TOL * U:
-        return -1.0
+    K, on ``[0, L]``) certainly stops within ``T ≤ L`` after sliding at most ``STOP_TOL·U``
+    (``U`` the larger of its peak slide and its slide ``(ux, uy)``), and then sticks
+    (``mub ≥ mu_k``): if ``|a| ≤ A < mug`` on ``[0, T]``, the speed falls at least at
+    ``mug − A`` (``r' = −a·w − mug``), so the block stops before ``r0/(mug − A)`` after a path
+    ``≤ r0²/(2(mug − A))`` (``(½r²)' ≤ −(mug − A) r``), where it sticks. ``A`` is bounded by
+    ``Σ_j |a_j| T^j`` on ``T = 2 r0/(mug − |a₀|)``. Returns that ``T`` (the time to the stop is
+    at most it), or −1."""
+    if r0 * r0 > 2.0 * mug * STOP_TOL * max(peak, abs(ux) + abs(uy)):
+        return -1.0  # (a quick test first, with |u| ≤ |ux| + |uy|)
+    U = max(peak, np.hypot(ux, uy))
     a0 = np.hypot(ax[0], ay[0])
     if not mug > a0:
         return -1.0
@@ -423,7 +429,110 @@ def _negligible_stop(r0, ax, ay, K, L, mug, U):
     return T
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
+def _advance(st, y, rho, De, m, tend, ax, ay, K, t_start, ux, uy, q, work):
+    """Move a block's state along its slip step ``v(τ) = τ^m Σ_k y_k τ^k`` (speed
+    ``τ^m Σ_k ρ_k τ^k``) over ``[0, tend]``: slide and velocity at ``tend``, the path
+    ``∫|v|``, the floor's work ``∫ a·v`` (``a`` of degree K) and the peak ``|u|`` on the step
+    (``t_start`` the step's start). ``ux, uy, q, work``: scratch."""
+    # one Horner pass for the values at tend and the integrals ∫ τ^{k+m} = tend^{k+m+1}/(k+m+1)
+    ix = 0.0  # Σ y_k tend^k/(k+m+1), and of |y_k|, and of ρ_k
+    iy = 0.0
+    bx = 0.0
+    by = 0.0
+    ip = 0.0
+    jx = 0.0  # Σ y_k tend^k/(k+m+2), for the floor's work
+    jy = 0.0
+    vx = 0.0  # Σ y_k tend^k
+    vy = 0.0
+    dv = 0.0  # Σ_{k≥1} (|y_k,x| + |y_k,y|) tend^k ≥ |v(τ) − v(0)| / τ^m
+    for k in range(De, -1, -1):
+        f = _INV[k + m + 1]
+        g = _INV[k + m + 2]
+        yx = y[k, 0]
+        yy = y[k, 1]
+        ix = ix * tend + yx * f
+        iy = iy * tend + yy * f
+        bx = bx * tend + abs(yx) * f
+        by = by * tend + abs(yy) * f
+        ip = ip * tend + rho[k] * f
+        jx = jx * tend + yx * g
+        jy = jy * tend + yy * g
+        vx = vx * tend + yx
+        vy = vy * tend + yy
+        if k > 0:
+            dv = (dv + abs(yx) + abs(yy)) * tend
+    tm = tend**m
+    tm1 = tm * tend
+    path = ip * tm1
+    # ∫ a·v = Σ_i a_i·Σ_k y_k tend^{k+i+m+1}/(k+i+m+1): i = 0, 1 from the pass above
+    work_a = (ax[0] * ix + ay[0] * iy) * tm1
+    if K >= 1:
+        work_a += (ax[1] * jx + ay[1] * jy) * tm1 * tend
+    ti = tm1 * tend
+    for i in range(2, K + 1):
+        ti *= tend
+        sx = 0.0
+        sy = 0.0
+        for k in range(De, -1, -1):
+            f = _INV[k + m + i + 1]
+            sx = sx * tend + y[k, 0] * f
+            sy = sy * tend + y[k, 1] * f
+        work_a += (ax[i] * sx + ay[i] * sy) * ti
+    st[PATH] += path
+    st[WORK_A] += work_a
+    u0x = st[UX]
+    u0y = st[UY]
+    uex = u0x + ix * tm1
+    uey = u0y + iy * tm1
+    # peak |u|: two bounds of |u| on the step first (|u0| + ∫|v|, and the coefficients'
+    # magnitudes); then, moving away (u·v > 0 on the whole step, from
+    # u·v ≥ u0·v0 − |u0| δv − ∫|v|·(|v0| + δv), δv ≥ |v − v0|), the end; else the maximum of
+    # |u|² on the step, exactly
+    peak2 = st[PEAK] * st[PEAK]
+    u0 = np.hypot(u0x, u0y)
+    if (u0 + path) ** 2 > peak2:
+        bx = abs(u0x) + bx * tm1
+        by = abs(u0y) + by * tm1
+        if bx * bx + by * by > peak2:
+            moving_out = False
+            if m == 0:
+                uv = u0x * y[0, 0] + u0y * y[0, 1]
+                moving_out = uv - u0 * dv - path * (rho[0] + dv) > 0.0
+            deg = De + m + 1
+            if moving_out:
+                v2 = uex * uex + uey * uey
+                tv = tend
+            else:
+                # u(τ) = u0 + Σ y_k τ^{k+m+1}/(k+m+1)
+                for k in range(m + 1):
+                    ux[k] = 0.0
+                    uy[k] = 0.0
+                ux[0] = u0x
+                uy[0] = u0y
+                for k in range(De + 1):
+                    ux[k + m + 1] = y[k, 0] * _INV[k + m + 1]
+                    uy[k + m + 1] = y[k, 1] * _INV[k + m + 1]
+                for j in range(2 * deg + 1):
+                    q[j] = 0.0
+                for i in range(deg + 1):
+                    for j in range(deg + 1):
+                        q[i + j] += ux[i] * ux[j] + uy[i] * uy[j]
+                v2, tv = max_abs_on(q, 2 * deg, tend, peak2, work)
+            if v2 > peak2:
+                st[PEAK] = np.sqrt(v2)
+                st[T_PEAK] = t_start + tv
+                if moving_out:
+                    st[ANGLE] = np.arctan2(uey, uex)
+                else:
+                    st[ANGLE] = np.arctan2(poly_val(uy, deg, tv), poly_val(ux, deg, tv))
+    st[UX] = uex
+    st[UY] = uey
+    st[VX] = vx * tm
+    st[VY] = vy * tm
+
+
+@njit(cache=True, _nrt=False)
 def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w, sl, q, ux,
                    uy, work, max_events):  # fmt: skip
     """Advance one block through a sub-step of length ``h`` from time ``t0``, the floor's
@@ -464,15 +573,19 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
             continue
         m = int(st[START])
         stop_now = False
+        stiff = False
+        r0 = 0.0
+        a0 = 0.0
         if m == 0:
             r0 = np.hypot(st[VX], st[VY])
-            if r0 <= STOP_SPEED * (np.hypot(ax[0], ay[0]) + mug) * h:
+            a0 = np.hypot(ax[0], ay[0])
+            stiff = a0 * L > STIFF * r0
+            if r0 <= STOP_SPEED * (a0 + mug) * h:
                 # the speed within rounding of zero: a stop here (a velocity that passes that
                 # close to zero turns on a time scale below rounding; steps would crawl)
                 stop_now = True
             else:
-                U = max(st[PEAK], np.hypot(st[UX], st[UY]))
-                T = _negligible_stop(r0, ax, ay, K, L, mug, U)
+                T = _negligible_stop(r0, ax, ay, K, L, mug, st[PEAK], st[UX], st[UY])
                 if T >= 0.0:
                     # a certain stop whose remaining slide is below the slide's rounding (the
                     # series would only crawl towards it: the stop is a branch point of v)
@@ -486,8 +599,7 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
             De = -2
         elif m == 0:
             De = -1
-            a0 = np.hypot(ax[0], ay[0])
-            if a0 * L > STIFF * r0 and decay >= decay_need:
+            if stiff and decay >= decay_need:
                 # stiff: the block's direction relaxes much faster than the step; a step on the
                 # slow manifold, once the transient of the last change of the floor's motion has
                 # died out (the sideways offset of the slow point is that transient)
@@ -560,67 +672,7 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
                         q[k] = -rho[k]
                     ts = rise_within(q, De, 0.0, H, 0.0, work)
             tend = ts if ts >= 0.0 else H
-            # the slide on the step: u(τ) = u0 + Σ y_k τ^{k+m+1}/(k+m+1)
-            deg = De + m + 1
-            for k in range(m + 1):
-                ux[k] = 0.0
-                uy[k] = 0.0
-            ux[0] = st[UX]
-            uy[0] = st[UY]
-            for k in range(De + 1):
-                ux[k + m + 1] = y[k, 0] * _INV[k + m + 1]
-                uy[k + m + 1] = y[k, 1] * _INV[k + m + 1]
-            # ∫|v| = ∫ τ^m ρ and ∫ a·v = ∫ τ^m (a·y) over the step, exactly on the series
-            path = 0.0
-            for k in range(De, -1, -1):
-                path = path * tend + rho[k] * _INV[k + m + 1]
-            path *= tend ** (m + 1)
-            work_a = 0.0
-            for n in range(De + K, -1, -1):
-                cn = 0.0
-                for i in range(max(0, n - De), min(K, n) + 1):
-                    cn += ax[i] * y[n - i, 0] + ay[i] * y[n - i, 1]
-                work_a = work_a * tend + cn * _INV[n + m + 1]
-            st[PATH] += path
-            st[WORK_A] += work_a * tend ** (m + 1)
-            # peak |u|: two bounds of |u| on the step first (|u0| + ∫|v|, and the coefficients'
-            # magnitudes); then, moving away (u·v > 0 on the whole step), the end; else the
-            # maximum of |u|² on the step, exactly
-            uex = poly_val(ux, deg, tend)
-            uey = poly_val(uy, deg, tend)
-            peak2 = st[PEAK] * st[PEAK]
-            u0 = np.hypot(ux[0], uy[0])
-            if (u0 + path) ** 2 > peak2:
-                bx = 0.0
-                by = 0.0
-                for k in range(deg, -1, -1):
-                    bx = bx * tend + abs(ux[k])
-                    by = by * tend + abs(uy[k])
-                if bx * bx + by * by > peak2:
-                    # u·v ≥ u0·v0 − |u0| δv − ∫|v|·(|v0| + δv), δv = Σ_{k≥1} |y_k| τ^k ≥ |v − v0|
-                    moving_out = False
-                    if m == 0:
-                        dv = 0.0
-                        for k in range(De, 0, -1):
-                            dv = (dv + np.hypot(y[k, 0], y[k, 1])) * tend
-                        uv = ux[0] * y[0, 0] + uy[0] * y[0, 1]
-                        moving_out = uv - u0 * dv - path * (rho[0] + dv) > 0.0
-                    if moving_out:
-                        v2 = uex * uex + uey * uey
-                        tv = tend
-                    else:
-                        for j in range(2 * deg + 1):
-                            q[j] = 0.0
-                        for i in range(deg + 1):
-                            for j in range(deg + 1):
-                                q[i + j] += ux[i] * ux[j] + uy[i] * uy[j]
-                        v2, tv = max_abs_on(q, 2 * deg, tend, peak2, work)
-                    if v2 > peak2:
-                        st[PEAK] = np.sqrt(v2)
-                        st[T_PEAK] = t0 + s0 + tv
-                        st[ANGLE] = np.arctan2(poly_val(uy, deg, tv), poly_val(ux, deg, tv))
-            st[UX] = uex
-            st[UY] = uey
+            _advance(st, y, rho, De, m, tend, ax, ay, K, t0 + s0, ux, uy, q, work)
             st[SLIDE_TIME] += tend
             s0 += tend
         if De == -2 or ts >= 0.0:
@@ -644,18 +696,10 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
             steps += 1
             if steps > MAX_STEPS:
                 return False
-            tm = tend**m
-            vx = 0.0
-            vy = 0.0
-            for k in range(De, -1, -1):
-                vx = vx * tend + y[k, 0]
-                vy = vy * tend + y[k, 1]
-            st[VX] = vx * tm
-            st[VY] = vy * tm
-            st[START] = 0.0
-            if m == 0 and not slow:
+            st[START] = 0.0  # (_advance set the velocity)
+            if m == 0 and not slow and stiff:
                 # the decay of a fast transient over the step: e^−∫|a|/|v|
-                decay += np.hypot(ax[0], ay[0]) * tend / max(rho[0], np.hypot(st[VX], st[VY]))
+                decay += a0 * tend / max(rho[0], np.hypot(st[VX], st[VY]))
             fresh = False
     return True
 
@@ -718,9 +762,9 @@ def plane_kernel(X1, X2, k0, R1, b1, R2, b2, acc1, acc2, substeps, h, g, MU, sta
             for j in range(K, -1, -1):
                 reach = reach * h + np.hypot(c1[j], c2[j])
             for i in range(nobj):
-                st = states[i]
-                if st[MODE] == 0.0 and reach <= MU[0, i] * g:
+                if states[i, MODE] == 0.0 and reach <= MU[0, i] * g:
                     continue  # |a| ≤ Σ_j |c_j| h^j stays below the breakaway level
+                st = states[i]
                 ok = _block_substep(st, c1, c2, K, h, t0, g, MU[0, i], MU[1, i], D, ax, ay, A, y,
                                     rho, w, sl, q, ux, uy, work, max_events)  # fmt: skip
                 if not ok and st[LIMIT_AT] < 0.0:
