@@ -86,9 +86,10 @@ sub-step, as :func:`_step_size` would grant."""
 
 
 @njit(cache=True, _nrt=False)
-def moving_series(ax, ay, K, vx, vy, mug, D, L, y, rho, w):
+def moving_series(ax, ay, K, vx, vy, r0, mug, D, L, y, rho, w):
     """Taylor coefficients ``y[0..De]`` of a sliding block's velocity ``v`` about its current
-    point (``v(0) = (vx, vy) ≠ 0``) and those of ``ρ = |v|`` (``rho``; ``w = v/ρ`` in ``w``),
+    point (``v(0) = (vx, vy) ≠ 0``, ``r0 = |v(0)|``) and those of ``ρ = |v|`` (``rho``;
+    ``w = v/ρ`` in ``w``),
     under the floor acceleration with coefficients ``ax[0..K]``, ``ay[0..K]`` there.
 
     The recurrences (Jorba & Zou 2005), order by order: ``(k+1) v_{k+1} = −a_k − mug w_k``,
@@ -97,7 +98,6 @@ def moving_series(ax, ay, K, vx, vy, mug, D, L, y, rho, w):
     The degree is ``D``, or lower (``De ≥ 8``) as soon as two consecutive terms on ``[0, L]``
     are below :data:`SHORT_TOL` of the first two (``L > 0``). Returns ``De`` (``ρ`` is formed to
     ``De`` too, for the stop search), or −1 when ``v(0) = 0``."""
-    r0 = np.hypot(vx, vy)
     if not r0 > 0.0:
         return -1
     ir0 = 1.0 / r0
@@ -390,11 +390,11 @@ def _step_size(y, D, L):
     n2 = max(abs(y[2, 0]), abs(y[2, 1]))
     for _ in range(2):
         H0 = H
-        scale = n0 + H * (n1 + H * n2)
-        for k in (D - 1, D):
+        tol = STEP_TOL * (n0 + H * (n1 + H * n2))
+        for k in (D, D - 1):
             nk = abs(y[k, 0]) + abs(y[k, 1])
-            if nk > 0.0 and scale > 0.0 and nk * H**k > STEP_TOL * scale:
-                H = min(H, (STEP_TOL * scale / nk) ** (1.0 / k))
+            if nk * H**k > tol > 0.0:  # (the test, not the root, for the next term)
+                H = (tol / nk) ** (1.0 / k)
         if H == H0:
             break  # the same scale again: the same step
     return H
@@ -490,7 +490,7 @@ def _advance(st, y, rho, De, m, tend, ax, ay, K, t_start, ux, uy, q, work):
     # u·v ≥ u0·v0 − |u0| δv − ∫|v|·(|v0| + δv), δv ≥ |v − v0|), the end; else the maximum of
     # |u|² on the step, exactly
     peak2 = st[PEAK] * st[PEAK]
-    u0 = np.hypot(u0x, u0y)
+    u0 = abs(u0x) + abs(u0y)  # ≥ |u0|: the tests below stay valid
     if (u0 + path) ** 2 > peak2:
         bx = abs(u0x) + bx * tm1
         by = abs(u0y) + by * tm1
@@ -578,7 +578,7 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
         a0 = 0.0
         if m == 0:
             r0 = np.hypot(st[VX], st[VY])
-            a0 = np.hypot(ax[0], ay[0])
+            a0 = max(abs(ax[0]), abs(ay[0]))  # |a| within √2, from below
             stiff = a0 * L > STIFF * r0
             if r0 <= STOP_SPEED * (a0 + mug) * h:
                 # the speed within rounding of zero: a stop here (a velocity that passes that
@@ -619,12 +619,13 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
                 # r0 θ'/|a|, θ' the rate at which a turns; measured within a few % of the lag),
                 # to skip trials bound to fail
                 an2 = ax[0] * ax[0] + ay[0] * ay[0]
+                an = np.sqrt(an2)
                 vx0 = st[VX]
                 vy0 = st[VY]
                 pred = np.arctan2(ax[0] * vy0 - ay[0] * vx0, -(ax[0] * vx0 + ay[0] * vy0))
                 lag = 0.0
                 if K >= 1 and an2 > 0.0:
-                    lag = r0 * (ax[0] * ay[1] - ay[0] * ax[1]) / (an2 * a0)
+                    lag = r0 * (ax[0] * ay[1] - ay[0] * ax[1]) / (an2 * an)
                 off = 2.0 * r0 * abs(np.sin(0.5 * (pred - lag)))
                 if off <= 4.0 * best + 0.1 * r0 * abs(lag):
                     De, phi0 = slow_series(ax, ay, K, st[VX], st[VY], mug, D, L, y, rho, sl)
@@ -643,7 +644,7 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
                     decay = 0.0
                     De = -1
             if not slow:
-                De = moving_series(ax, ay, K, st[VX], st[VY], mug, D, L, y, rho, w)
+                De = moving_series(ax, ay, K, st[VX], st[VY], r0, mug, D, L, y, rho, w)
         else:
             for k in range(K + 1):
                 A[k, 0] = ax[k]
@@ -675,7 +676,7 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
                 ts = rise_within(q, De, 0.0, H, 0.0, work)
             if must_stop and ts < 0.0:
                 # no stop on the slow step after all: an explicit step instead
-                De = moving_series(ax, ay, K, st[VX], st[VY], mug, D, L, y, rho, w)
+                De = moving_series(ax, ay, K, st[VX], st[VY], r0, mug, D, L, y, rho, w)
                 slow = False
                 decay_need = np.inf
                 H = _step_size(y, De, L) if De == D else L
@@ -714,7 +715,7 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
             st[START] = 0.0  # (_advance set the velocity)
             if m == 0 and not slow and stiff:
                 # the decay of a fast transient over the step: e^−∫|a|/|v|
-                decay += a0 * tend / max(rho[0], np.hypot(st[VX], st[VY]))
+                decay += a0 * tend / max(rho[0], abs(st[VX]) + abs(st[VY]))
             fresh = False
     return True
 

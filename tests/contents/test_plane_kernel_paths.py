@@ -32,7 +32,7 @@ def _explicit(ax0, ay0, v, span, max_steps=200_000):
         L = span - s0
         taylor_shift(ax0, K, s0, ax)
         taylor_shift(ay0, K, s0, ay)
-        De = pk.moving_series(ax, ay, K, v[0], v[1], MUG, D, L, y, rho, w)
+        De = pk.moving_series(ax, ay, K, v[0], v[1], np.hypot(*v), MUG, D, L, y, rho, w)
         assert De > 0
         H = pk._step_size(y, De, L) if De == D else L
         k = np.arange(De + 1)
