@@ -59,6 +59,19 @@ rounding-level sideways velocity the series' radius shrinks with the speed, and 
 crawl); it is the 2-D form of the 1-D solver's stop at zero velocity."""
 
 
+@njit(cache=True, inline="always")
+def _ipow(x, n):
+    """``x**n`` for an integer ``n ≥ 0`` by squaring (numba calls ``pow`` for a run-time
+    exponent)."""
+    r = 1.0
+    while n > 0:
+        if n & 1:
+            r *= x
+        x *= x
+        n >>= 1
+    return r
+
+
 _INV = np.array([0.0] + [1.0 / k for k in range(1, 128)])
 """``1/k`` (``_INV[0]`` unused): the recurrences multiply instead of dividing."""
 STOP_TOL = 1e-16
@@ -393,7 +406,7 @@ def _step_size(y, D, L):
         tol = STEP_TOL * (n0 + H * (n1 + H * n2))
         for k in (D, D - 1):
             nk = abs(y[k, 0]) + abs(y[k, 1])
-            if nk * H**k > tol > 0.0:  # (the test, not the root, for the next term)
+            if nk * _ipow(H, k) > tol > 0.0:  # (the test, not the root, for the next term)
                 H = (tol / nk) ** (1.0 / k)
         if H == H0:
             break  # the same scale again: the same step
@@ -462,7 +475,7 @@ def _advance(st, y, rho, De, m, tend, ax, ay, K, t_start, ux, uy, q, work):
         vy = vy * tend + yy
         if k > 0:
             dv = (dv + abs(yx) + abs(yy)) * tend
-    tm = tend**m
+    tm = _ipow(tend, m)
     tm1 = tm * tend
     path = ip * tm1
     # ∫ a·v = Σ_i a_i·Σ_k y_k tend^{k+i+m+1}/(k+i+m+1): i = 0, 1 from the pass above
@@ -491,7 +504,7 @@ def _advance(st, y, rho, De, m, tend, ax, ay, K, t_start, ux, uy, q, work):
     # |u|² on the step, exactly
     peak2 = st[PEAK] * st[PEAK]
     u0 = abs(u0x) + abs(u0y)  # ≥ |u0|: the tests below stay valid
-    if (u0 + path) ** 2 > peak2:
+    if (u0 + path) * (u0 + path) > peak2:
         bx = abs(u0x) + bx * tm1
         by = abs(u0y) + by * tm1
         if bx * bx + by * by > peak2:
