@@ -447,7 +447,7 @@ def _advance(st, y, rho, De, m, tend, ax, ay, K, t_start, ux, uy, q, work):
     """Move a block's state along its slip step ``v(τ) = τ^m Σ_k y_k τ^k`` (speed
     ``τ^m Σ_k ρ_k τ^k``) over ``[0, tend]``: slide and velocity at ``tend``, the path
     ``∫|v|``, the floor's work ``∫ a·v`` (``a`` of degree K) and the peak ``|u|`` on the step
-    (``t_start`` the step's start). ``ux, uy, q, work``: scratch."""
+    (``t_start`` the step's start). ``ux, uy, q, work``: scratch (``q`` of size ≥ De + K + 1)."""
     # one Horner pass for the values at tend and the integrals ∫ τ^{k+m} = tend^{k+m+1}/(k+m+1)
     ix = 0.0  # Σ y_k tend^k/(k+m+1), and of |y_k|, and of ρ_k
     iy = 0.0
@@ -478,20 +478,25 @@ def _advance(st, y, rho, De, m, tend, ax, ay, K, t_start, ux, uy, q, work):
     tm = _ipow(tend, m)
     tm1 = tm * tend
     path = ip * tm1
-    # ∫ a·v = Σ_i a_i·Σ_k y_k tend^{k+i+m+1}/(k+i+m+1): i = 0, 1 from the pass above
-    work_a = (ax[0] * ix + ay[0] * iy) * tm1
-    if K >= 1:
-        work_a += (ax[1] * jx + ay[1] * jy) * tm1 * tend
-    ti = tm1 * tend
-    for i in range(2, K + 1):
-        ti *= tend
-        sx = 0.0
-        sy = 0.0
-        for k in range(De, -1, -1):
-            f = _INV[k + m + i + 1]
-            sx = sx * tend + y[k, 0] * f
-            sy = sy * tend + y[k, 1] * f
-        work_a += (ax[i] * sx + ay[i] * sy) * ti
+    # ∫ a·v = Σ_n c_n tend^{n+m+1}/(n+m+1), c_n = Σ_i a_i·y_{n−i}: for a linear floor
+    # acceleration (the ground) from the pass above; else c accumulated a_i·y row by row (each
+    # row independent terms, not one long sum per c_n), then one Horner pass
+    if K <= 1:
+        work_a = (ax[0] * ix + ay[0] * iy) * tm1
+        if K == 1:
+            work_a += (ax[1] * jx + ay[1] * jy) * tm1 * tend
+    else:
+        for n in range(De + K + 1):
+            q[n] = 0.0
+        for i in range(K + 1):
+            cx = ax[i]
+            cy = ay[i]
+            for k in range(De + 1):
+                q[i + k] += cx * y[k, 0] + cy * y[k, 1]
+        work_a = 0.0
+        for n in range(De + K, -1, -1):
+            work_a = work_a * tend + q[n] * _INV[n + m + 1]
+        work_a *= tm1
     st[PATH] += path
     st[WORK_A] += work_a
     u0x = st[UX]
@@ -759,7 +764,7 @@ def plane_kernel(X1, X2, k0, R1, b1, R2, b2, acc1, acc2, substeps, h, g, MU, sta
     rho = np.zeros(D + 2)
     w = np.zeros((D + 2, 2))
     sl = np.zeros((5, D + 2))
-    q = np.zeros(degmax + 1)
+    q = np.zeros(max(degmax, D + K) + 1)
     ux = np.zeros(D + 4)
     uy = np.zeros(D + 4)
     if k0 == 0:
