@@ -751,8 +751,6 @@ def plane_kernel(X1, X2, k0, R1, b1, R2, b2, acc1, acc2, substeps, h, g, MU, sta
     ``states`` ``(n, NCOL)`` in/out; ``hist[i, k] = (u_x, u_y)`` at the samples when
     ``want_hist``."""
     K = max(R1.shape[0], R2.shape[0]) - 1
-    nobj = MU.shape[1]
-    nsteps = (X1.shape[0] - 1) // substeps
     degmax = 2 * (D + 3) + 2
     work = scratch(max(degmax, 2 * K + 2))
     c1 = np.zeros(K + 1)
@@ -767,6 +765,19 @@ def plane_kernel(X1, X2, k0, R1, b1, R2, b2, acc1, acc2, substeps, h, g, MU, sta
     q = np.zeros(max(degmax, D + K) + 1)
     ux = np.zeros(D + 4)
     uy = np.zeros(D + 4)
+    _plane_steps(X1, X2, k0, R1, b1, R2, b2, acc1, acc2, substeps, h, g, MU, states, hist,
+                 want_hist, D, max_events, K, c1, c2, ax, ay, A, y, rho, w, sl, q, ux, uy,
+                 work)  # fmt: skip
+
+
+@njit(cache=True, _nrt=False)
+def _plane_steps(X1, X2, k0, R1, b1, R2, b2, acc1, acc2, substeps, h, g, MU, states, hist,
+                 want_hist, D, max_events, K, c1, c2, ax, ay, A, y, rho, w, sl, q, ux, uy,
+                 work):  # fmt: skip
+    """The loops of :func:`plane_kernel` over sub-steps and blocks, given its scratch;
+    compiled without reference counting (the rows and views made here cost nothing)."""
+    nobj = MU.shape[1]
+    nsteps = (X1.shape[0] - 1) // substeps
     if k0 == 0:
         # a floor beyond the breakaway level at t = 0 sets the block sliding from the start
         a1 = b1[0] * acc1[0]
