@@ -19,6 +19,22 @@ located by rigorous root isolation on its series; there the block sticks if ``|a
 else it slides on at once. A breakaway is the first instant ``|a|² > (mu_b g)²``, a polynomial
 of the floor's coefficients. ``mu_b = max(mu_s, mu_k)``.
 
+Slow blocks. The direction of a sliding block relaxes towards that of ``−a`` at the rate
+``|a|/|v|``: at low speed the equation is stiff, and the series above (whose steps must resolve
+that rate) reach only ≈ 6|v|/|a| — after a breakaway, before a stop, and wherever the floor
+drives a block barely beyond kinetic friction (it creeps). Once the transient of the last change
+of the floor's motion has decayed below rounding, the block is on its slow manifold, and one
+series of that manifold (:func:`slow_series`: speed and angle, the angle's stiff order solved
+implicitly) takes the whole sub-step or runs into the stop. And a block certain to stop within
+the sub-step after sliding at most 1e-16 of its slide is stopped at once
+(:func:`_negligible_stop`): the stop is a branch point of ``v``, which steps only approach.
+Both replace thousands of steps in the worst cases; the velocity they start from is within
+``2^-26`` of the block's (sideways: the speed within its rounding), the slide they drop below
+1e-16 of the slide.
+
+The helpers are compiled without numba's reference counting (no arrays are made in them;
+numba would otherwise count every array argument in and out on every call).
+
 References
 ----------
 Jorba, À., Zou, M. (2005). A software package for the numerical integration of ODEs by means of
