@@ -19,6 +19,22 @@ located by rigorous root isolation on its series; there the block sticks if ``|a
 else it slides on at once. A breakaway is the first instant ``|a|² > (mu_b g)²``, a polynomial
 of the floor's coefficients. ``mu_b = max(mu_s, mu_k)``.
 
+Slow blocks. The direction of a sliding block relaxes towards that of ``−a`` at the rate
+``|a|/|v|``: at low speed the equation is stiff, and the series above (whose steps must resolve
+that rate) reach only ≈ 6|v|/|a| — after a breakaway, before a stop, and wherever the floor
+drives a block barely beyond kinetic friction (it creeps). Once the transient of the last change
+of the floor's motion has decayed below rounding, the block is on its slow manifold, and one
+series of that manifold (:func:`slow_series`: speed and angle, the angle's stiff order solved
+implicitly) takes the whole sub-step or runs into the stop. And a block certain to stop within
+the sub-step after sliding at most 1e-16 of its slide is stopped at once
+(:func:`_negligible_stop`): the stop is a branch point of ``v``, which steps only approach.
+Both replace thousands of steps in the worst cases; the velocity they start from is within
+``2^-26`` of the block's (sideways: the speed within its rounding), the slide they drop below
+1e-16 of the slide.
+
+The helpers are compiled without numba's reference counting (no arrays are made in them;
+numba would otherwise count every array argument in and out on every call).
+
 References
 ----------
 Jorba, À., Zou, M. (2005). A software package for the numerical integration of ODEs by means of
@@ -59,56 +75,237 @@ rounding-level sideways velocity the series' radius shrinks with the speed, and 
 crawl); it is the 2-D form of the 1-D solver's stop at zero velocity."""
 
 
-@njit(cache=True)
-def slip_series(a, K, vx, vy, m, mug, D, y, rho, w, L=0.0):
-    """Taylor coefficients ``y[0..D]`` (``(D+1, 2)``) of a slip phase's velocity about its
-    current point, ``v(τ) = τ^m Σ_k y_k τ^k``, and those of ``ρ = |y|`` (``rho``; ``w`` =
-    ``y/ρ``, scratch), under the floor acceleration with coefficients ``a[0..K]`` (``(K+1, 2)``)
-    there. ``m = 0``: from the velocity ``(vx, vy) ≠ 0``; ``m = 1``: from rest with
-    ``|a₀| > mug``; ``m = 2``: from rest at a breakaway with ``|a₀| = mug`` and ``|a|`` rising.
-    Returns False when the start is degenerate (``ρ₀ ≤ 0``)."""
+@njit(cache=True, inline="always")
+def _ipow(x, n):
+    """``x**n`` for an integer ``n ≥ 0`` by squaring (numba calls ``pow`` for a run-time
+    exponent)."""
+    r = 1.0
+    while n > 0:
+        if n & 1:
+            r *= x
+        x *= x
+        n >>= 1
+    return r
+
+
+_INV = np.array([0.0] + [1.0 / k for k in range(1, 128)])
+"""``1/k`` (``_INV[0]`` unused): the recurrences multiply instead of dividing."""
+STOP_TOL = 1e-16
+"""A sliding block whose stop is certain within the rest of the sub-step, and whose remaining
+path is at most ``STOP_TOL`` of its slide (peak or current), is stopped at once: the slide
+dropped is below the rounding of the slide itself (:func:`_negligible_stop`)."""
+STEP_TOL = 1e-17
+"""Jorba & Zou's step rule: the last two terms of the series on the step are below ``STEP_TOL``
+of its first three (:func:`_step_size`)."""
+SLOW_TOL = 2.0**-26
+"""A slow-manifold step (:func:`slow_series`) is taken only when it moves the block's velocity by
+at most ``SLOW_TOL`` of the speed, sideways (its speed then changes by at most ``SLOW_TOL²/2``,
+the rounding of the speed), and when the fast transient so dropped slides the block by at most
+:data:`STOP_TOL` of its slide."""
+STIFF = 60.0
+"""A slip step is stiff when ``|a|·L/|v| > STIFF`` (``L`` the rest of the sub-step): the
+direction of a slow block relaxes at the rate ``|a|/|v|``, and the series of
+:func:`moving_series` reach only ≈ 6·|v|/|a| — a slow-manifold step is tried then."""
+SLOW_SWEEPS = 40
+"""Most sweeps of :func:`slow_series`."""
+SHORT_TOL = 1e-18
+"""The series stops at a lower degree (at least 8) when two consecutive terms on the whole rest
+of the sub-step are below ``SHORT_TOL`` of its first two: the step then takes the rest of the
+sub-step, as :func:`_step_size` would grant."""
+
+
+@njit(cache=True, _nrt=False)
+def moving_series(ax, ay, K, vx, vy, r0, mug, D, L, y, rho, w):
+    """Taylor coefficients ``y[0..De]`` of a sliding block's velocity ``v`` about its current
+    point (``v(0) = (vx, vy) ≠ 0``, ``r0 = |v(0)|``) and those of ``ρ = |v|`` (``rho``;
+    ``w = v/ρ`` in ``w``),
+    under the floor acceleration with coefficients ``ax[0..K]``, ``ay[0..K]`` there.
+
+    The recurrences (Jorba & Zou 2005), order by order: ``(k+1) v_{k+1} = −a_k − mug w_k``,
+    ``ρ_k = w₀·v_k + Σ_{j=1}^{k−1} (v_j·v_{k−j} − ρ_j ρ_{k−j}) / (2ρ₀)`` (the sum is symmetric
+    in ``j ↔ k−j``: half of it is formed, doubled), ``w_k = (v_k − Σ_{j=1}^{k} ρ_j w_{k−j})/ρ₀``.
+    The degree is ``D``, or lower (``De ≥ 8``) as soon as two consecutive terms on ``[0, L]``
+    are below :data:`SHORT_TOL` of the first two (``L > 0``). Returns ``De`` (``ρ`` is formed to
+    ``De`` too, for the stop search), or −1 when ``v(0) = 0``."""
+    if not r0 > 0.0:
+        return -1
+    ir0 = 1.0 / r0
+    h0 = 0.5 * ir0
+    w0x = vx * ir0
+    w0y = vy * ir0
+    y[0, 0] = vx
+    y[0, 1] = vy
+    rho[0] = r0
+    w[0, 0] = w0x
+    w[0, 1] = w0y
+    y1x = -ax[0] - mug * w0x
+    y1y = -ay[0] - mug * w0y
+    y[1, 0] = y1x
+    y[1, 1] = y1y
+    # the early end: squared terms on [0, L] against (SHORT_TOL·(|v₀| + |v₁| L))² (|v₁| bounded
+    # from below by its larger component)
+    tiny = SHORT_TOL * (r0 + max(abs(y1x), abs(y1y)) * L)
+    tiny2 = tiny * tiny
+    L2 = L * L
+    L2k = L2
+    t_prev = (y1x * y1x + y1y * y1y) * L2k
+    De = D
+    for k in range(1, D):
+        # ρ_k
+        s = 0.0
+        for j in range(1, (k + 1) // 2):
+            s += y[j, 0] * y[k - j, 0] + y[j, 1] * y[k - j, 1] - rho[j] * rho[k - j]
+        s += s
+        if k % 2 == 0:
+            j = k // 2
+            s += y[j, 0] * y[j, 0] + y[j, 1] * y[j, 1] - rho[j] * rho[j]
+        rk = s * h0 + (w0x * y[k, 0] + w0y * y[k, 1])
+        rho[k] = rk
+        # w_k
+        sx = rk * w0x
+        sy = rk * w0y
+        for j in range(1, k):
+            sx += rho[j] * w[k - j, 0]
+            sy += rho[j] * w[k - j, 1]
+        wkx = (y[k, 0] - sx) * ir0
+        wky = (y[k, 1] - sy) * ir0
+        w[k, 0] = wkx
+        w[k, 1] = wky
+        # v_{k+1}
+        akx = ax[k] if k <= K else 0.0
+        aky = ay[k] if k <= K else 0.0
+        ykx = (-akx - mug * wkx) * _INV[k + 1]
+        yky = (-aky - mug * wky) * _INV[k + 1]
+        y[k + 1, 0] = ykx
+        y[k + 1, 1] = yky
+        L2k *= L2
+        t = (ykx * ykx + yky * yky) * L2k
+        if k + 1 >= 8 and t <= tiny2 and t_prev <= tiny2:
+            De = k + 1
+            break
+        t_prev = t
+    # ρ_De, for the stop search over the whole degree
+    s = 0.0
+    for j in range(1, De):
+        s += y[j, 0] * y[De - j, 0] + y[j, 1] * y[De - j, 1] - rho[j] * rho[De - j]
+    rho[De] = s * h0 + (w0x * y[De, 0] + w0y * y[De, 1])
+    return De
+
+
+@njit(cache=True, _nrt=False)
+def slow_series(ax, ay, K, vx, vy, mug, D, L, y, rho, sl):
+    """Taylor coefficients ``y[0..D]`` of a slow block's velocity on its slow manifold — the
+    solution whose direction follows the floor's without the fast transient — through a point
+    beside ``(vx, vy)``, and those of its speed ``ρ`` (``rho``); ``sl`` is scratch ``(5, D+2)``.
+
+    In the frame ``e = v/|v|``, ``n`` (``e`` turned by +90°), ``v = ρ (cos φ e + sin φ n)`` with
+    ``α = a·e``, ``β = a·n``: ``ρ' = −(α cos φ + β sin φ) − mug`` and
+    ``ρ φ' = α sin φ − β cos φ``. The second is stiff (``φ`` relaxes at the rate ``|a|/ρ``); its
+    order ``k`` is solved for ``φ_k`` instead of ``φ_{k+1}``:
+    ``φ_k (a·w₀ − k ρ₁) = ρ₀ (k+1) φ_{k+1} + …`` (lower orders), order 0 for the slow
+    direction, ``sin(φ₀ − γ) = −ρ₀ φ₁/|a₀|`` (``γ`` that of ``−a₀``), and the small term in
+    ``φ_{k+1}`` is taken from the previous sweep (Gauss–Seidel; it contracts by about
+    ``(k+1) ρ₀/(|a| R)``, ``R`` the reach of the series). ``ρ_{k+1}`` follows explicitly, with
+    ``sin φ``, ``cos φ`` by their recurrences — no division by the small speed anywhere.
+
+    The block's own velocity is ``ρ₀ e`` (``φ = 0``); the slow point differs from it by
+    ``2ρ₀ |sin(φ₀/2)|``, sideways (``φ₀ ≈ π`` for a block moving along the floor's
+    acceleration, away from the slow manifold). Returns ``(D, φ₀)``, or ``(−1, 0)`` when the
+    slow manifold is not found (no floor acceleration, a near-resonant order, no convergence)."""
+    phi = sl[0]
+    sn = sl[1]
+    cs = sl[2]
+    al = sl[3]
+    be = sl[4]
+    r0 = np.hypot(vx, vy)
+    ex = vx / r0
+    ey = vy / r0
+    for k in range(D + 2):
+        al[k] = 0.0
+        be[k] = 0.0
+        phi[k] = 0.0
+    for k in range(min(K, D) + 1):
+        al[k] = ax[k] * ex + ay[k] * ey
+        be[k] = ay[k] * ex - ax[k] * ey
+    A0 = np.hypot(al[0], be[0])
+    if not A0 > 0.0:
+        return -1, 0.0
+    gam = np.arctan2(-be[0], -al[0])  # the direction of −a₀ in the frame
+    rho[0] = r0
+    # the change of a sweep, Σ_k |Δφ_k| L^k (radians on the step), against Σ_k |φ_k| L^k
+    for sweep in range(SLOW_SWEEPS):
+        x = r0 * phi[1] / A0
+        if not abs(x) < 1.0:
+            return -1, 0.0
+        f0 = gam - np.arcsin(x)
+        change = abs(f0 - phi[0])
+        size = abs(f0)
+        phi[0] = f0
+        sn[0] = np.sin(f0)
+        cs[0] = np.cos(f0)
+        d0 = al[0] * cs[0] + be[0] * sn[0]  # a₀·w₀
+        rho[1] = -d0 - mug
+        Lk = 1.0
+        for k in range(1, D + 1):
+            Lk *= L
+            # sin φ, cos φ at order k but for their φ_k terms
+            sp = 0.0
+            cp = 0.0
+            for j in range(1, k):
+                sp += j * phi[j] * cs[k - j]
+                cp += j * phi[j] * sn[k - j]
+            sp *= _INV[k]
+            cp *= -_INV[k]
+            # order k of ρ φ' = α sin φ − β cos φ, for φ_k
+            lhs = al[0] * sp - be[0] * cp
+            for i in range(1, min(k, K) + 1):
+                lhs += al[i] * sn[k - i] - be[i] * cs[k - i]
+            rhs = r0 * (k + 1) * phi[k + 1]
+            for j in range(2, k + 1):
+                rhs += rho[j] * (k - j + 1) * phi[k - j + 1]
+            den = d0 - k * rho[1]
+            if not abs(den) > 1e-3 * A0:
+                return -1, 0.0
+            fk = (rhs - lhs) / den
+            change += abs(fk - phi[k]) * Lk
+            size += abs(fk) * Lk
+            phi[k] = fk
+            sn[k] = fk * cs[0] + sp
+            cs[k] = cp - fk * sn[0]
+            # ρ_{k+1} = −Σ_i (α_i cos φ + β_i sin φ)_{k−i} / (k+1)
+            if k < D:
+                t = 0.0
+                for i in range(min(k, K) + 1):
+                    t += al[i] * cs[k - i] + be[i] * sn[k - i]
+                rho[k + 1] = -t * _INV[k + 1]
+        if sweep > 0 and change <= 2.0**-52 * size:
+            # v = ρ w, back in x, y
+            for k in range(D + 1):
+                pc = 0.0
+                ps = 0.0
+                for j in range(k + 1):
+                    pc += rho[j] * cs[k - j]
+                    ps += rho[j] * sn[k - j]
+                y[k, 0] = pc * ex - ps * ey
+                y[k, 1] = pc * ey + ps * ex
+            return D, phi[0]
+    return -1, 0.0
+
+
+@njit(cache=True, _nrt=False)
+def start_series(a, K, m, mug, D, y, rho, w):
+    """Taylor coefficients ``y[0..D]`` of a slip phase's velocity from rest,
+    ``v(τ) = τ^m Σ_k y_k τ^k``, and those of ``ρ = |y|`` (``rho``; ``w = y/ρ``, scratch), under
+    the floor acceleration with coefficients ``a[0..K]`` (``(K+1, 2)``) there: ``m = 1`` with
+    ``|a₀| > mug``; ``m = 2`` at a breakaway with ``|a₀| = mug`` and ``|a|`` rising. The
+    recurrences of :func:`moving_series`, split along ``w₀`` and across it, give each order
+    explicitly. Returns ``D``, or −1 when the start is degenerate (``ρ₀ ≤ 0``)."""
     for k in range(D + 1):
         y[k, 0] = 0.0
         y[k, 1] = 0.0
         rho[k] = 0.0
         w[k, 0] = 0.0
         w[k, 1] = 0.0
-    if m == 0:
-        y[0, 0], y[0, 1] = vx, vy
-        rho[0] = np.hypot(vx, vy)
-        if not rho[0] > 0.0:
-            return -1
-        w[0, 0], w[0, 1] = vx / rho[0], vy / rho[0]
-        for k in range(D):
-            if k > 0:
-                rk = 0.0
-                for j in range(1, k):
-                    rk += y[j, 0] * y[k - j, 0] + y[j, 1] * y[k - j, 1] - rho[j] * rho[k - j]
-                rk = rk / (2.0 * rho[0]) + w[0, 0] * y[k, 0] + w[0, 1] * y[k, 1]
-                rho[k] = rk
-                sx, sy = 0.0, 0.0
-                for j in range(1, k + 1):
-                    sx += rho[j] * w[k - j, 0]
-                    sy += rho[j] * w[k - j, 1]
-                w[k, 0] = (y[k, 0] - sx) / rho[0]
-                w[k, 1] = (y[k, 1] - sy) / rho[0]
-            ax = a[k, 0] if k <= K else 0.0
-            ay = a[k, 1] if k <= K else 0.0
-            y[k + 1, 0] = (-ax - mug * w[k, 0]) / (k + 1)
-            y[k + 1, 1] = (-ay - mug * w[k, 1]) / (k + 1)
-            if L > 0.0 and k + 1 >= 8:
-                scale = rho[0] + np.hypot(y[1, 0], y[1, 1]) * L
-                t1 = np.hypot(y[k, 0], y[k, 1]) * L**k
-                t2 = np.hypot(y[k + 1, 0], y[k + 1, 1]) * L ** (k + 1)
-                if t1 <= 1e-18 * scale and t2 <= 1e-18 * scale:
-                    D = k + 1
-                    break
-        # ρ_D, for the stop search over the whole degree
-        rk = 0.0
-        for j in range(1, D):
-            rk += y[j, 0] * y[D - j, 0] + y[j, 1] * y[D - j, 1] - rho[j] * rho[D - j]
-        rho[D] = rk / (2.0 * rho[0]) + w[0, 0] * y[D, 0] + w[0, 1] * y[D, 1]
-        return D
     n0 = np.hypot(a[0, 0], a[0, 1])
     if not n0 > 0.0:
         return -1
@@ -199,7 +396,7 @@ def slip_series(a, K, vx, vy, m, mug, D, y, rho, w, L=0.0):
     return D
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _floor_square(ax, ay, K, q):
     """Coefficients of ``|a|² = a_x² + a_y²`` (degree 2K) into ``q``."""
     for j in range(2 * K + 1):
@@ -209,27 +406,169 @@ def _floor_square(ax, ay, K, q):
             q[i + j] += ax[i] * ax[j] + ay[i] * ay[j]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _step_size(y, D, L):
     """Jorba & Zou's step: the largest ``H ≤ L`` on which the last two terms of the series are
-    below 1e-17 of its first three (two passes, the scale taken on the step itself)."""
+    below :data:`STEP_TOL` of its first three (two passes, the scale taken on the step itself;
+    the root is taken only for a term that limits the step). Norms are bounded without a
+    square root: ``|x| + |y|`` from above for the terms, ``max(|x|, |y|)`` from below for the
+    scale (a step at most that much shorter)."""
     H = L
+    n0 = max(abs(y[0, 0]), abs(y[0, 1]))
+    n1 = max(abs(y[1, 0]), abs(y[1, 1]))
+    n2 = max(abs(y[2, 0]), abs(y[2, 1]))
     for _ in range(2):
-        scale = 0.0
-        hk = 1.0
-        for k in range(3):
-            scale += np.hypot(y[k, 0], y[k, 1]) * hk
-            hk *= H
-        for k in (D - 1, D):
-            nk = np.hypot(y[k, 0], y[k, 1])
-            if nk > 0.0 and scale > 0.0:
-                H = min(H, (1e-17 * scale / nk) ** (1.0 / k))
+        H0 = H
+        tol = STEP_TOL * (n0 + H * (n1 + H * n2))
+        for k in (D, D - 1):
+            nk = abs(y[k, 0]) + abs(y[k, 1])
+            if nk * _ipow(H, k) > tol > 0.0:  # (the test, not the root, for the next term)
+                H = (tol / nk) ** (1.0 / k)
+        if H == H0:
+            break  # the same scale again: the same step
     return H
 
 
-@njit(cache=True)
-def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w, q, ux, uy,
-                   work, max_events):  # fmt: skip
+@njit(cache=True, inline="always")
+def _negligible_stop(r0, ax, ay, K, L, mug, peak, ux, uy):
+    """Whether a block sliding at speed ``r0`` under the floor acceleration ``ax, ay`` (degree
+    K, on ``[0, L]``) certainly stops within ``T ≤ L`` after sliding at most ``STOP_TOL·U``
+    (``U`` the larger of its peak slide and its slide ``(ux, uy)``), and then sticks
+    (``mub ≥ mu_k``): if ``|a| ≤ A < mug`` on ``[0, T]``, the speed falls at least at
+    ``mug − A`` (``r' = −a·w − mug``), so the block stops before ``r0/(mug − A)`` after a path
+    ``≤ r0²/(2(mug − A))`` (``(½r²)' ≤ −(mug − A) r``), where it sticks. ``A`` is bounded by
+    ``Σ_j |a_j| T^j`` on ``T = 2 r0/(mug − |a₀|)``. Returns that ``T`` (the time to the stop is
+    at most it), or −1."""
+    if r0 * r0 > 2.0 * mug * STOP_TOL * max(peak, abs(ux) + abs(uy)):
+        return -1.0  # (a quick test first, with |u| ≤ |ux| + |uy|)
+    U = max(peak, np.hypot(ux, uy))
+    a0 = np.hypot(ax[0], ay[0])
+    if not mug > a0:
+        return -1.0
+    T = 2.0 * r0 / (mug - a0)
+    if T > L:
+        return -1.0
+    A = 0.0
+    for j in range(K, -1, -1):
+        A = A * T + np.hypot(ax[j], ay[j])
+    if not (A < mug and r0 <= (mug - A) * T):
+        return -1.0
+    if r0 * r0 > 2.0 * (mug - A) * STOP_TOL * U:
+        return -1.0
+    return T
+
+
+@njit(cache=True, _nrt=False)
+def _advance(st, y, rho, De, m, tend, ax, ay, K, t_start, ux, uy, q, work):
+    """Move a block's state along its slip step ``v(τ) = τ^m Σ_k y_k τ^k`` (speed
+    ``τ^m Σ_k ρ_k τ^k``) over ``[0, tend]``: slide and velocity at ``tend``, the path
+    ``∫|v|``, the floor's work ``∫ a·v`` (``a`` of degree K) and the peak ``|u|`` on the step
+    (``t_start`` the step's start). ``ux, uy, q, work``: scratch (``q`` of size ≥ De + K + 1)."""
+    # one Horner pass for the values at tend and the integrals ∫ τ^{k+m} = tend^{k+m+1}/(k+m+1)
+    ix = 0.0  # Σ y_k tend^k/(k+m+1), and of |y_k|, and of ρ_k
+    iy = 0.0
+    bx = 0.0
+    by = 0.0
+    ip = 0.0
+    jx = 0.0  # Σ y_k tend^k/(k+m+2), for the floor's work
+    jy = 0.0
+    vx = 0.0  # Σ y_k tend^k
+    vy = 0.0
+    dv = 0.0  # Σ_{k≥1} (|y_k,x| + |y_k,y|) tend^k ≥ |v(τ) − v(0)| / τ^m
+    for k in range(De, -1, -1):
+        f = _INV[k + m + 1]
+        g = _INV[k + m + 2]
+        yx = y[k, 0]
+        yy = y[k, 1]
+        ix = ix * tend + yx * f
+        iy = iy * tend + yy * f
+        bx = bx * tend + abs(yx) * f
+        by = by * tend + abs(yy) * f
+        ip = ip * tend + rho[k] * f
+        jx = jx * tend + yx * g
+        jy = jy * tend + yy * g
+        vx = vx * tend + yx
+        vy = vy * tend + yy
+        if k > 0:
+            dv = (dv + abs(yx) + abs(yy)) * tend
+    tm = _ipow(tend, m)
+    tm1 = tm * tend
+    path = ip * tm1
+    # ∫ a·v = Σ_n c_n tend^{n+m+1}/(n+m+1), c_n = Σ_i a_i·y_{n−i}: for a linear floor
+    # acceleration (the ground) from the pass above; else c accumulated a_i·y row by row (each
+    # row independent terms, not one long sum per c_n), then one Horner pass
+    if K <= 1:
+        work_a = (ax[0] * ix + ay[0] * iy) * tm1
+        if K == 1:
+            work_a += (ax[1] * jx + ay[1] * jy) * tm1 * tend
+    else:
+        for n in range(De + K + 1):
+            q[n] = 0.0
+        for i in range(K + 1):
+            cx = ax[i]
+            cy = ay[i]
+            for k in range(De + 1):
+                q[i + k] += cx * y[k, 0] + cy * y[k, 1]
+        work_a = 0.0
+        for n in range(De + K, -1, -1):
+            work_a = work_a * tend + q[n] * _INV[n + m + 1]
+        work_a *= tm1
+    st[PATH] += path
+    st[WORK_A] += work_a
+    u0x = st[UX]
+    u0y = st[UY]
+    uex = u0x + ix * tm1
+    uey = u0y + iy * tm1
+    # peak |u|: two bounds of |u| on the step first (|u0| + ∫|v|, and the coefficients'
+    # magnitudes); then, moving away (u·v > 0 on the whole step, from
+    # u·v ≥ u0·v0 − |u0| δv − ∫|v|·(|v0| + δv), δv ≥ |v − v0|), the end; else the maximum of
+    # |u|² on the step, exactly
+    peak2 = st[PEAK] * st[PEAK]
+    u0 = abs(u0x) + abs(u0y)  # ≥ |u0|: the tests below stay valid
+    if (u0 + path) * (u0 + path) > peak2:
+        bx = abs(u0x) + bx * tm1
+        by = abs(u0y) + by * tm1
+        if bx * bx + by * by > peak2:
+            moving_out = False
+            if m == 0:
+                uv = u0x * y[0, 0] + u0y * y[0, 1]
+                moving_out = uv - u0 * dv - path * (rho[0] + dv) > 0.0
+            deg = De + m + 1
+            if moving_out:
+                v2 = uex * uex + uey * uey
+                tv = tend
+            else:
+                # u(τ) = u0 + Σ y_k τ^{k+m+1}/(k+m+1)
+                for k in range(m + 1):
+                    ux[k] = 0.0
+                    uy[k] = 0.0
+                ux[0] = u0x
+                uy[0] = u0y
+                for k in range(De + 1):
+                    ux[k + m + 1] = y[k, 0] * _INV[k + m + 1]
+                    uy[k + m + 1] = y[k, 1] * _INV[k + m + 1]
+                for j in range(2 * deg + 1):
+                    q[j] = 0.0
+                for i in range(deg + 1):
+                    for j in range(deg + 1):
+                        q[i + j] += ux[i] * ux[j] + uy[i] * uy[j]
+                v2, tv = max_abs_on(q, 2 * deg, tend, peak2, work)
+            if v2 > peak2:
+                st[PEAK] = np.sqrt(v2)
+                st[T_PEAK] = t_start + tv
+                if moving_out:
+                    st[ANGLE] = np.arctan2(uey, uex)
+                else:
+                    st[ANGLE] = np.arctan2(poly_val(uy, deg, tv), poly_val(ux, deg, tv))
+    st[UX] = uex
+    st[UY] = uey
+    st[VX] = vx * tm
+    st[VY] = vy * tm
+
+
+@njit(cache=True, _nrt=False)
+def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w, sl, q, ux,
+                   uy, work, max_events):  # fmt: skip
     """Advance one block through a sub-step of length ``h`` from time ``t0``, the floor's
     acceleration there ``(ax0, ay0)`` (coefficients, degree K). False when the event limit
     was reached."""
@@ -239,9 +578,12 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
     fresh = False
     events = 0
     steps = 0
+    decay = 0.0  # the decay exponent of a fast transient since the last slow-manifold trial
+    decay_need = 0.0  # the exponent needed before the next trial
     while s0 < h:
         L = h - s0
         lo = EVENT_GAP * h if fresh else 0.0
+        # the floor's acceleration about the current point
         if s0 > 0.0:
             taylor_shift(ax0, K, s0, ax)
             taylor_shift(ay0, K, s0, ay)
@@ -250,6 +592,7 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
                 ax[j] = ax0[j]
                 ay[j] = ay0[j]
         if st[MODE] == 0.0:
+            # stuck: the first instant |a|² rises above the breakaway level
             _floor_square(ax, ay, K, q)
             tb = rise_within(q, 2 * K, lo, L, level * level, work)
             if tb < 0.0:
@@ -261,107 +604,153 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
             st[VY] = 0.0
             st[START] = 2.0 if mub == muk else 1.0
             fresh = True
+            continue
+        m = int(st[START])
+        stop_now = False
+        stiff = False
+        r0 = 0.0
+        a0 = 0.0
+        if m == 0:
+            r0 = np.hypot(st[VX], st[VY])
+            a0 = max(abs(ax[0]), abs(ay[0]))  # |a| within √2, from below
+            stiff = a0 * L > STIFF * r0
+            if r0 <= STOP_SPEED * (a0 + mug) * h:
+                # the speed within rounding of zero: a stop here (a velocity that passes that
+                # close to zero turns on a time scale below rounding; steps would crawl)
+                stop_now = True
+            else:
+                T = _negligible_stop(r0, ax, ay, K, L, mug, st[PEAK], st[UX], st[UY])
+                if T >= 0.0:
+                    # a certain stop whose remaining slide is below the slide's rounding (the
+                    # series would only crawl towards it: the stop is a branch point of v)
+                    stop_now = True
+                    # the time to it (≤ T): that of a straight deceleration, the first order
+                    dec = mug + (ax[0] * st[VX] + ay[0] * st[VY]) / r0
+                    st[SLIDE_TIME] += min(r0 / dec, T)
+        slow = False
+        must_stop = False
+        if stop_now:
+            De = -2
+        elif m == 0:
+            De = -1
+            if stiff and decay >= decay_need:
+                # stiff: the block's direction relaxes much faster than the step; a step on the
+                # slow manifold, once the transient of the last change of the floor's motion has
+                # died out (the sideways offset of the slow point is that transient)
+                U = max(st[PEAK], np.hypot(st[UX], st[UY]))
+                rho1 = -(ax[0] * st[VX] + ay[0] * st[VY]) / r0 - mug
+                # (a) the transient's slide below STOP_TOL of the slide: it decays at the rate
+                # |a|/ρ, ρ = r0 + ρ'τ, as (1 + ρ'τ/r0)^(−|a|/ρ'), which slides the block by
+                # off·r0/(|a| − ρ') ≤ off·r0/mug in all (ρ' ≤ |a| − mug); (b) the speed moved
+                # by ≤ SLOW_TOL²/2 of itself; (b') decelerating, and the step ends in a stop:
+                # the speed moved by off²/(2 r0) moves that stop by ≤ off²/(2|ρ'|) only, and
+                # is then gone
+                tol_a = 0.5 * STOP_TOL * U * mug / r0
+                tol_b = SLOW_TOL * r0
+                tol_c = np.sqrt(0.5 * STOP_TOL * U * -rho1) if rho1 < 0.0 else 0.0
+                best = min(tol_a, max(tol_b, tol_c))
+                # the angle to the slow point to first order (the direction of −a, lagging by
+                # r0 θ'/|a|, θ' the rate at which a turns; measured within a few % of the lag),
+                # to skip trials bound to fail
+                an2 = ax[0] * ax[0] + ay[0] * ay[0]
+                an = np.sqrt(an2)
+                vx0 = st[VX]
+                vy0 = st[VY]
+                pred = np.arctan2(ax[0] * vy0 - ay[0] * vx0, -(ax[0] * vx0 + ay[0] * vy0))
+                lag = 0.0
+                if K >= 1 and an2 > 0.0:
+                    lag = r0 * (ax[0] * ay[1] - ay[0] * ax[1]) / (an2 * an)
+                off = 2.0 * r0 * abs(np.sin(0.5 * (pred - lag)))
+                if off <= 4.0 * best + 0.1 * r0 * abs(lag):
+                    De, phi0 = slow_series(ax, ay, K, st[VX], st[VY], mug, D, L, y, rho, sl)
+                    if De >= 0:
+                        off = 2.0 * r0 * abs(np.sin(0.5 * phi0))  # |v_slow − v|
+                        if off <= min(tol_a, tol_b):
+                            slow = True
+                        elif off <= min(tol_a, tol_c):
+                            slow = True
+                            must_stop = True
+                    else:
+                        decay_need = np.inf  # no slow manifold found: explicit steps
+                if not slow and decay_need < np.inf:
+                    # explicit steps until the transient has decayed by e^−need
+                    decay_need = np.log(off / best) + 1.0 if best > 0.0 else np.inf
+                    decay = 0.0
+                    De = -1
+            if not slow:
+                De = moving_series(ax, ay, K, st[VX], st[VY], r0, mug, D, L, y, rho, w)
         else:
-            m = int(st[START])
             for k in range(K + 1):
                 A[k, 0] = ax[k]
                 A[k, 1] = ay[k]
-            De = slip_series(A, K, st[VX], st[VY], m, mug, D, y, rho, w, L)
-            if De < 0:
-                # a degenerate start (the floor exactly at the kinetic level and not rising):
-                # no slip — the block stays at rest here
-                st[MODE] = 0.0
-                st[VX] = 0.0
-                st[VY] = 0.0
-                st[START] = 0.0
-                fresh = True
-                events += 1
-                if events > max_events:
-                    return False
-                continue
-            H = _step_size(y, De, L)
-            if m == 0 and rho[0] <= STOP_SPEED * (np.hypot(ax[0], ay[0]) + mug) * h:
-                # the speed within rounding of zero: a stop here (a velocity that passes that
-                # close to zero turns on a time scale below rounding; steps would crawl)
-                ts = 0.0
-            else:
-                # a stop: the first root of ρ (r = τ^m ρ crosses zero there)
+            De = start_series(A, K, m, mug, D, y, rho, w)
+        if De == -1:
+            # a degenerate start (the floor exactly at the kinetic level and not rising):
+            # no slip — the block stays at rest here
+            st[MODE] = 0.0
+            st[VX] = 0.0
+            st[VY] = 0.0
+            st[START] = 0.0
+            fresh = True
+            events += 1
+            if events > max_events:
+                return False
+            continue
+        ts = -1.0
+        if De >= 0:
+            H = _step_size(y, De, L) if De == D or m != 0 or slow else L
+            # a stop: the first root of ρ on [0, H] (r = τ^m ρ crosses zero there); none
+            # when ρ₀ > Σ_{j≥1} |ρ_j| H^j
+            reach = 0.0
+            for j in range(De, 0, -1):
+                reach = (reach + abs(rho[j])) * H
+            if reach >= rho[0]:
                 for k in range(De + 1):
                     q[k] = -rho[k]
                 ts = rise_within(q, De, 0.0, H, 0.0, work)
+            if must_stop and ts < 0.0:
+                # no stop on the slow step after all: an explicit step instead
+                De = moving_series(ax, ay, K, st[VX], st[VY], r0, mug, D, L, y, rho, w)
+                slow = False
+                decay_need = np.inf
+                H = _step_size(y, De, L) if De == D else L
+                reach = 0.0
+                for j in range(De, 0, -1):
+                    reach = (reach + abs(rho[j])) * H
+                if reach >= rho[0]:
+                    for k in range(De + 1):
+                        q[k] = -rho[k]
+                    ts = rise_within(q, De, 0.0, H, 0.0, work)
             tend = ts if ts >= 0.0 else H
-            # the slide on the step: u(τ) = u0 + Σ y_k τ^{k+m+1}/(k+m+1)
-            deg = De + m + 1
-            for k in range(deg + 1):
-                ux[k] = 0.0
-                uy[k] = 0.0
-            ux[0] = st[UX]
-            uy[0] = st[UY]
-            for k in range(De + 1):
-                ux[k + m + 1] = y[k, 0] / (k + m + 1)
-                uy[k + m + 1] = y[k, 1] / (k + m + 1)
-            # peak |u|: a bound first, then |u|² exactly
-            bx = 0.0
-            by = 0.0
-            for k in range(deg, -1, -1):
-                bx = bx * tend + abs(ux[k])
-                by = by * tend + abs(uy[k])
-            if bx * bx + by * by > st[PEAK] * st[PEAK]:
-                for j in range(2 * deg + 1):
-                    q[j] = 0.0
-                for i in range(deg + 1):
-                    for j in range(deg + 1):
-                        q[i + j] += ux[i] * ux[j] + uy[i] * uy[j]
-                v2, tv = max_abs_on(q, 2 * deg, tend, st[PEAK] * st[PEAK], work)
-                if v2 > st[PEAK] * st[PEAK]:
-                    st[PEAK] = np.sqrt(v2)
-                    st[T_PEAK] = t0 + s0 + tv
-                    st[ANGLE] = np.arctan2(poly_val(uy, deg, tv), poly_val(ux, deg, tv))
-            st[UX] = poly_val(ux, deg, tend)
-            st[UY] = poly_val(uy, deg, tend)
+            _advance(st, y, rho, De, m, tend, ax, ay, K, t0 + s0, ux, uy, q, work)
             st[SLIDE_TIME] += tend
-            # ∫|v| = ∫ τ^m ρ and ∫ a·v = ∫ τ^m (a·y) over the step, exactly on the series
-            path = 0.0
-            for k in range(De, -1, -1):
-                path = path * tend + rho[k] / (k + m + 1)
-            st[PATH] += path * tend ** (m + 1)
-            work_a = 0.0
-            for n in range(De + K, -1, -1):
-                cn = 0.0
-                for i in range(max(0, n - De), min(K, n) + 1):
-                    cn += ax[i] * y[n - i, 0] + ay[i] * y[n - i, 1]
-                work_a = work_a * tend + cn / (n + m + 1)
-            st[WORK_A] += work_a * tend ** (m + 1)
             s0 += tend
-            if ts >= 0.0:
-                st[VX] = 0.0
-                st[VY] = 0.0
-                st[STOPS] += 1.0
-                ex = poly_val(ax0, K, s0)
-                ey = poly_val(ay0, K, s0)
-                if ex * ex + ey * ey <= level * level:
-                    st[MODE] = 0.0
-                    st[START] = 0.0
-                else:
-                    st[START] = 1.0  # slides on at once, from rest, beyond the kinetic level
-                fresh = True
-                events += 1
-                if events > max_events:
-                    return False
-            else:
-                steps += 1
-                if steps > MAX_STEPS:
-                    return False
-                tm = tend**m
-                vx = 0.0
-                vy = 0.0
-                for k in range(De, -1, -1):
-                    vx = vx * tend + y[k, 0]
-                    vy = vy * tend + y[k, 1]
-                st[VX] = vx * tm
-                st[VY] = vy * tm
+        if De == -2 or ts >= 0.0:
+            # a stop: the block sticks if the floor is at or below the breakaway level there,
+            # else it slides on at once, from rest, beyond the kinetic level
+            st[VX] = 0.0
+            st[VY] = 0.0
+            st[STOPS] += 1.0
+            ex = poly_val(ax0, K, s0)
+            ey = poly_val(ay0, K, s0)
+            if ex * ex + ey * ey <= level * level:
+                st[MODE] = 0.0
                 st[START] = 0.0
-                fresh = False
+            else:
+                st[START] = 1.0
+            fresh = True
+            events += 1
+            if events > max_events:
+                return False
+        else:
+            steps += 1
+            if steps > MAX_STEPS:
+                return False
+            st[START] = 0.0  # (_advance set the velocity)
+            if m == 0 and not slow and stiff:
+                # the decay of a fast transient over the step: e^−∫|a|/|v|
+                decay += a0 * tend / max(rho[0], abs(st[VX]) + abs(st[VY]))
+            fresh = False
     return True
 
 
@@ -378,8 +767,6 @@ def plane_kernel(X1, X2, k0, R1, b1, R2, b2, acc1, acc2, substeps, h, g, MU, sta
     ``states`` ``(n, NCOL)`` in/out; ``hist[i, k] = (u_x, u_y)`` at the samples when
     ``want_hist``."""
     K = max(R1.shape[0], R2.shape[0]) - 1
-    nobj = MU.shape[1]
-    nsteps = (X1.shape[0] - 1) // substeps
     degmax = 2 * (D + 3) + 2
     work = scratch(max(degmax, 2 * K + 2))
     c1 = np.zeros(K + 1)
@@ -387,12 +774,26 @@ def plane_kernel(X1, X2, k0, R1, b1, R2, b2, acc1, acc2, substeps, h, g, MU, sta
     ax = np.zeros(K + 1)
     ay = np.zeros(K + 1)
     A = np.zeros((K + 1, 2))
-    y = np.zeros((D + 1, 2))
-    rho = np.zeros(D + 1)
-    w = np.zeros((D + 1, 2))
-    q = np.zeros(degmax + 1)
+    y = np.zeros((D + 2, 2))
+    rho = np.zeros(D + 2)
+    w = np.zeros((D + 2, 2))
+    sl = np.zeros((5, D + 2))
+    q = np.zeros(max(degmax, D + K) + 1)
     ux = np.zeros(D + 4)
     uy = np.zeros(D + 4)
+    _plane_steps(X1, X2, k0, R1, b1, R2, b2, acc1, acc2, substeps, h, g, MU, states, hist,
+                 want_hist, D, max_events, K, c1, c2, ax, ay, A, y, rho, w, sl, q, ux, uy,
+                 work)  # fmt: skip
+
+
+@njit(cache=True, _nrt=False)
+def _plane_steps(X1, X2, k0, R1, b1, R2, b2, acc1, acc2, substeps, h, g, MU, states, hist,
+                 want_hist, D, max_events, K, c1, c2, ax, ay, A, y, rho, w, sl, q, ux, uy,
+                 work):  # fmt: skip
+    """The loops of :func:`plane_kernel` over sub-steps and blocks, given its scratch;
+    compiled without reference counting (the rows and views made here cost nothing)."""
+    nobj = MU.shape[1]
+    nsteps = (X1.shape[0] - 1) // substeps
     if k0 == 0:
         # a floor beyond the breakaway level at t = 0 sets the block sliding from the start
         a1 = b1[0] * acc1[0]
@@ -422,11 +823,11 @@ def plane_kernel(X1, X2, k0, R1, b1, R2, b2, acc1, acc2, substeps, h, g, MU, sta
             for j in range(K, -1, -1):
                 reach = reach * h + np.hypot(c1[j], c2[j])
             for i in range(nobj):
-                st = states[i]
-                if st[MODE] == 0.0 and reach <= MU[0, i] * g:
+                if states[i, MODE] == 0.0 and reach <= MU[0, i] * g:
                     continue  # |a| ≤ Σ_j |c_j| h^j stays below the breakaway level
+                st = states[i]
                 ok = _block_substep(st, c1, c2, K, h, t0, g, MU[0, i], MU[1, i], D, ax, ay, A, y,
-                                    rho, w, q, ux, uy, work, max_events)  # fmt: skip
+                                    rho, w, sl, q, ux, uy, work, max_events)  # fmt: skip
                 if not ok and st[LIMIT_AT] < 0.0:
                     st[LIMIT_AT] = t0
             if want_hist and r == substeps - 1:
