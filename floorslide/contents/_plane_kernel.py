@@ -397,6 +397,75 @@ def start_series(a, K, m, mug, D, y, rho, w):
 
 
 @njit(cache=True, _nrt=False)
+def frictionless_series(ax, ay, K, vx, vy, moving, D, y, rho, w):
+    """Taylor coefficients of a block sliding without kinetic friction (``mu_k = 0``:
+    ``v' = −a``, a polynomial): ``v(τ) = τ^m Σ_k y_k τ^k`` to degree ``D`` and those of
+    ``ρ = |y|`` (``w = y/ρ`` in ``w``), for the path ``∫|v|`` and the step size. Moving
+    (``v(0) = (vx, vy) ≠ 0``): ``m = 0``, ``y₀ = v(0)``, ``y_{k+1} = −a_k/(k+1)``. From rest:
+    ``m = j + 1`` with ``a_j`` the floor's first non-zero coefficient, ``y_k = −a_{k+j}/(k+j+1)``.
+    The friction-free motion has no stop (its speed vanishes only where both components do at
+    once, which a real record does not make happen). Returns ``m``, or −1 when the block is at
+    rest on a floor at rest (every coefficient zero)."""
+    for k in range(D + 1):
+        y[k, 0] = 0.0
+        y[k, 1] = 0.0
+    if moving:
+        m = 0
+        y[0, 0] = vx
+        y[0, 1] = vy
+        for k in range(min(K, D - 1) + 1):
+            y[k + 1, 0] = -ax[k] * _INV[k + 1]
+            y[k + 1, 1] = -ay[k] * _INV[k + 1]
+    else:
+        j = 0
+        while j <= K and ax[j] == 0.0 and ay[j] == 0.0:
+            j += 1
+        if j > K:
+            return -1
+        m = j + 1
+        for k in range(min(K - j, D) + 1):
+            y[k, 0] = -ax[k + j] * _INV[k + j + 1]
+            y[k, 1] = -ay[k + j] * _INV[k + j + 1]
+    r0 = np.hypot(y[0, 0], y[0, 1])
+    rho[0] = r0
+    w[0, 0] = y[0, 0] / r0
+    w[0, 1] = y[0, 1] / r0
+    for k in range(1, D + 1):
+        s = 0.0
+        for i in range(1, k):
+            s += y[i, 0] * y[k - i, 0] + y[i, 1] * y[k - i, 1] - rho[i] * rho[k - i]
+        rk = s * 0.5 / r0 + (w[0, 0] * y[k, 0] + w[0, 1] * y[k, 1])
+        rho[k] = rk
+        sx = rk * w[0, 0]
+        sy = rk * w[0, 1]
+        for i in range(1, k):
+            sx += rho[i] * w[k - i, 0]
+            sy += rho[i] * w[k - i, 1]
+        w[k, 0] = (y[k, 0] - sx) / r0
+        w[k, 1] = (y[k, 1] - sy) / r0
+    return m
+
+
+@njit(cache=True, _nrt=False)
+def _speed_step(rho, D, L):
+    """The step on which the speed's series ``ρ`` (of degree ``D``) has its last two terms
+    below :data:`STEP_TOL` of its first three (Jorba & Zou's rule, as :func:`_step_size`): the
+    velocity of a friction-free block is a polynomial, but its speed ``|v|`` has branch points
+    where ``v`` passes near zero, which bound the steps its path integral may take."""
+    H = L
+    for _ in range(2):
+        H0 = H
+        tol = STEP_TOL * (abs(rho[0]) + H * (abs(rho[1]) + H * abs(rho[2])))
+        for k in (D, D - 1):
+            nk = abs(rho[k])
+            if nk * _ipow(H, k) > tol > 0.0:
+                H = (tol / nk) ** (1.0 / k)
+        if H == H0:
+            break
+    return H
+
+
+@njit(cache=True, _nrt=False)
 def _floor_square(ax, ay, K, q):
     """Coefficients of ``|a|² = a_x² + a_y²`` (degree 2K) into ``q``."""
     for j in range(2 * K + 1):
@@ -602,10 +671,25 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
             st[SLIPS] += 1.0
             st[VX] = 0.0
             st[VY] = 0.0
-            st[START] = 2.0 if mub == muk else 1.0
+            st[START] = 2.0 if mub == muk and mug > 0.0 else 1.0
             fresh = True
             continue
         m = int(st[START])
+        if mug == 0.0:
+            # no kinetic friction: v' = −a, no stop, no stiffness
+            m = frictionless_series(ax, ay, K, st[VX], st[VY], m == 0, D, y, rho, w)
+            if m < 0:
+                return True  # at rest on a floor at rest for the rest of the sub-step
+            H = min(_step_size(y, D, L), _speed_step(rho, D, L))
+            _advance(st, y, rho, D, m, H, ax, ay, K, t0 + s0, ux, uy, q, work)
+            st[SLIDE_TIME] += H
+            s0 += H
+            st[START] = 0.0
+            fresh = False
+            steps += 1
+            if steps > MAX_STEPS:
+                return False
+            continue
         stop_now = False
         stiff = False
         r0 = 0.0

@@ -10,7 +10,7 @@ import pytest
 import floorslide as fs
 from floorslide.contents.plane import slide_plane
 from floorslide.errors import ModelError
-from tests.conftest import load_slammer
+from tests.conftest import ROOT, load_slammer
 
 MUS = [0.03, 0.08, 0.15, 0.22]
 MUS_S = [0.05, 0.1, 0.2, 0.25]  # mu_s > mu_k: starts from rest with m = 1
@@ -105,3 +105,36 @@ def test_energy_balance_to_rounding_on_real_pairs():
         friction = mus * fs.G * r.path
         assert (friction > 0).all()
         assert np.all(np.abs(kinetic + friction + r.work_floor) <= 1e-12 * friction)
+
+
+@pytest.mark.parametrize("floor", [None, 2])
+def test_no_kinetic_friction_is_the_two_components_alone(floor):
+    """mu_k = mu_s = 0: nothing couples the directions, so the slide in the plane is the two
+    components' frictionless 1-D slides side by side (u = −∬a); found wrong (stops where the
+    speed's series had spurious roots) and fixed: the friction-free series has no stop."""
+    (p,) = fs.read_pairs(ROOT / "data" / "records" / "pairs" / "index.csv", where={"rsn": "511"})
+    b = None if floor is None else fs.BuildingPair(
+        fs.ShearBuilding.from_period(2, 0.3), fs.ShearBuilding.from_period(2, 0.5)
+    )  # fmt: skip
+    r = slide_plane(p, None, 0.0, building=b, floor=floor, histories=True)
+    bx, by = (None, None) if b is None else (b.h1, b.h2)
+    u1 = fs.slide(p.h1, p.dt, 0.0, building=bx, floor=floor, histories=True).u[0]
+    u2 = fs.slide(p.h2, p.dt, 0.0, building=by, floor=floor, histories=True).u[0]
+    scale = r.peak_slide[0]
+    assert np.max(np.abs(r.u[0, :, 0] - u1)) <= 1e-11 * scale
+    assert np.max(np.abs(r.u[0, :, 1] - u2)) <= 1e-11 * scale
+    sampled = np.hypot(u1, u2).max()
+    assert sampled <= scale <= sampled * (1 + 1e-3)
+    assert r.stops[0] == 0 and r.slide_fraction[0] == pytest.approx(1.0, abs=1e-9)
+
+
+def test_no_kinetic_friction_after_a_static_breakaway_against_the_reference():
+    from tests.reference_sliding2d import slide2d_reference
+
+    (p,) = fs.read_pairs(ROOT / "data" / "records" / "pairs" / "index.csv", where={"rsn": "511"})
+    h1, h2 = p.h1[:1200], p.h2[:1200]
+    r = slide_plane((h1, h2), p.dt, 0.0, 0.05, histories=True, compare_1d=False)
+    ref = slide2d_reference(h1, h2, p.dt, 0.0, 0.05)
+    assert r.slip_phases[0] == ref["slips"] == 1
+    assert abs(r.peak_slide[0] - ref["peak"]) <= 1e-8 * ref["peak"]
+    assert np.max(np.abs(r.u[0] - ref["u"])) <= 1e-8 * ref["peak"]
