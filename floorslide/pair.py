@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from floorslide.errors import RecordError
+from floorslide.errors import ModelError, RecordError
 
 
 @dataclass(frozen=True)
@@ -175,4 +175,30 @@ def make_pair(
         azimuths,
         label,
         tuple(notes),
+    )
+
+
+def as_pair(acc, dt: float | None) -> RecordPair:
+    """The pair the plane's solvers take: a :class:`RecordPair` (`dt`, if given, must be its
+    own), ``(a_x, a_y)`` or an array ``(2, npts)`` with `dt` (:func:`make_pair`).
+
+    Raises
+    ------
+    ModelError
+        No dt with arrays, a dt that differs from the pair's, anything else.
+    """
+    if isinstance(acc, RecordPair):
+        if dt is not None and not np.isclose(float(dt), acc.dt, rtol=1e-9, atol=0.0):
+            raise ModelError(f"dt={dt} differs from the pair's dt={acc.dt}", "dt")
+        return acc
+    if dt is None:
+        raise ModelError("dt is required with arrays", "dt")
+    if isinstance(acc, tuple | list) and len(acc) == 2:
+        return make_pair(acc[0], acc[1], float(dt))
+    arr = np.asarray(acc, dtype=float)
+    if arr.ndim == 2 and arr.shape[0] == 2:
+        return make_pair(arr[0], arr[1], float(dt))
+    raise ModelError(
+        "give the two horizontal components: a RecordPair, (a_x, a_y) or an array (2, npts)",
+        "acc",
     )

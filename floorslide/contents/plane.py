@@ -20,7 +20,7 @@ from floorslide.contents import _plane_kernel as pk
 from floorslide.contents import plane_approx
 from floorslide.contents.sliding import friction_pairs, slide
 from floorslide.errors import ModelError, SolverLimitError
-from floorslide.pair import RecordPair, make_pair
+from floorslide.pair import as_pair
 
 DEGREE = 20
 """Degree of the Taylor series of a slip phase (steps are sized so that its last terms are below
@@ -91,24 +91,6 @@ class PlaneSlideResult:
     method: str = "exact"
 
 
-def _as_pair(acc, dt) -> RecordPair:
-    if isinstance(acc, RecordPair):
-        if dt is not None and not np.isclose(float(dt), acc.dt, rtol=1e-9, atol=0.0):
-            raise ModelError(f"dt={dt} differs from the pair's dt={acc.dt}", "dt")
-        return acc
-    if dt is None:
-        raise ModelError("dt is required with arrays", "dt")
-    if isinstance(acc, tuple | list) and len(acc) == 2:
-        return make_pair(acc[0], acc[1], float(dt))
-    arr = np.asarray(acc, dtype=float)
-    if arr.ndim == 2 and arr.shape[0] == 2:
-        return make_pair(arr[0], arr[1], float(dt))
-    raise ModelError(
-        "give the two horizontal components: a RecordPair, (a_x, a_y) or an array (2, npts)",
-        "acc",
-    )
-
-
 def slide_plane(
     acc,
     dt: float | None = None,
@@ -171,7 +153,7 @@ def slide_plane(
     Jorba, À., Zou, M. (2005). A software package for the numerical integration of ODEs by means
     of high-order Taylor methods. *Experimental Mathematics* 14(1), 99–117.
     """
-    pair = _as_pair(acc, dt)
+    pair = as_pair(acc, dt)
     if mu_k is None:
         raise ModelError("mu_k (the kinetic friction coefficient or coefficients) is required")
     mk, ms = friction_pairs(mu_k, mu_s)

@@ -16,6 +16,7 @@ import numpy as np
 from floorslide.constants import G
 from floorslide.report.columns import ROCK, Column
 from floorslide.report.study import Study, _float, _natural, _rank, load_study
+from floorslide.run.results import PLANE_FIELDS
 from floorslide.run.store import ResultFile
 
 RECORD_COLUMNS: tuple[Column, ...] = (
@@ -121,15 +122,9 @@ RECORD_COLUMNS: tuple[Column, ...] = (
 )
 """Columns of the per-record table, in order."""
 
-PLANE_VALUES = (
-    "peak_angle",
-    "residual_h1",
-    "residual_h2",
-    "peak_slide_h1",
-    "peak_slide_h2",
-    "ratio_2d_1d",
-)
-"""The per-record columns of a pair (NaN for one component)."""
+PLANE_VALUES = PLANE_FIELDS
+"""The per-record columns of a pair (NaN for one component): the pair's arrays of a content
+result (:data:`~floorslide.run.results.PLANE_FIELDS`)."""
 
 ROCK_VALUES = ("rock_peak_ratio", "rock_impacts", "overturned", "overturn_time_s", "rock_time_s")
 """The per-record rocking columns (NaN where not applicable)."""

@@ -275,11 +275,7 @@ def run_task(task: Task, force: bool = False) -> TaskResult:
     for floor in task.spectra_floors:
         sp = response_spectrum(motion.floor(floor), None, np.asarray(sc.periods), list(sc.damping))
         out = SpectrumResult(floor, sp.periods, sp.damping, sp.psa, sp.sa, sp.sv, sp.sd)
-        if sc.broadening:
-            wide = broaden(sp, sc.broadening)
-            out.broadening = float(sc.broadening)
-            out.psa_broadened, out.sa_broadened = wide.psa, wide.sa
-            out.sv_broadened, out.sd_broadened = wide.sv, wide.sd
+        _broadened(out, sp, sc.broadening)
         result.spectra.append(out)
     if task.histories:
         fl = np.array(task.floors, dtype=np.int64)
@@ -459,11 +455,7 @@ def _run_nonlinear(task: Task, model, force: bool, t0: float) -> TaskResult:
             model, acc, dt, np.asarray(sc.periods), list(sc.damping), floor=floor
         )
         out = SpectrumResult(floor, sp.periods, sp.damping, sp.psa, sp.sa, sp.sv, sp.sd)
-        if sc.broadening:
-            wide = broaden(sp, sc.broadening)
-            out.broadening = float(sc.broadening)
-            out.psa_broadened, out.sa_broadened = wide.psa, wide.sa
-            out.sv_broadened, out.sd_broadened = wide.sv, wide.sd
+        _broadened(out, sp, sc.broadening)
         result.spectra.append(out)
     if task.histories:
         fl = np.array(floors, dtype=np.int64)
@@ -623,10 +615,14 @@ def _pair_spectrum(task: Task, model, floor: int) -> SpectrumResult:
     out = SpectrumResult(floor, T, r.damping, psa, nan, nan.copy(), sd)
     out.orientation = "RotD50"
     out.rotd100, out.psa_h1, out.psa_h2 = r.rotd100, r.h1.psa, r.h2.psa
-    if sc.broadening:
-        wide = broaden(Spectrum(T, r.damping, psa, nan, nan, sd, psa / np.sqrt(w2)),
-                       sc.broadening)  # fmt: skip
-        out.broadening = float(sc.broadening)
+    _broadened(out, Spectrum(T, r.damping, psa, nan, nan, sd, psa / np.sqrt(w2)), sc.broadening)
+    return out
+
+
+def _broadened(out: SpectrumResult, sp, factor: float) -> None:
+    """Add to `out` the spectra `sp` broadened by ``±factor`` (nothing when 0)."""
+    if factor:
+        wide = broaden(sp, factor)
+        out.broadening = float(factor)
         out.psa_broadened, out.sa_broadened = wide.psa, wide.sa
         out.sv_broadened, out.sd_broadened = wide.sv, wide.sd
-    return out

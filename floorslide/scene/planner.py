@@ -259,6 +259,23 @@ def _quality(tr, vtr, periods) -> tuple[dict, ...]:
     return tuple(flags)
 
 
+def _rejected(rs, record_id, label, flags, failures, rejected) -> None:
+    """A record left out by ``[scene] qa = "reject"``: listed in `rejected` and `failures`."""
+    if rejected is not None:
+        rejected.append(dict(set=rs.set, record=record_id, label=label, flags=list(flags)))
+    codes = ", ".join(f["check"] for f in flags)
+    failures.append(f"{label}: rejected by the quality checks ({codes}{REJECTED_SUFFIX}")
+
+
+def _scalings(rs: RecordSetSpec, pga: float):
+    """``(set name, factor)`` per scaling of a set (``scale_pga``: PGA to that many g; a list
+    makes one set per value, ``set@0.3g``)."""
+    scales = rs.scale_pga or (None,)
+    for sc in scales:
+        factor = 1.0 if sc is None else (sc * G / pga if pga > 0 else 1.0)
+        yield (rs.set if sc is None or len(scales) == 1 else f"{rs.set}@{sc:g}g"), factor
+
+
 def _load_set(
     rs: RecordSetSpec,
     processing: dict,
@@ -321,18 +338,12 @@ def _load_set(
             continue
         flags = _quality(tr, vtr, periods)
         if flags and qa == "reject":
-            if rejected is not None:
-                rejected.append(dict(set=rs.set, record=record_id, label=label, flags=list(flags)))
-            codes = ", ".join(f["check"] for f in flags)
-            failures.append(f"{label}: rejected by the quality checks ({codes}{REJECTED_SUFFIX}")
+            _rejected(rs, record_id, label, flags, failures, rejected)
             continue
         acc = np.asarray(tr.data, dtype=float)
         pga = float(np.abs(acc).max())
         catalog_meta = dict(getattr(tr.stats, "catalog", {}) or {})
-        scales = rs.scale_pga or (None,)
-        for s in scales:
-            factor = 1.0 if s is None else (s * G / pga if pga > 0 else 1.0)
-            set_name = rs.set if s is None or len(scales) == 1 else f"{rs.set}@{s:g}g"
+        for set_name, factor in _scalings(rs, pga):
             out.append(
                 LoadedRecord(
                     set=set_name,
@@ -407,20 +418,14 @@ def _load_pairs(
         flags = tuple(flags)
         record_id = row["id"]
         if flags and qa == "reject":
-            if rejected is not None:
-                rejected.append(dict(set=rs.set, record=record_id, label=label, flags=list(flags)))
-            codes = ", ".join(f["check"] for f in flags)
-            failures.append(f"{label}: rejected by the quality checks ({codes}{REJECTED_SUFFIX}")
+            _rejected(rs, record_id, label, flags, failures, rejected)
             continue
         pga = float(max(np.abs(pair.h1).max(), np.abs(pair.h2).max()))
         meta = {k: str(v) for k, v in row["h1"].row.items() if k not in ("file", "comp")}
         meta["files"] = f"{row['h1'].path.name} + {row['h2'].path.name}"
         if pair.notes:
             meta["pair_notes"] = "; ".join(pair.notes)
-        scales = rs.scale_pga or (None,)
-        for sc in scales:
-            factor = 1.0 if sc is None else (sc * G / pga if pga > 0 else 1.0)
-            set_name = rs.set if sc is None or len(scales) == 1 else f"{rs.set}@{sc:g}g"
+        for set_name, factor in _scalings(rs, pga):
             out.append(
                 LoadedRecord(
                     set=set_name,

@@ -25,7 +25,7 @@ import numpy as np
 from floorslide.building.directions import plane_motions
 from floorslide.building.exact_motion import FloorMotion
 from floorslide.errors import ModelError
-from floorslide.pair import RecordPair, make_pair
+from floorslide.pair import as_pair
 from floorslide.spectra import _kernels as K
 from floorslide.spectra import _rotd_kernels as RK
 from floorslide.spectra.core import (
@@ -103,25 +103,6 @@ class RotDSpectrum:
             method=self.method,
             notes=list(self.notes),
         )
-
-
-def _as_pair(acc, dt) -> RecordPair:
-    """A :class:`RecordPair` from what :func:`rotd_spectrum` accepts."""
-    if isinstance(acc, RecordPair):
-        if dt is not None and not np.isclose(float(dt), acc.dt, rtol=1e-9, atol=0.0):
-            raise ModelError(f"dt={dt} differs from the pair's dt={acc.dt}", "dt")
-        return acc
-    if dt is None:
-        raise ModelError("dt is required with arrays", "dt")
-    if isinstance(acc, tuple | list) and len(acc) == 2:
-        return make_pair(acc[0], acc[1], float(dt))
-    arr = np.asarray(acc, dtype=float)
-    if arr.ndim == 2 and arr.shape[0] == 2:
-        return make_pair(arr[0], arr[1], float(dt))
-    raise ModelError(
-        "give the two horizontal components: a RecordPair, (a_x, a_y) or an array (2, npts)",
-        "acc",
-    )
 
 
 def _angle_count(angles) -> int:
@@ -263,7 +244,7 @@ def rotd_spectrum(
     1830–1835.
     Nigam, N. C., Jennings, P. C. (1969). *Bull. Seismol. Soc. Am.* 59(2), 909–922.
     """
-    pair = _as_pair(acc, dt)
+    pair = as_pair(acc, dt)
     if periods is None:
         raise ModelError("periods are required: a list in s or {min, max, n}", "periods")
     T = period_grid(periods)
