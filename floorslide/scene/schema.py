@@ -977,7 +977,7 @@ def _isolator(value, where: str, ck: _Checker) -> list:
         ck.add(where, 'must be a table, e.g. { model = "friction_pendulum", mu = 0.05 }')
         return []
     model = value.get("model")
-    if model not in ISOLATOR_KEYS:
+    if not isinstance(model, str) or model not in ISOLATOR_KEYS:
         ck.add(
             f"{where}.model",
             f"must be one of {', '.join(map(repr, ISOLATOR_KEYS))}, got {model!r}",

@@ -117,3 +117,17 @@ def test_random_edits_validate_cleanly(which, values, delete):
             assert ": " in p and "\n" not in p
         return
     assert scene.buildings  # a valid scene is a usable one
+
+
+def test_a_list_as_the_isolator_model_is_a_key_path_error():
+    """Found by the fuzz above (``model = []`` crashed with TypeError: a list is not a key)."""
+    import pytest
+
+    text = (
+        (ROOT / "data" / "scenes" / "demo.toml")
+        .read_text()
+        .replace("../records/slammer/index.csv", CATALOG)
+    )
+    text = text.replace('model = "friction_pendulum"', "model = []")
+    with pytest.raises(SceneError, match=r"buildings\[2\]\.isolator\.model: must be one of"):
+        parse_scene(text, ROOT / "data" / "scenes" / "fuzz.toml")
