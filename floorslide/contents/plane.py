@@ -5,8 +5,9 @@ Conventions (docs/design.md §10d): the plane's frame has ``x`` along the pair's
 along ``h2``; ``u`` is the block's displacement relative to its floor; while sliding
 ``u'' = −a(t) − mu_k·N(t)·u'/|u'|``; a block at rest breaks away when
 ``|a| > max(mu_s, mu_k)·N`` (the magnitude of the floor's horizontal acceleration), ``N = g`` or,
-with vertical shaking, ``g + a_v(t)`` (no friction and no sticking where ``N ≤ 0``: lift-off). Running each component alone and taking
-the larger slide is not the same: friction couples the directions (the friction circle).
+with vertical shaking, ``g + a_v(t)`` (no friction and no sticking where ``N ≤ 0``: lift-off).
+Running each component alone and taking the larger slide is not the same: friction couples the
+directions (the friction circle).
 """
 
 from __future__ import annotations
