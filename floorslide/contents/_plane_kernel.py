@@ -51,14 +51,16 @@ from floorslide.numerics.polynomial import max_abs_on, poly_val, rise_within, sc
 
 # columns of a block's state
 MODE, UX, UY, VX, VY, PEAK, T_PEAK, ANGLE, SLIDE_TIME, SLIPS, STOPS, LIMIT_AT, START = range(13)
-PATH, WORK_A = 13, 14
+PATH, WORK_A, NPATH = 13, 14, 15
 """Mode (0 stuck, 1 sliding), the slide u and velocity v (2-vectors), peak |u|, its time and
 direction (rad from h1 towards h2), time sliding, breakaways from stick, stops, start of the
 first sub-step where the event limit was reached (−1: never), the order ``m`` of the current
 slip phase's start from rest (0: from a moving state), the path slid ``∫|v| dt`` and the work
 of the floor's acceleration ``∫ a·v dt`` (per unit mass: with the friction work
-``mu_k g ∫|v| dt`` they balance the kinetic energy, ``½|v|² = −mu_k g·PATH − WORK_A``)."""
-NCOL = 15
+``mu_k g ∫|v| dt`` they balance the kinetic energy, ``½|v|² = −mu_k g·PATH − WORK_A``), and
+``∫N|v| dt`` over the phases in contact (``N = g + a_v`` the normal acceleration: with vertical
+shaking the balance is ``½|v|² = −mu_k·NPATH − WORK_A``)."""
+NCOL = 16
 MAX_EVENTS = 10000
 """Most events (stops, breakaways, restarts) of one block inside one sub-step."""
 MAX_STEPS = 1_000_000
@@ -115,7 +117,7 @@ sub-step, as :func:`_step_size` would grant."""
 
 
 @njit(cache=True, _nrt=False)
-def moving_series(ax, ay, K, vx, vy, r0, mug, D, L, y, rho, w):
+def moving_series(ax, ay, K, vx, vy, r0, mug, D, L, y, rho, w, mug1=0.0):
     """Taylor coefficients ``y[0..De]`` of a sliding block's velocity ``v`` about its current
     point (``v(0) = (vx, vy) ≠ 0``, ``r0 = |v(0)|``) and those of ``ρ = |v|`` (``rho``;
     ``w = v/ρ`` in ``w``),
@@ -126,7 +128,9 @@ def moving_series(ax, ay, K, vx, vy, r0, mug, D, L, y, rho, w):
     in ``j ↔ k−j``: half of it is formed, doubled), ``w_k = (v_k − Σ_{j=1}^{k} ρ_j w_{k−j})/ρ₀``.
     The degree is ``D``, or lower (``De ≥ 8``) as soon as two consecutive terms on ``[0, L]``
     are below :data:`SHORT_TOL` of the first two (``L > 0``). Returns ``De`` (``ρ`` is formed to
-    ``De`` too, for the stop search), or −1 when ``v(0) = 0``."""
+    ``De`` too, for the stop search), or −1 when ``v(0) = 0``. With vertical shaking the friction
+    per unit direction is ``mug + mug1·τ`` (``mu_k·N(τ)``): ``(k+1) v_{k+1}`` gains
+    ``−mug1·w_{k−1}``."""
     if not r0 > 0.0:
         return -1
     ir0 = 1.0 / r0
@@ -174,8 +178,12 @@ def moving_series(ax, ay, K, vx, vy, r0, mug, D, L, y, rho, w):
         # v_{k+1}
         akx = ax[k] if k <= K else 0.0
         aky = ay[k] if k <= K else 0.0
-        ykx = (-akx - mug * wkx) * _INV[k + 1]
-        yky = (-aky - mug * wky) * _INV[k + 1]
+        if mug1 != 0.0:
+            ykx = (-akx - mug * wkx - mug1 * w[k - 1, 0]) * _INV[k + 1]
+            yky = (-aky - mug * wky - mug1 * w[k - 1, 1]) * _INV[k + 1]
+        else:
+            ykx = (-akx - mug * wkx) * _INV[k + 1]
+            yky = (-aky - mug * wky) * _INV[k + 1]
         y[k + 1, 0] = ykx
         y[k + 1, 1] = yky
         L2k *= L2
@@ -293,13 +301,18 @@ def slow_series(ax, ay, K, vx, vy, mug, D, L, y, rho, sl):
 
 
 @njit(cache=True, _nrt=False)
-def start_series(a, K, m, mug, D, y, rho, w):
+def start_series(a, K, m, mug, D, y, rho, w, mug1=0.0):
     """Taylor coefficients ``y[0..D]`` of a slip phase's velocity from rest,
     ``v(τ) = τ^m Σ_k y_k τ^k``, and those of ``ρ = |y|`` (``rho``; ``w = y/ρ``, scratch), under
     the floor acceleration with coefficients ``a[0..K]`` (``(K+1, 2)``) there: ``m = 1`` with
     ``|a₀| > mug``; ``m = 2`` at a breakaway with ``|a₀| = mug`` and ``|a|`` rising. The
     recurrences of :func:`moving_series`, split along ``w₀`` and across it, give each order
-    explicitly. Returns ``D``, or −1 when the start is degenerate (``ρ₀ ≤ 0``)."""
+    explicitly. Returns ``D``, or −1 when the start is degenerate (``ρ₀ ≤ 0``).
+
+    With vertical shaking the friction is ``mug + mug1·τ``: its term ``mug1·w_{k−1}`` at order
+    ``k`` is known when ``y_k`` is solved for (``m = 1``: it joins ``−a_k``; ``m = 2``: ``w_{k−1}``
+    does not depend on ``y_{k−1}``'s part along ``w₀``, and at order 1 ``ρ₀ = −½(ȧ₀·w₀ + mug1)``,
+    ``mug1·w₀`` having no part across ``w₀``)."""
     for k in range(D + 1):
         y[k, 0] = 0.0
         y[k, 1] = 0.0
@@ -329,6 +342,9 @@ def start_series(a, K, m, mug, D, y, rho, w):
             ay = a[k, 1] if k <= K else 0.0
             hx = -ax + mug * (rk * w0x + sx) / rho[0]
             hy = -ay + mug * (rk * w0y + sy) / rho[0]
+            if mug1 != 0.0:
+                hx -= mug1 * w[k - 1, 0]
+                hy -= mug1 * w[k - 1, 1]
             par = (hx * w0x + hy * w0y) / (k + 1)
             px, py = hx - (hx * w0x + hy * w0y) * w0x, hy - (hx * w0x + hy * w0y) * w0y
             f = 1.0 / (k + 1 + mug / rho[0])
@@ -342,6 +358,8 @@ def start_series(a, K, m, mug, D, y, rho, w):
     a1x = a[1, 0] if K >= 1 else 0.0
     a1y = a[1, 1] if K >= 1 else 0.0
     rho[0] = -0.5 * (a1x * w0x + a1y * w0y)
+    if mug1 != 0.0:
+        rho[0] -= 0.5 * mug1
     if not rho[0] > 0.0:
         return -1
     y[0, 0], y[0, 1] = rho[0] * w0x, rho[0] * w0y
@@ -376,6 +394,8 @@ def start_series(a, K, m, mug, D, y, rho, w):
         ax = a[k, 0] if k <= K else 0.0
         ay = a[k, 1] if k <= K else 0.0
         ypar = (-(ax * w0x + ay * w0y) - mug * wk_par) / (k + 1)
+        if mug1 != 0.0:
+            ypar -= mug1 * (w[k - 1, 0] * w0x + w[k - 1, 1] * w0y) / (k + 1)
         perp_x = y[k - 1, 0] - dpar * w0x
         perp_y = y[k - 1, 1] - dpar * w0y
         y[k - 1, 0] = perp_x + ypar * w0x
@@ -391,6 +411,10 @@ def start_series(a, K, m, mug, D, y, rho, w):
         spar = sx * w0x + sy * w0y
         dax = ax - (ax * w0x + ay * w0y) * w0x
         day = ay - (ax * w0x + ay * w0y) * w0y
+        if mug1 != 0.0:
+            wpar = w[k - 1, 0] * w0x + w[k - 1, 1] * w0y
+            dax += mug1 * (w[k - 1, 0] - wpar * w0x)
+            day += mug1 * (w[k - 1, 1] - wpar * w0y)
         y[k, 0] = (sx - spar * w0x) + rho[0] / mug * (-dax - (k + 1) * perp_x)
         y[k, 1] = (sy - spar * w0y) + rho[0] / mug * (-day - (k + 1) * perp_y)
     return D
@@ -528,17 +552,19 @@ def _negligible_stop(r0, ax, ay, K, L, mug, peak, ux, uy):
 
 
 @njit(cache=True, _nrt=False)
-def _advance(st, y, rho, De, m, tend, ax, ay, K, t_start, ux, uy, q, work):
+def _advance(st, y, rho, De, m, tend, ax, ay, K, t_start, ux, uy, q, work, n0, n1):
     """Move a block's state along its slip step ``v(τ) = τ^m Σ_k y_k τ^k`` (speed
     ``τ^m Σ_k ρ_k τ^k``) over ``[0, tend]``: slide and velocity at ``tend``, the path
     ``∫|v|``, the floor's work ``∫ a·v`` (``a`` of degree K) and the peak ``|u|`` on the step
-    (``t_start`` the step's start). ``ux, uy, q, work``: scratch (``q`` of size ≥ De + K + 1)."""
+    (``t_start`` the step's start), and ``∫N|v|`` with the normal acceleration ``N = n0 + n1·τ``
+    (0 in flight). ``ux, uy, q, work``: scratch (``q`` of size ≥ De + K + 1)."""
     # one Horner pass for the values at tend and the integrals ∫ τ^{k+m} = tend^{k+m+1}/(k+m+1)
     ix = 0.0  # Σ y_k tend^k/(k+m+1), and of |y_k|, and of ρ_k
     iy = 0.0
     bx = 0.0
     by = 0.0
     ip = 0.0
+    ip2 = 0.0  # Σ ρ_k tend^k/(k+m+2), for ∫N|v|
     jx = 0.0  # Σ y_k tend^k/(k+m+2), for the floor's work
     jy = 0.0
     vx = 0.0  # Σ y_k tend^k
@@ -554,6 +580,7 @@ def _advance(st, y, rho, De, m, tend, ax, ay, K, t_start, ux, uy, q, work):
         bx = bx * tend + abs(yx) * f
         by = by * tend + abs(yy) * f
         ip = ip * tend + rho[k] * f
+        ip2 = ip2 * tend + rho[k] * g
         jx = jx * tend + yx * g
         jy = jy * tend + yy * g
         vx = vx * tend + yx
@@ -583,6 +610,7 @@ def _advance(st, y, rho, De, m, tend, ax, ay, K, t_start, ux, uy, q, work):
             work_a = work_a * tend + q[n] * _INV[n + m + 1]
         work_a *= tm1
     st[PATH] += path
+    st[NPATH] += n0 * path + n1 * ip2 * tm1 * tend
     st[WORK_A] += work_a
     u0x = st[UX]
     u0y = st[UY]
@@ -637,12 +665,22 @@ def _advance(st, y, rho, De, m, tend, ax, ay, K, t_start, ux, uy, q, work):
 
 @njit(cache=True, _nrt=False)
 def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w, sl, q, ux,
-                   uy, work, max_events):  # fmt: skip
+                   uy, work, max_events, vert, n0, n1):  # fmt: skip
     """Advance one block through a sub-step of length ``h`` from time ``t0``, the floor's
     acceleration there ``(ax0, ay0)`` (coefficients, degree K). False when the event limit
-    was reached."""
+    was reached.
+
+    With vertical shaking (``vert``) the normal acceleration is ``N = n0 + n1·τ > 0`` on the
+    (part of the) sub-step (the caller splits it where ``N`` changes sign and flies the block
+    where ``N ≤ 0``: :func:`_flight`); friction is ``mu_k·N``, the breakaway level ``mu_b·N``;
+    the slow-manifold steps and negligible stops (which assume a constant friction) are off.
+    Without, ``N = g``."""
     level = mub * g
     mug = muk * g
+    mug1 = 0.0
+    nn = g  # N at the current point
+    if vert:
+        mug1 = muk * n1
     s0 = 0.0
     fresh = False
     events = 0
@@ -660,13 +698,31 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
             for j in range(K + 1):
                 ax[j] = ax0[j]
                 ay[j] = ay0[j]
+        if vert:
+            nn = n0 + n1 * s0
+            level = mub * nn
+            mug = muk * nn
         if st[MODE] == 0.0:
             # stuck: the first instant |a|² rises above the breakaway level
             _floor_square(ax, ay, K, q)
-            tb = rise_within(q, 2 * K, lo, L, level * level, work)
+            if vert:
+                # |a|² − (mu_b N)², N = nn + n1 σ
+                for j in range(2 * K + 1, 3):
+                    q[j] = 0.0
+                mb2 = mub * mub
+                q[0] -= mb2 * nn * nn
+                q[1] -= 2.0 * mb2 * nn * n1
+                q[2] -= mb2 * n1 * n1
+                tb = rise_within(q, max(2 * K, 2), lo, L, 0.0, work)
+            else:
+                tb = rise_within(q, 2 * K, lo, L, level * level, work)
             if tb < 0.0:
                 return True
             s0 += tb
+            if vert:
+                nn = n0 + n1 * s0
+                level = mub * nn
+                mug = muk * nn
             st[MODE] = 1.0
             st[SLIPS] += 1.0
             st[VX] = 0.0
@@ -675,13 +731,14 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
             fresh = True
             continue
         m = int(st[START])
-        if mug == 0.0:
+        if muk == 0.0:
             # no kinetic friction: v' = −a, no stop, no stiffness
             m = frictionless_series(ax, ay, K, st[VX], st[VY], m == 0, D, y, rho, w)
             if m < 0:
                 return True  # at rest on a floor at rest for the rest of the sub-step
             H = min(_step_size(y, D, L), _speed_step(rho, D, L))
-            _advance(st, y, rho, D, m, H, ax, ay, K, t0 + s0, ux, uy, q, work)
+            _advance(st, y, rho, D, m, H, ax, ay, K, t0 + s0, ux, uy, q, work, nn,
+                     n1 if vert else 0.0)  # fmt: skip
             st[SLIDE_TIME] += H
             s0 += H
             st[START] = 0.0
@@ -697,12 +754,12 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
         if m == 0:
             r0 = np.hypot(st[VX], st[VY])
             a0 = max(abs(ax[0]), abs(ay[0]))  # |a| within √2, from below
-            stiff = a0 * L > STIFF * r0
+            stiff = a0 * L > STIFF * r0 and not vert
             if r0 <= STOP_SPEED * (a0 + mug) * h:
                 # the speed within rounding of zero: a stop here (a velocity that passes that
                 # close to zero turns on a time scale below rounding; steps would crawl)
                 stop_now = True
-            else:
+            elif not vert:
                 T = _negligible_stop(r0, ax, ay, K, L, mug, st[PEAK], st[UX], st[UY])
                 if T >= 0.0:
                     # a certain stop whose remaining slide is below the slide's rounding (the
@@ -762,12 +819,12 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
                     decay = 0.0
                     De = -1
             if not slow:
-                De = moving_series(ax, ay, K, st[VX], st[VY], r0, mug, D, L, y, rho, w)
+                De = moving_series(ax, ay, K, st[VX], st[VY], r0, mug, D, L, y, rho, w, mug1)
         else:
             for k in range(K + 1):
                 A[k, 0] = ax[k]
                 A[k, 1] = ay[k]
-            De = start_series(A, K, m, mug, D, y, rho, w)
+            De = start_series(A, K, m, mug, D, y, rho, w, mug1)
         if De == -1:
             # a degenerate start (the floor exactly at the kinetic level and not rising):
             # no slip — the block stays at rest here
@@ -794,7 +851,7 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
                 ts = rise_within(q, De, 0.0, H, 0.0, work)
             if must_stop and ts < 0.0:
                 # no stop on the slow step after all: an explicit step instead
-                De = moving_series(ax, ay, K, st[VX], st[VY], r0, mug, D, L, y, rho, w)
+                De = moving_series(ax, ay, K, st[VX], st[VY], r0, mug, D, L, y, rho, w, mug1)
                 slow = False
                 decay_need = np.inf
                 H = _step_size(y, De, L) if De == D else L
@@ -806,7 +863,8 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
                         q[k] = -rho[k]
                     ts = rise_within(q, De, 0.0, H, 0.0, work)
             tend = ts if ts >= 0.0 else H
-            _advance(st, y, rho, De, m, tend, ax, ay, K, t0 + s0, ux, uy, q, work)
+            _advance(st, y, rho, De, m, tend, ax, ay, K, t0 + s0, ux, uy, q, work, nn,
+                     n1 if vert else 0.0)  # fmt: skip
             st[SLIDE_TIME] += tend
             s0 += tend
         if De == -2 or ts >= 0.0:
@@ -817,6 +875,8 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
             st[STOPS] += 1.0
             ex = poly_val(ax0, K, s0)
             ey = poly_val(ay0, K, s0)
+            if vert:
+                level = mub * (n0 + n1 * s0)
             if ex * ex + ey * ey <= level * level:
                 st[MODE] = 0.0
                 st[START] = 0.0
@@ -838,9 +898,104 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
     return True
 
 
+@njit(cache=True, _nrt=False)
+def _flight(st, ax0, ay0, K, h, t0, D, ax, ay, y, rho, w, q, ux, uy, work):
+    """Advance one block through a sub-step part of length ``h`` (from time ``t0``, floor
+    coefficients ``ax0, ay0``) where the normal force is zero (lift-off, ``g + a_v ≤ 0``): no
+    friction, so no sticking — ``v' = −a`` exactly (:func:`frictionless_series`); a block at rest
+    moves with the floor's first change (a breakaway, counted). Where the speed's analytic
+    series ``ρ`` has a root (the velocity passes through zero: along one line exactly, else
+    within rounding) the step ends there and the block goes on from rest (else its steps would
+    crawl towards the branch point of ``|v|``); a speed at or below
+    ``STOP_SPEED·|a|·h`` is taken as zero, as in contact. False when the step limit was
+    reached."""
+    s0 = 0.0
+    steps = 0
+    while s0 < h:
+        L = h - s0
+        if s0 > 0.0:
+            taylor_shift(ax0, K, s0, ax)
+            taylor_shift(ay0, K, s0, ay)
+        else:
+            for j in range(K + 1):
+                ax[j] = ax0[j]
+                ay[j] = ay0[j]
+        r0 = np.hypot(st[VX], st[VY])
+        if r0 <= STOP_SPEED * (abs(ax[0]) + abs(ay[0])) * h:
+            st[VX] = 0.0
+            st[VY] = 0.0
+            r0 = 0.0
+        m = frictionless_series(ax, ay, K, st[VX], st[VY], r0 > 0.0, D, y, rho, w)
+        if m < 0:
+            return True  # at rest on a floor at rest for the rest of the part
+        if st[MODE] == 0.0:
+            st[MODE] = 1.0
+            st[SLIPS] += 1.0
+        H = min(_step_size(y, D, L), _speed_step(rho, D, L))
+        # the first root of ρ on [0, H] (none when ρ₀ > Σ_{j≥1} |ρ_j| H^j; on a step where ρ's
+        # series has converged: beyond, its roots are spurious)
+        reach = 0.0
+        for j in range(D, 0, -1):
+            reach = (reach + abs(rho[j])) * H
+        ts = -1.0
+        if reach >= rho[0]:
+            for k in range(D + 1):
+                q[k] = -rho[k]
+            ts = rise_within(q, D, EVENT_GAP * h if m == 0 else 0.0, H, 0.0, work)
+        if ts >= 0.0:
+            H = ts
+        _advance(st, y, rho, D, m, H, ax, ay, K, t0 + s0, ux, uy, q, work, 0.0, 0.0)
+        if ts >= 0.0:
+            st[VX] = 0.0
+            st[VY] = 0.0
+        s0 += H
+        st[START] = 0.0
+        steps += 1
+        if steps > MAX_STEPS:
+            return False
+    return True
+
+
+@njit(cache=True, _nrt=False)
+def _vertical_substep(st, c1, c2, c1s, c2s, K, h, t0, n0, n1, g, mub, muk, D, ax, ay, A, y, rho,
+                      w, sl, q, ux, uy, work, max_events):  # fmt: skip
+    """One block through a sub-step with vertical shaking, ``N = n0 + n1·τ``: split at the root
+    of ``N`` (linear: exact), flown where ``N ≤ 0`` (:func:`_flight`), in contact elsewhere
+    (:func:`_block_substep`). False when a limit was reached."""
+    tz = -1.0
+    if n1 != 0.0:
+        tz = -n0 / n1
+        if not (0.0 < tz < h):
+            tz = -1.0
+    p = 0.0
+    ok = True
+    for piece in range(2):
+        if piece == 1 and tz < 0.0:
+            break
+        hp = (tz if tz >= 0.0 else h) if piece == 0 else h - tz
+        if piece == 0:
+            for j in range(K + 1):
+                c1s[j] = c1[j]
+                c2s[j] = c2[j]
+            np0 = n0
+        else:
+            p = tz
+            taylor_shift(c1, K, p, c1s)
+            taylor_shift(c2, K, p, c2s)
+            np0 = 0.0  # N at its root
+        if np0 + n1 * 0.5 * hp <= 0.0:
+            ok = _flight(st, c1s, c2s, K, hp, t0 + p, D, ax, ay, y, rho, w, q, ux, uy, work)
+        else:
+            ok = _block_substep(st, c1s, c2s, K, hp, t0 + p, g, mub, muk, D, ax, ay, A, y, rho,
+                                w, sl, q, ux, uy, work, max_events, True, np0, n1)  # fmt: skip
+        if not ok:
+            return False
+    return True
+
+
 @njit(cache=True)
 def plane_kernel(X1, X2, k0, R1, b1, R2, b2, acc1, acc2, substeps, h, g, MU, states, hist,
-                 want_hist, D, max_events):  # fmt: skip
+                 want_hist, D, max_events, accv, has_vert):  # fmt: skip
     """Rigid blocks sliding in the plane on one floor, exact to rounding for the
     piecewise-linear ground records of the two directions.
 
@@ -849,7 +1004,9 @@ def plane_kernel(X1, X2, k0, R1, b1, R2, b2, acc1, acc2, substeps, h, g, MU, sta
     (:meth:`floorslide.building.exact_motion.FloorMotion.chunks`); ``R1, b1`` / ``R2, b2``
     their Taylor rows of the floor's absolute acceleration. ``MU = [mu_b; mu_k]`` per block;
     ``states`` ``(n, NCOL)`` in/out; ``hist[i, k] = (u_x, u_y)`` at the samples when
-    ``want_hist``."""
+    ``want_hist``. ``accv``: the vertical ground acceleration samples when ``has_vert`` (the
+    normal acceleration is ``g + accv``, linear between samples; the building is rigid
+    vertically)."""
     K = max(R1.shape[0], R2.shape[0]) - 1
     degmax = 2 * (D + 3) + 2
     work = scratch(max(degmax, 2 * K + 2))
@@ -865,15 +1022,17 @@ def plane_kernel(X1, X2, k0, R1, b1, R2, b2, acc1, acc2, substeps, h, g, MU, sta
     q = np.zeros(max(degmax, D + K) + 1)
     ux = np.zeros(D + 4)
     uy = np.zeros(D + 4)
+    c1s = np.zeros(K + 1)
+    c2s = np.zeros(K + 1)
     _plane_steps(X1, X2, k0, R1, b1, R2, b2, acc1, acc2, substeps, h, g, MU, states, hist,
                  want_hist, D, max_events, K, c1, c2, ax, ay, A, y, rho, w, sl, q, ux, uy,
-                 work)  # fmt: skip
+                 work, accv, has_vert, c1s, c2s)  # fmt: skip
 
 
 @njit(cache=True, _nrt=False)
 def _plane_steps(X1, X2, k0, R1, b1, R2, b2, acc1, acc2, substeps, h, g, MU, states, hist,
                  want_hist, D, max_events, K, c1, c2, ax, ay, A, y, rho, w, sl, q, ux, uy,
-                 work):  # fmt: skip
+                 work, accv, has_vert, c1s, c2s):  # fmt: skip
     """The loops of :func:`plane_kernel` over sub-steps and blocks, given its scratch;
     compiled without reference counting (the rows and views made here cost nothing)."""
     nobj = MU.shape[1]
@@ -882,8 +1041,10 @@ def _plane_steps(X1, X2, k0, R1, b1, R2, b2, acc1, acc2, substeps, h, g, MU, sta
         # a floor beyond the breakaway level at t = 0 sets the block sliding from the start
         a1 = b1[0] * acc1[0]
         a2 = b2[0] * acc2[0]
+        nstart = g + accv[0] if has_vert else g
         for i in range(nobj):
-            if states[i, MODE] == 0.0 and a1 * a1 + a2 * a2 > (MU[0, i] * g) ** 2:
+            if (states[i, MODE] == 0.0 and nstart > 0.0
+                    and a1 * a1 + a2 * a2 > (MU[0, i] * nstart) ** 2):  # fmt: skip
                 states[i, MODE] = 1.0
                 states[i, SLIPS] += 1.0
                 states[i, START] = 1.0
@@ -894,6 +1055,11 @@ def _plane_steps(X1, X2, k0, R1, b1, R2, b2, acc1, acc2, substeps, h, g, MU, sta
         k = k0 + kk
         s1 = (acc1[k + 1] - acc1[k]) / (substeps * h)
         s2 = (acc2[k + 1] - acc2[k]) / (substeps * h)
+        va = 0.0
+        vslope = 0.0
+        if has_vert:
+            va = accv[k]
+            vslope = (accv[k + 1] - va) / (substeps * h)
         for r in range(substeps):
             t0 = (k * substeps + r) * h
             a1, _ = substep_inputs(acc1[k], acc1[k + 1], r, substeps)
@@ -906,12 +1072,24 @@ def _plane_steps(X1, X2, k0, R1, b1, R2, b2, acc1, acc2, substeps, h, g, MU, sta
             reach = 0.0
             for j in range(K, -1, -1):
                 reach = reach * h + np.hypot(c1[j], c2[j])
+            nlow = g
+            n0 = g
+            if has_vert:
+                # N = g + a_v, linear on the sub-step (as the 1-D solver's)
+                n0 = g + va + vslope * (r * h)
+                nlow = min(n0, n0 + vslope * h)
             for i in range(nobj):
-                if states[i, MODE] == 0.0 and reach <= MU[0, i] * g:
+                if states[i, MODE] == 0.0 and nlow > 0.0 and reach <= MU[0, i] * nlow:
                     continue  # |a| ≤ Σ_j |c_j| h^j stays below the breakaway level
                 st = states[i]
-                ok = _block_substep(st, c1, c2, K, h, t0, g, MU[0, i], MU[1, i], D, ax, ay, A, y,
-                                    rho, w, sl, q, ux, uy, work, max_events)  # fmt: skip
+                if has_vert:
+                    ok = _vertical_substep(st, c1, c2, c1s, c2s, K, h, t0, n0, vslope, g,
+                                           MU[0, i], MU[1, i], D, ax, ay, A, y, rho, w, sl, q,
+                                           ux, uy, work, max_events)  # fmt: skip
+                else:
+                    ok = _block_substep(st, c1, c2, K, h, t0, g, MU[0, i], MU[1, i], D, ax, ay,
+                                        A, y, rho, w, sl, q, ux, uy, work, max_events, False, g,
+                                        0.0)  # fmt: skip
                 if not ok and st[LIMIT_AT] < 0.0:
                     st[LIMIT_AT] = t0
             if want_hist and r == substeps - 1:

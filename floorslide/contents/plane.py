@@ -3,9 +3,11 @@ friction): the exact-to-rounding solver and its comparison with the 1-D slides.
 
 Conventions (docs/design.md §10d): the plane's frame has ``x`` along the pair's ``h1`` and ``y``
 along ``h2``; ``u`` is the block's displacement relative to its floor; while sliding
-``u'' = −a(t) − mu_k·g·u'/|u'|``; a block at rest breaks away when ``|a| > max(mu_s, mu_k)·g``
-(the magnitude of the floor's horizontal acceleration). Running each component alone and taking
-the larger slide is not the same: friction couples the directions (the friction circle).
+``u'' = −a(t) − mu_k·N(t)·u'/|u'|``; a block at rest breaks away when
+``|a| > max(mu_s, mu_k)·N`` (the magnitude of the floor's horizontal acceleration), ``N = g`` or,
+with vertical shaking, ``g + a_v(t)`` (no friction and no sticking where ``N ≤ 0``: lift-off).
+Running each component alone and taking the larger slide is not the same: friction couples the
+directions (the friction circle).
 """
 
 from __future__ import annotations
@@ -20,6 +22,7 @@ from floorslide.contents import _plane_kernel as pk
 from floorslide.contents import plane_approx
 from floorslide.contents.sliding import friction_pairs, slide
 from floorslide.errors import ModelError, SolverLimitError
+from floorslide.inputs import DT_RTOL, as_record, is_stream, is_trace
 from floorslide.pair import as_pair
 
 DEGREE = 20
@@ -57,11 +60,18 @@ class PlaneSlideResult:
         ``peak_slide / max(peak_slide_1d)`` (NaN where both 1-D slides are 0).
     path, work_floor
         The path slid ``∫|u'| dt`` (m) and the work of the floor's acceleration ``∫ a·u' dt``
-        (m²/s², per unit mass): ``½|u'(end)|² = −mu_k g·path − work_floor`` (energy balance).
+        (m²/s², per unit mass): ``½|u'(end)|² = −mu_k g·path − work_floor`` (energy balance)
+        without vertical shaking.
+    work_friction
+        The work of friction ``mu_k ∫N|u'| dt`` (m²/s², per unit mass; ``N = g``, or ``g + a_v``
+        in contact): ``½|u'(end)|² = −work_friction − work_floor``, with or without vertical.
     final_velocity
         ``u'`` at the end, ``(n, 2)``, m/s.
     duration
         Duration of the record, s.
+    liftoff_time, liftoff_count
+        Total time with ``g + a_v ≤ 0`` (no normal force, s) and the number of such intervals
+        (0 without vertical shaking), as :func:`floorslide.slide`.
     u
         ``(n, npts, 2)`` slides at the samples, when requested.
     notes
@@ -89,6 +99,9 @@ class PlaneSlideResult:
     u: np.ndarray | None = field(default=None, repr=False)
     notes: tuple[str, ...] = ()
     method: str = "exact"
+    work_friction: np.ndarray | None = None
+    liftoff_time: float = 0.0
+    liftoff_count: int = 0
 
 
 def slide_plane(
@@ -99,6 +112,7 @@ def slide_plane(
     *,
     building=None,
     floor: int | None = None,
+    vertical=None,
     histories: bool = False,
     compare_1d: bool = True,
     method: str = "exact",
@@ -123,6 +137,13 @@ def slide_plane(
         Put the blocks on `floor` of a linear `building`: one model for both directions, or a
         :class:`~floorslide.building.directions.BuildingPair` (a model per direction; uncoupled,
         no torsion). Each direction's floor motion is its exact response to that component.
+    vertical
+        Vertical ground acceleration samples (same dt and length as the pair), m/s², or a Trace
+        (as :func:`~floorslide.slide`; pass ``pair.vertical`` to use a pair's own): friction
+        becomes ``mu_k·(g + a_v)`` and the breakaway level ``max(mu_s, mu_k)·(g + a_v)``;
+        where ``g + a_v ≤ 0`` (lift-off) the block flies free (``u'' = −a``) and is reported.
+        The building is rigid vertically. Exact method only; the 1-D comparison slides use it
+        too.
     histories
         Also return ``u`` at the samples.
     compare_1d
@@ -159,6 +180,12 @@ def slide_plane(
     mk, ms = friction_pairs(mu_k, mu_s)
     if method not in METHODS:
         raise ModelError(f"unknown method {method!r}; expected one of {', '.join(METHODS)}")
+    vert, notes = _vertical(vertical, pair)
+    if vert is not None and method != "exact":
+        raise ModelError(
+            f"vertical= is not available with method={method!r} (the exact solver takes it)",
+            "vertical",
+        )
     fm1, fm2 = plane_motions(building, pair.h1, pair.h2, pair.dt, floor, max_bytes=0, copy=False)
     if method != "exact":
         return _approximate(
@@ -175,6 +202,7 @@ def slide_plane(
         pk.plane_kernel(
             X1, X2, k0, fm1.R, fm1.beta, fm2.R, fm2.beta, pair.h1, pair.h2, fm1.substeps, fm1.h,
             G, MU, states, hist, histories, DEGREE, pk.MAX_EVENTS,
+            vert if vert is not None else np.zeros(1), vert is not None,
         )  # fmt: skip
     hit = np.flatnonzero(states[:, pk.LIMIT_AT] >= 0.0)
     if hit.size:
@@ -187,11 +215,12 @@ def slide_plane(
         )
     one_d = np.full((mk.size, 2), np.nan)
     if compare_1d:
-        one_d[:, 0] = slide(fm1, None, mk, ms).peak_slide
-        one_d[:, 1] = slide(fm2, None, mk, ms).peak_slide
+        one_d[:, 0] = slide(fm1, None, mk, ms, vertical=vert).peak_slide
+        one_d[:, 1] = slide(fm2, None, mk, ms, vertical=vert).peak_slide
     big = one_d.max(axis=1)
     with np.errstate(divide="ignore", invalid="ignore"):
         ratio = np.where(big > 0, states[:, pk.PEAK] / big, np.nan)
+    lift_time, lift_count = liftoff(vert, pair.dt) if vert is not None else (0.0, 0)
     duration = (npts - 1) * pair.dt
     return PlaneSlideResult(
         mu_k=mk,
@@ -210,8 +239,45 @@ def slide_plane(
         final_velocity=states[:, [pk.VX, pk.VY]].copy(),
         duration=duration,
         u=hist if histories else None,
-        notes=pair.notes,
+        notes=notes,
+        work_friction=mk * states[:, pk.NPATH],
+        liftoff_time=lift_time,
+        liftoff_count=lift_count,
     )
+
+
+def _vertical(vertical, pair):
+    """The vertical samples (or None) and the notes, checked as :func:`floorslide.slide` does."""
+    notes = pair.notes
+    if vertical is None:
+        return None, notes
+    dt = pair.dt
+    samples = not (is_trace(vertical) or is_stream(vertical))
+    vert, vdt, vnotes = as_record(vertical, dt if samples else None, "vertical")
+    if not abs(vdt - dt) <= DT_RTOL * dt:
+        raise ModelError(f"vertical has dt = {vdt:g} s, the horizontal record {dt:g} s", "vertical")
+    if vert.size != pair.npts:
+        raise ModelError(
+            f"vertical has {vert.size} samples, the horizontal record {pair.npts}", "vertical"
+        )
+    return np.ascontiguousarray(vert, dtype=float), notes + tuple(vnotes)
+
+
+def liftoff(vert: np.ndarray, dt: float) -> tuple[float, int]:
+    """Total time with ``g + a_v ≤ 0`` (``a_v`` linear between samples) and the number of such
+    intervals, as the 1-D kernel counts them (an interval continues across a sample where
+    ``N ≤ 0``)."""
+    n = G + np.asarray(vert, dtype=float)
+    n0, n1 = n[:-1], n[1:]
+    lo = np.minimum(n0, n1)
+    hi = np.maximum(n0, n1)
+    lifted = lo <= 0.0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        part = np.where(hi <= 0.0, 1.0, -lo / (hi - lo))
+    time = float(np.sum(np.where(lifted, part, 0.0)) * dt)
+    ends_lifted = np.concatenate([[False], lifted & (n1 <= 0.0)])[:-1]
+    count = int(np.sum(lifted & ~ends_lifted))
+    return time, count
 
 
 def _approximate(
