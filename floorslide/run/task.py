@@ -523,9 +523,10 @@ def _run_pair(task: Task, force: bool, t0: float) -> TaskResult:
         slips[rocks] = -1
         idx = np.nonzero(integrate)[0]
         fm1, fm2 = motions[floor]
+        vert = rec.vertical if content.vertical else None
         if idx.size:
             r = slide_plane((rec.acc, rec.acc2), dt, mu[idx], mu_s[idx], building=model,
-                            floor=floor if model is not None else None)  # fmt: skip
+                            floor=floor if model is not None else None, vertical=vert)  # fmt: skip
             peak[idx], frac[idx], slips[idx] = r.peak_slide, r.slide_fraction, r.slip_phases
             resid[idx] = np.hypot(r.residual[:, 0], r.residual[:, 1])
             r1[idx], r2[idx] = r.residual[:, 0], r.residual[:, 1]
@@ -533,9 +534,12 @@ def _run_pair(task: Task, force: bool, t0: float) -> TaskResult:
             one_d[idx] = r.peak_slide_1d
             ratio[idx] = r.ratio_2d_1d
             # a block in the plane is stuck while |a| ≤ mu_b g and slides at mu_k g ≤ mu_b g:
-            # once it has broken away its peak acceleration is the breakaway level
+            # once it has broken away its peak acceleration is the breakaway level (with
+            # vertical shaking the friction limit varies: not known in closed form, NaN)
             slid = r.slip_phases > 0
             acc_obj[idx[slid]] = np.minimum(pfa_of[floor], np.maximum(mu[idx], mu_s[idx])[slid] * G)
+            if vert is not None:
+                acc_obj[idx[slid]] = np.nan
         summary = modes[0] if len(set(modes)) == 1 else "mixed"
 
         def rocker(fm1=fm1, fm2=fm2, content=content):
@@ -561,6 +565,7 @@ def _run_pair(task: Task, force: bool, t0: float) -> TaskResult:
                 slide_fraction=frac,
                 slip_phases=slips,
                 modes=np.array(modes),
+                vertical=content.vertical,
                 peak_angle=angle,
                 residual_h1=r1,
                 residual_h2=r2,
@@ -577,7 +582,7 @@ def _run_pair(task: Task, force: bool, t0: float) -> TaskResult:
             pick = np.unique(np.linspace(0, n - 1, min(HISTORY_MU, n)).round().astype(int))
             r = slide_plane((rec.acc, rec.acc2), dt, mu[pick], mu_s[pick], building=model,
                             floor=floor if model is not None else None, histories=True,
-                            compare_1d=False)  # fmt: skip
+                            compare_1d=False, vertical=vert)  # fmt: skip
             u = r.u
             u[rocks[pick]] = np.nan
             hist_plane[key] = u

@@ -448,8 +448,6 @@ def parse_scene(text: str, path: str | Path = "scene.toml") -> Scene:
             what = (
                 ("model", "a 2-DOF sliding oscillator slides in 1-D")
                 if c.model == "oscillator"
-                else ("vertical", "vertical shaking is not modelled in the plane yet")
-                if c.vertical
                 else ("direction", "one-way sliding is 1-D")
                 if c.direction != "both"
                 else None

@@ -227,7 +227,6 @@ def test_plane_table_and_figures(run):
     ("kw", "message"),
     [
         (dict(contents='model = "oscillator"\nfrequency = 5.0'), r"contents\[0\]\.model: a 2-DOF"),
-        (dict(contents="vertical = true"), r"contents\[0\]\.vertical: vertical shaking"),
         (dict(contents='direction = "positive"'), r"contents\[0\]\.direction: one-way"),
         (dict(records='component = "N"'), r"records\[0\]\.component: a catalog of components"),
         (dict(extra_building="damping = [0.02, 0.05]\nperiod_h2x = 1"), r"period_h2x"),
@@ -236,6 +235,16 @@ def test_plane_table_and_figures(run):
 def test_pair_scene_mistakes_are_refused_by_key_path(kw, message):
     with pytest.raises(SceneError, match=message):
         parse_scene(scene(**kw), ROOT / "scene.toml")
+
+
+def test_vertical_shaking_in_the_plane_needs_the_pairs_vertical(tmp_path):
+    """A content with vertical = true on a set of pairs whose catalog has no file_v: every pair
+    is reported (it cannot run), none is silently run without the vertical."""
+    path = tmp_path / "v.toml"
+    path.write_text(scene(contents="vertical = true"))
+    p = plan(load_scene(path), evaluate=False)
+    assert not p.records
+    assert len(p.failures) == 3 and all("need a vertical record" in f for f in p.failures)
 
 
 def test_direction_keys_are_checked():
@@ -260,3 +269,33 @@ def test_the_bundled_pairs_scene_plans_every_pair():
     # seven of the ten pairs have components of different lengths (npts_h1 != npts_h2 in the
     # catalog): padded, and said so
     assert sum("padded" in r.meta.get("pair_notes", "") for r in p.records) == 7
+
+
+def test_a_pair_with_its_vertical_slides_with_vertical_shaking(tmp_path):
+    """A catalog of components with file_v: contents with vertical = true slide in the plane
+    under the varying normal force, as slide_plane(vertical=) (a stand-in vertical: another
+    record's component, padded to the pair's length)."""
+    d = ROOT / "data" / "records" / "pairs"
+    cat = tmp_path / "v.csv"
+    cat.write_text(
+        "file_h1,file_h2,file_v,dt,units,comp_h1,comp_h2\n"
+        f"{d / 'RSN1084_NORTHR_SCS052.AT2'},{d / 'RSN1084_NORTHR_SCS142.AT2'},"
+        f"{d / 'RSN511_PALMSPR_ARM270.AT2'},0.005,g,52,142\n"
+    )
+    text = scene(contents="vertical = true").replace(CATALOG, cat.as_posix())
+    text = text.replace(f"where = {{ rsn = {RSN} }}", "")
+    path = tmp_path / "v.toml"
+    path.write_text(text.split("[spectra]")[0])
+    p = plan(load_scene(path))
+    assert len(p.records) == 1 and p.records[0].vertical is not None and not p.failures
+    out = tmp_path / "v.h5"
+    execute(p, str(out), workers=1)
+    (t,) = [t for t in ResultFile(out).tasks() if t.meta["building"] == "fixed"]
+    (c,) = [c for c in t.contents if c.content == "box" and c.floor == 2]
+    rec = p.records[0]
+    ref = fs.slide_plane((rec.acc, rec.acc2), rec.dt, c.mu_k, building=_model("fixed"), floor=2,
+                         vertical=rec.vertical)  # fmt: skip
+    assert c.vertical
+    np.testing.assert_allclose(c.peak_slide, ref.peak_slide, rtol=1e-12)
+    plain = fs.slide_plane((rec.acc, rec.acc2), rec.dt, c.mu_k, building=_model("fixed"), floor=2)
+    assert np.all(np.abs(c.peak_slide - plain.peak_slide) > 1e-6 * plain.peak_slide)
