@@ -144,6 +144,44 @@ def rocking_results(content, modes, rocker) -> dict:
     return out
 
 
+def _slide_arrays(n: int, pfa: float, modes) -> tuple[np.ndarray, ...]:
+    """A content's sliding arrays on a floor before anything is integrated: no slide and the
+    floor's PFA (the exact answer of an object that does not slide), NaN (−1 slip phases)
+    where it rocks (not a slider). Returns ``(peak, residual, peak_acc, fraction, slips,
+    rocks)``."""
+    peak, resid, frac = np.zeros(n), np.zeros(n), np.zeros(n)
+    acc_obj = np.full(n, pfa)
+    slips = np.zeros(n, dtype=np.int64)
+    rocks = np.array([m == "rock" for m in modes], dtype=bool)
+    for arr in (peak, resid, acc_obj, frac):
+        arr[rocks] = np.nan
+    slips[rocks] = -1
+    return peak, resid, acc_obj, frac, slips, rocks
+
+
+def _content_result(content, floor, modes, reasons, mu, mu_s, arrays, **extra) -> ContentResult:
+    """The :class:`ContentResult` of a content on a floor: its sliding `arrays` (as from
+    :func:`_slide_arrays`, filled), the common mode (or ``mixed``) and the skip reasons."""
+    peak, resid, acc_obj, frac, slips = arrays[:5]
+    return ContentResult(
+        content=content.id,
+        floor=floor,
+        model=content.model,
+        mode=modes[0] if len(set(modes)) == 1 else "mixed",
+        skipped="; ".join(f"{k} ({v})" for k, v in reasons.items()),
+        mu_k=mu,
+        mu_s=mu_s,
+        peak_slide=peak,
+        residual_slide=resid,
+        peak_abs_accel=acc_obj,
+        slide_fraction=frac,
+        slip_phases=slips,
+        vertical=content.vertical,
+        modes=np.array(modes),
+        **extra,
+    )
+
+
 def run_task(task: Task, force: bool = False) -> TaskResult:
     """Compute everything `task` asks for (see the planner for the skip rules)."""
     t0 = time.perf_counter()
@@ -167,16 +205,9 @@ def run_task(task: Task, force: bool = False) -> TaskResult:
         mu_s = np.asarray(content.mu_s if content.mu_s else content.mu, dtype=float)
         modes, integrate, reasons = decide(content, pfa_of[floor], force)
         n = mu.size
-        peak = np.zeros(n)
-        resid = np.zeros(n)
-        acc_obj = np.full(n, pfa_of[floor])
-        frac = np.zeros(n)
-        slips = np.zeros(n, dtype=np.int64)
+        arrays = _slide_arrays(n, pfa_of[floor], modes)
+        peak, resid, acc_obj, frac, slips, rocks = arrays
         deform = top = None
-        rocks = np.array([m == "rock" for m in modes])
-        for arr in (peak, resid, acc_obj, frac):
-            arr[rocks] = np.nan
-        slips[rocks] = -1
         idx = np.nonzero(integrate)[0]
         fm = motion.floor(floor)
         if content.model == "oscillator":
@@ -204,7 +235,6 @@ def run_task(task: Task, force: bool = False) -> TaskResult:
             r = slide(fm, None, mu[idx], mu_s[idx], vertical=vert, direction=content.direction)
             peak[idx], resid[idx] = r.peak_slide, r.residual_slide
             acc_obj[idx], frac[idx], slips[idx] = r.peak_abs_accel, r.slide_fraction, r.slip_phases
-        summary = modes[0] if len(set(modes)) == 1 else "mixed"
         rocking = rocking_results(
             content,
             modes,
@@ -218,26 +248,9 @@ def run_task(task: Task, force: bool = False) -> TaskResult:
             ),
         )
         rock_result = rocking.pop("result", None)
+        extra = dict(peak_deformation=deform, peak_top_accel=top, **rocking)
         result.contents.append(
-            ContentResult(
-                content=content.id,
-                floor=floor,
-                model=content.model,
-                mode=summary,
-                skipped="; ".join(f"{k} ({v})" for k, v in reasons.items()),
-                mu_k=mu,
-                mu_s=mu_s,
-                peak_slide=peak,
-                residual_slide=resid,
-                peak_abs_accel=acc_obj,
-                slide_fraction=frac,
-                slip_phases=slips,
-                vertical=content.vertical,
-                peak_deformation=deform,
-                peak_top_accel=top,
-                modes=np.array(modes),
-                **rocking,
-            )
+            _content_result(content, floor, modes, reasons, mu, mu_s, arrays, **extra)
         )
         if task.histories and rock_result is not None:
             hist_rock[f"{content.id}/floor_{floor}"] = rock_result.theta[0] / rock_result.alpha[0]
@@ -357,15 +370,8 @@ def _run_nonlinear(task: Task, model, force: bool, t0: float) -> TaskResult:
     hist_slides, hist_mu, hist_deform, hist_top, hist_rock = {}, {}, {}, {}, {}
     for content, floor, mu, mu_s, modes, reasons, idx, first in plans:
         n = mu.size
-        peak = np.zeros(n)
-        resid = np.zeros(n)
-        acc_obj = np.full(n, pfa_of[floor])
-        frac = np.zeros(n)
-        slips = np.zeros(n, dtype=np.int64)
-        rocks = np.array([m == "rock" for m in modes])
-        for arr in (peak, resid, acc_obj, frac):
-            arr[rocks] = np.nan
-        slips[rocks] = -1
+        arrays = _slide_arrays(n, pfa_of[floor], modes)
+        peak, resid, acc_obj, frac, slips, rocks = arrays
         deform = top = None
         if first < 0:  # 2-DOF oscillators
             deform = np.full(n, np.nan)
@@ -384,7 +390,6 @@ def _run_nonlinear(task: Task, model, force: bool, t0: float) -> TaskResult:
             peak[i], resid[i], acc_obj[i] = st[PEAK_DISP], st[DISP], st[PEAK_ACC]
             frac[i] = st[SLIDE_TIME] / duration if duration > 0 else 0.0
             slips[i] = int(st[SLIPS])
-        summary = modes[0] if len(set(modes)) == 1 else "mixed"
         # rocking blocks ride along in the building's own integration (fs.rock on it)
         rocking = rocking_results(
             content,
@@ -404,26 +409,9 @@ def _run_nonlinear(task: Task, model, force: bool, t0: float) -> TaskResult:
         rock_result = rocking.pop("result", None)
         if task.histories and rock_result is not None:
             hist_rock[f"{content.id}/floor_{floor}"] = rock_result.theta[0] / rock_result.alpha[0]
+        extra = dict(peak_deformation=deform, peak_top_accel=top, **rocking)
         result.contents.append(
-            ContentResult(
-                content=content.id,
-                floor=floor,
-                model=content.model,
-                mode=summary,
-                skipped="; ".join(f"{k} ({v})" for k, v in reasons.items()),
-                mu_k=mu,
-                mu_s=mu_s,
-                peak_slide=peak,
-                residual_slide=resid,
-                peak_abs_accel=acc_obj,
-                slide_fraction=frac,
-                slip_phases=slips,
-                vertical=content.vertical,
-                peak_deformation=deform,
-                peak_top_accel=top,
-                modes=np.array(modes),
-                **rocking,
-            )
+            _content_result(content, floor, modes, reasons, mu, mu_s, arrays, **extra)
         )
         if task.histories and first < 0:
             # 2-DOF oscillators: their histories from a run of the picked friction values
@@ -511,16 +499,13 @@ def _run_pair(task: Task, force: bool, t0: float) -> TaskResult:
         mu_s = np.asarray(content.mu_s if content.mu_s else content.mu, dtype=float)
         modes, integrate, reasons = decide(content, pfa_of[floor], force)
         n = mu.size
-        rocks = np.array([m == "rock" for m in modes])
-        peak, resid, frac = np.zeros(n), np.zeros(n), np.zeros(n)
-        acc_obj = np.full(n, pfa_of[floor])
-        slips = np.zeros(n, dtype=np.int64)
+        arrays = _slide_arrays(n, pfa_of[floor], modes)
+        peak, resid, acc_obj, frac, slips, rocks = arrays
         angle, r1, r2 = np.full(n, np.nan), np.zeros(n), np.zeros(n)
         one_d = np.zeros((n, 2))
         ratio = np.full(n, np.nan)
-        for arr in (peak, resid, acc_obj, frac, r1, r2, one_d):
+        for arr in (r1, r2, one_d):
             arr[rocks] = np.nan
-        slips[rocks] = -1
         idx = np.nonzero(integrate)[0]
         fm1, fm2 = motions[floor]
         vert = rec.vertical if content.vertical else None
@@ -540,7 +525,6 @@ def _run_pair(task: Task, force: bool, t0: float) -> TaskResult:
             acc_obj[idx[slid]] = np.minimum(pfa_of[floor], np.maximum(mu[idx], mu_s[idx])[slid] * G)
             if vert is not None:
                 acc_obj[idx[slid]] = np.nan
-        summary = modes[0] if len(set(modes)) == 1 else "mixed"
 
         def rocker(fm1=fm1, fm2=fm2, content=content):
             kw = dict(width=content.width, height=content.height,
@@ -551,21 +535,14 @@ def _run_pair(task: Task, force: bool, t0: float) -> TaskResult:
         rocking = rocking_results(content, modes, rocker)
         rock_result = rocking.pop("result", None)
         result.contents.append(
-            ContentResult(
-                content=content.id,
-                floor=floor,
-                model=content.model,
-                mode=summary,
-                skipped="; ".join(f"{k} ({v})" for k, v in reasons.items()),
-                mu_k=mu,
-                mu_s=mu_s,
-                peak_slide=peak,
-                residual_slide=resid,
-                peak_abs_accel=acc_obj,
-                slide_fraction=frac,
-                slip_phases=slips,
-                modes=np.array(modes),
-                vertical=content.vertical,
+            _content_result(
+                content,
+                floor,
+                modes,
+                reasons,
+                mu,
+                mu_s,
+                arrays,
                 peak_angle=angle,
                 residual_h1=r1,
                 residual_h2=r2,
