@@ -17,6 +17,24 @@ from floorslide.building._instep import substep_inputs, taylor_coefficients
 from floorslide.numerics.polynomial import max_abs_on, scratch
 
 
+@njit(cache=True, inline="always")
+def plane_coefficients(R1, b1, x1, a1, s1, R2, b2, x2, a2, s2, h, c1, c2):
+    """The Taylor coefficients ``c1``, ``c2`` of the two directions' floor accelerations on a
+    sub-step of length ``h`` (states ``x1``, ``x2`` at its start, ground values ``a1``, ``a2``
+    and slopes ``s1``, ``s2``; :func:`~floorslide.building._instep.taylor_coefficients`), and
+    the bound ``Σ_j |c_j| h^j ≥ |a|`` on it (``|c_j|`` the vector coefficient's length)."""
+    K = c1.size - 1
+    for j in range(K + 1):
+        c1[j] = 0.0
+        c2[j] = 0.0
+    taylor_coefficients(R1, b1, x1, a1, s1, c1)
+    taylor_coefficients(R2, b2, x2, a2, s2, c2)
+    reach = 0.0
+    for j in range(K, -1, -1):
+        reach = reach * h + np.hypot(c1[j], c2[j])
+    return reach
+
+
 @njit(cache=True)
 def plane_peak_kernel(X1, X2, k0, R1, b1, R2, b2, acc1, acc2, substeps, h, out):
     """Raise ``out = [peak |a|, its time]`` over one chunk of the two directions' floor motions
@@ -40,14 +58,8 @@ def plane_peak_kernel(X1, X2, k0, R1, b1, R2, b2, acc1, acc2, substeps, h, out):
         for r in range(substeps):
             a1, _ = substep_inputs(acc1[k], acc1[k + 1], r, substeps)
             a2, _ = substep_inputs(acc2[k], acc2[k + 1], r, substeps)
-            for j in range(K + 1):
-                c1[j] = 0.0
-                c2[j] = 0.0
-            taylor_coefficients(R1, b1, X1[kk * substeps + r], a1, s1, c1)
-            taylor_coefficients(R2, b2, X2[kk * substeps + r], a2, s2, c2)
-            reach = 0.0
-            for j in range(K, -1, -1):
-                reach = reach * h + np.hypot(c1[j], c2[j])
+            row = kk * substeps + r
+            reach = plane_coefficients(R1, b1, X1[row], a1, s1, R2, b2, X2[row], a2, s2, h, c1, c2)
             if reach <= out[0]:
                 continue
             for j in range(2 * K + 1):

@@ -46,7 +46,8 @@ from __future__ import annotations
 import numpy as np
 
 from floorslide._jit import njit
-from floorslide.building._instep import substep_inputs, taylor_coefficients
+from floorslide.building._instep import substep_inputs
+from floorslide.building._plane_peak import plane_coefficients
 from floorslide.numerics.polynomial import max_abs_on, poly_val, rise_within, scratch, taylor_shift
 
 # columns of a block's state
@@ -421,18 +422,23 @@ def start_series(a, K, m, mug, D, y, rho, w, mug1=0.0):
 
 
 @njit(cache=True, _nrt=False)
-def frictionless_series(ax, ay, K, vx, vy, moving, D, y, rho, w):
+def frictionless_series(ax, ay, K, vx, vy, moving, D, L, y, rho, w):
     """Taylor coefficients of a block sliding without kinetic friction (``mu_k = 0``:
     ``v' = −a``, a polynomial): ``v(τ) = τ^m Σ_k y_k τ^k`` to degree ``D`` and those of
     ``ρ = |y|`` (``w = y/ρ`` in ``w``), for the path ``∫|v|`` and the step size. Moving
     (``v(0) = (vx, vy) ≠ 0``): ``m = 0``, ``y₀ = v(0)``, ``y_{k+1} = −a_k/(k+1)``. From rest:
-    ``m = j + 1`` with ``a_j`` the floor's first non-zero coefficient, ``y_k = −a_{k+j}/(k+j+1)``.
+    ``m = j + 1`` with ``a_j`` the floor's first coefficient whose term on the step ``[0, L]``
+    exceeds :data:`STEP_TOL` of the largest, ``y_k = −a_{k+j}/(k+j+1)`` (the terms before it are
+    rounding — a building's floor at rest starts with coefficients of order 1e-17 of the others,
+    which as ``y₀`` would shrink the steps until ``τ^m`` underflows).
     The friction-free motion has no stop (its speed vanishes only where both components do at
     once, which a real record does not make happen). Returns ``m``, or −1 when the block is at
     rest on a floor at rest (every coefficient zero)."""
     for k in range(D + 1):
         y[k, 0] = 0.0
         y[k, 1] = 0.0
+    if moving and vx == 0.0 and vy == 0.0:
+        moving = False  # a velocity that came out exactly zero (a step's τ^m underflowed)
     if moving:
         m = 0
         y[0, 0] = vx
@@ -441,11 +447,18 @@ def frictionless_series(ax, ay, K, vx, vy, moving, D, y, rho, w):
             y[k + 1, 0] = -ax[k] * _INV[k + 1]
             y[k + 1, 1] = -ay[k] * _INV[k + 1]
     else:
-        j = 0
-        while j <= K and ax[j] == 0.0 and ay[j] == 0.0:
-            j += 1
-        if j > K:
+        big = 0.0
+        Lj = 1.0
+        for i in range(K + 1):
+            big = max(big, (abs(ax[i]) + abs(ay[i])) * Lj)
+            Lj *= L
+        if not big > 0.0:
             return -1
+        j = 0
+        Lj = 1.0
+        while (abs(ax[j]) + abs(ay[j])) * Lj <= STEP_TOL * big:
+            j += 1
+            Lj *= L
         m = j + 1
         for k in range(min(K - j, D) + 1):
             y[k, 0] = -ax[k + j] * _INV[k + j + 1]
@@ -663,6 +676,20 @@ def _advance(st, y, rho, De, m, tend, ax, ay, K, t_start, ux, uy, q, work, n0, n
     st[VY] = vy * tm
 
 
+@njit(cache=True, inline="always")
+def _speed_root(rho, De, lo, H, q, work):
+    """The first root of the speed's series ``ρ`` (degree ``De``) on ``[lo, H]`` — a stop — or
+    −1: none when ``ρ₀ > Σ_{j≥1} |ρ_j| H^j``, else by root isolation (``q`` scratch)."""
+    reach = 0.0
+    for j in range(De, 0, -1):
+        reach = (reach + abs(rho[j])) * H
+    if reach < rho[0]:
+        return -1.0
+    for k in range(De + 1):
+        q[k] = -rho[k]
+    return rise_within(q, De, lo, H, 0.0, work)
+
+
 @njit(cache=True, _nrt=False)
 def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w, sl, q, ux,
                    uy, work, max_events, vert, n0, n1):  # fmt: skip
@@ -733,7 +760,7 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
         m = int(st[START])
         if muk == 0.0:
             # no kinetic friction: v' = −a, no stop, no stiffness
-            m = frictionless_series(ax, ay, K, st[VX], st[VY], m == 0, D, y, rho, w)
+            m = frictionless_series(ax, ay, K, st[VX], st[VY], m == 0, D, L, y, rho, w)
             if m < 0:
                 return True  # at rest on a floor at rest for the rest of the sub-step
             H = min(_step_size(y, D, L), _speed_step(rho, D, L))
@@ -840,28 +867,15 @@ def _block_substep(st, ax0, ay0, K, h, t0, g, mub, muk, D, ax, ay, A, y, rho, w,
         ts = -1.0
         if De >= 0:
             H = _step_size(y, De, L) if De == D or m != 0 or slow else L
-            # a stop: the first root of ρ on [0, H] (r = τ^m ρ crosses zero there); none
-            # when ρ₀ > Σ_{j≥1} |ρ_j| H^j
-            reach = 0.0
-            for j in range(De, 0, -1):
-                reach = (reach + abs(rho[j])) * H
-            if reach >= rho[0]:
-                for k in range(De + 1):
-                    q[k] = -rho[k]
-                ts = rise_within(q, De, 0.0, H, 0.0, work)
+            # a stop: the first root of ρ on [0, H] (r = τ^m ρ crosses zero there)
+            ts = _speed_root(rho, De, 0.0, H, q, work)
             if must_stop and ts < 0.0:
                 # no stop on the slow step after all: an explicit step instead
                 De = moving_series(ax, ay, K, st[VX], st[VY], r0, mug, D, L, y, rho, w, mug1)
                 slow = False
                 decay_need = np.inf
                 H = _step_size(y, De, L) if De == D else L
-                reach = 0.0
-                for j in range(De, 0, -1):
-                    reach = (reach + abs(rho[j])) * H
-                if reach >= rho[0]:
-                    for k in range(De + 1):
-                        q[k] = -rho[k]
-                    ts = rise_within(q, De, 0.0, H, 0.0, work)
+                ts = _speed_root(rho, De, 0.0, H, q, work)
             tend = ts if ts >= 0.0 else H
             _advance(st, y, rho, De, m, tend, ax, ay, K, t0 + s0, ux, uy, q, work, nn,
                      n1 if vert else 0.0)  # fmt: skip
@@ -925,23 +939,16 @@ def _flight(st, ax0, ay0, K, h, t0, D, ax, ay, y, rho, w, q, ux, uy, work):
             st[VX] = 0.0
             st[VY] = 0.0
             r0 = 0.0
-        m = frictionless_series(ax, ay, K, st[VX], st[VY], r0 > 0.0, D, y, rho, w)
+        m = frictionless_series(ax, ay, K, st[VX], st[VY], r0 > 0.0, D, L, y, rho, w)
         if m < 0:
             return True  # at rest on a floor at rest for the rest of the part
         if st[MODE] == 0.0:
             st[MODE] = 1.0
             st[SLIPS] += 1.0
         H = min(_step_size(y, D, L), _speed_step(rho, D, L))
-        # the first root of ρ on [0, H] (none when ρ₀ > Σ_{j≥1} |ρ_j| H^j; on a step where ρ's
-        # series has converged: beyond, its roots are spurious)
-        reach = 0.0
-        for j in range(D, 0, -1):
-            reach = (reach + abs(rho[j])) * H
-        ts = -1.0
-        if reach >= rho[0]:
-            for k in range(D + 1):
-                q[k] = -rho[k]
-            ts = rise_within(q, D, EVENT_GAP * h if m == 0 else 0.0, H, 0.0, work)
+        # the first root of ρ on the step (where ρ's series has converged: beyond, its roots
+        # are spurious)
+        ts = _speed_root(rho, D, EVENT_GAP * h if m == 0 else 0.0, H, q, work)
         if ts >= 0.0:
             H = ts
         _advance(st, y, rho, D, m, H, ax, ay, K, t0 + s0, ux, uy, q, work, 0.0, 0.0)
@@ -1064,14 +1071,8 @@ def _plane_steps(X1, X2, k0, R1, b1, R2, b2, acc1, acc2, substeps, h, g, MU, sta
             t0 = (k * substeps + r) * h
             a1, _ = substep_inputs(acc1[k], acc1[k + 1], r, substeps)
             a2, _ = substep_inputs(acc2[k], acc2[k + 1], r, substeps)
-            for j in range(K + 1):
-                c1[j] = 0.0
-                c2[j] = 0.0
-            taylor_coefficients(R1, b1, X1[kk * substeps + r], a1, s1, c1)
-            taylor_coefficients(R2, b2, X2[kk * substeps + r], a2, s2, c2)
-            reach = 0.0
-            for j in range(K, -1, -1):
-                reach = reach * h + np.hypot(c1[j], c2[j])
+            row = kk * substeps + r
+            reach = plane_coefficients(R1, b1, X1[row], a1, s1, R2, b2, X2[row], a2, s2, h, c1, c2)
             nlow = g
             n0 = g
             if has_vert:
