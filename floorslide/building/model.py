@@ -12,13 +12,15 @@ from __future__ import annotations
 import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import Literal
+from typing import TYPE_CHECKING, Literal
 
-import control
 import numpy as np
 import scipy.linalg
 
 from floorslide.errors import ModelError, ModelWarning
+
+if TYPE_CHECKING:  # pragma: no cover
+    import control
 
 OUTPUTS = ("acceleration", "displacement", "velocity", "drift", "isolator")
 """Outputs a building model can give: absolute floor acceleration (m/s²), floor displacement and
@@ -367,6 +369,8 @@ class LinearBuilding:
         A, B = self.state_matrices()
         C, D, names = self.output_matrices(floors, outputs)
         states = [f"u{f}" for f in self.dof_floors] + [f"v{f}" for f in self.dof_floors]
+        import control  # python-control costs ~0.8 s to import: only when asked for
+
         return control.ss(A, B, C, D, inputs=["ground_acceleration"], outputs=names, states=states)
 
 

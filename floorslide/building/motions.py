@@ -10,7 +10,6 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-import control
 import numpy as np
 
 from floorslide._jit import njit
@@ -96,6 +95,8 @@ def floor_motions(
     elif method == "newmark":
         Y = _newmark_outputs(building, a, dt, int(substeps), C, D[:, 0])
     else:
+        import control
+
         ss = building.state_space(floors, kinds)
         t = np.arange(a.size) * dt
         Y = np.atleast_2d(control.forced_response(ss, t, a).outputs)
