@@ -31,7 +31,8 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.linalg
+
+from floorslide.numerics.blas import expm
 
 MAX_PHASE = 0.5
 """Largest ``ρ(A)·h`` of a sub-step on which Taylor polynomials represent the in-step response."""
@@ -67,7 +68,7 @@ def foh_matrices(A: np.ndarray, b: np.ndarray, tau: float) -> tuple[np.ndarray, 
     aug[:n, :n] = A
     aug[:n, n] = b
     aug[n, n + 1] = 1.0
-    E = scipy.linalg.expm(aug * tau)
+    E = expm(aug * tau)
     # contiguous copies: compiled kernels are specialised on the memory layout
     return np.ascontiguousarray(E[:n, :n]), E[:n, n].copy(), E[:n, n + 1].copy()
 

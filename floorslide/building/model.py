@@ -15,9 +15,9 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Literal
 
 import numpy as np
-import scipy.linalg
 
 from floorslide.errors import ModelError, ModelWarning
+from floorslide.numerics.blas import eigh
 
 if TYPE_CHECKING:  # pragma: no cover
     import control
@@ -128,7 +128,7 @@ def chain_stiffness(stiffnesses: np.ndarray) -> np.ndarray:
 
 def _modes(M: np.ndarray, K: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Circular frequencies (ascending) and mass-normalised mode shapes of ``K φ = ω² M φ``."""
-    w2, phi = scipy.linalg.eigh(K, M)
+    w2, phi = eigh(K, M)
     return np.sqrt(np.maximum(w2, 0.0)), phi
 
 

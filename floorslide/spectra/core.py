@@ -21,7 +21,6 @@ from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
-import scipy.linalg
 
 from floorslide.building.exact import (
     MAX_PHASE,
@@ -37,6 +36,7 @@ from floorslide.building.motions import floor_motions
 from floorslide.constants import MAX_LIST
 from floorslide.errors import ModelError
 from floorslide.inputs import RecordLike
+from floorslide.numerics.blas import expm
 from floorslide.spectra import _kernels as K
 from floorslide.spectra._kernels import (
     NB,
@@ -265,7 +265,7 @@ def _oscillator_blocks(A, b, Ca, da, w, xi, h):
     aug[:, n + 1, n + 1] = -2 * xi * w
     aug[:, n + 1, N] = -da
     aug[:, N, N + 1] = 1.0
-    E = scipy.linalg.expm(aug * h)
+    E = expm(aug * h)
     Pqq = np.ascontiguousarray(E[:, n:N, n:N])
     Pqx = np.ascontiguousarray(E[:, n:N, :n])
     g0 = E[:, n:N, N]
