@@ -12,6 +12,7 @@ file or key at fault, never as a traceback.
 from __future__ import annotations
 
 import math
+import os
 import sys
 import warnings
 
@@ -1411,7 +1412,13 @@ def _emit(text: str, out: str | None) -> None:
 @click.option("--damping", type=NUMBER, metavar="Z", help="FRS damping ratio (one stored).")
 @_ALLOW_INCOMPLETE
 @click.option("--json", "as_json", is_flag=True, help="Print the files written as a JSON list.")
-def plot(result, out, compare, damping, allow_incomplete, as_json):
+@click.option(
+    "--workers",
+    type=click.IntRange(min=1),
+    metavar="N",
+    help="Draw the figures in N processes (default: all cores); the files are the same.",
+)
+def plot(result, out, compare, damping, allow_incomplete, as_json, workers):
     """Figures (PNG) from a result file OUT.h5, one per kind and record set: floor motions and
     sliding histories of the stored history record; the isolator's hysteresis loop (force / W
     versus displacement) of each building on nonlinear isolation under that record
@@ -1440,6 +1447,7 @@ def plot(result, out, compare, damping, allow_incomplete, as_json):
         compare=list(compare) or None,
         damping=damping,
         allow_incomplete=True,
+        workers=workers or os.cpu_count() or 1,
     )
     if as_json:
         click.echo(json.dumps([str(p) for p in paths], indent=1))
@@ -1604,6 +1612,7 @@ def demo(out_dir, workers):
     from pathlib import Path
 
     from floorslide.report import design_tables, format_markdown, plot_figures, write_csv
+    from floorslide.report.study import load_study
     from floorslide.run.execute import execute
     from floorslide.scene.planner import plan as make_plan
     from floorslide.scene.schema import load_scene
@@ -1620,11 +1629,12 @@ def demo(out_dir, workers):
     if summary.interrupted:
         click.echo(f"floorslide: interrupted; finished tasks are in {h5}", err=True)
         sys.exit(130)
-    tables = design_tables(h5)
+    study = load_study(h5)  # the result file read once, for the tables and the figures
+    tables = design_tables(study)
     csvs = write_csv(tables, out / "tables")
     md = out / "tables" / "tables.md"
     md.write_text(format_markdown(tables), encoding="utf-8")
-    figures = plot_figures(h5, out / "figures")
+    figures = plot_figures(study, out / "figures", workers=workers or os.cpu_count() or 1)
     click.echo("")
     click.echo(demo_summary(tables))
     click.echo(f"{summary.tasks} tasks in {summary.seconds:.1f} s")

@@ -48,10 +48,12 @@ PNG without a timestamp, so the same result file gives the same files.
 
 from __future__ import annotations
 
+import functools
+import io
 import math
 import re
 from collections import defaultdict
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 
 import numpy as np
@@ -152,9 +154,39 @@ def _few(n: int) -> str:
     return f"; caution: only {n} records (< {MIN_RECORDS}), the p84 is set by the largest"
 
 
-def _save(fig: Figure, path: Path) -> Path:
-    fig.savefig(path, dpi=DPI, format="png", metadata={"Software": None})
-    return path
+def _png(fig: Figure | None) -> bytes | None:
+    """The figure as PNG bytes (no time stamp or software version: the same figure gives the
+    same bytes), None for no figure."""
+    if fig is None:
+        return None
+    buf = io.BytesIO()
+    fig.savefig(buf, dpi=DPI, format="png", metadata={"Software": None})
+    return buf.getvalue()
+
+
+_JOBS: list[Callable[[], Figure | None]] = []
+"""The figure jobs of the :func:`_render` in progress, inherited by its forked workers."""
+
+
+def _draw(i: int) -> bytes | None:
+    return _png(_JOBS[i]())
+
+
+def _render(jobs: list[Callable[[], Figure | None]], workers: int) -> list[bytes | None]:
+    """Draw every job's figure as PNG bytes, in order; in `workers` forked processes when more
+    than one is asked for and the platform forks (the figures are independent; matplotlib's
+    layout and text rendering, ~0.5 s a figure, is where a report's time goes)."""
+    import multiprocessing
+
+    workers = min(int(workers), len(jobs))
+    if workers <= 1 or "fork" not in multiprocessing.get_all_start_methods():
+        return [_png(job()) for job in jobs]
+    _JOBS[:] = jobs
+    try:
+        with multiprocessing.get_context("fork").Pool(workers) as pool:
+            return pool.map(_draw, range(len(jobs)), chunksize=1)
+    finally:
+        _JOBS.clear()
 
 
 # --------------------------------------------------------------------------------------------
@@ -1129,6 +1161,7 @@ def plot_figures(
     damping: float | None = None,
     *,
     allow_incomplete: bool = False,
+    workers: int = 1,
 ) -> list[Path]:
     """Write the figures of a result file as PNG files into `directory` (created).
 
@@ -1147,6 +1180,9 @@ def plot_figures(
     allow_incomplete
         Accept a result file whose run is not finished; every figure's title then starts
         with INCOMPLETE.
+    workers
+        Draw the figures in this many processes (forked; where the platform cannot fork, one).
+        The files are the same bytes whatever the number.
 
     Returns
     -------
@@ -1194,45 +1230,40 @@ def plot_figures(
         used.add(name)
         return directory / f"{name}.png"
 
+    jobs: list[tuple[str, Callable[[], Figure | None]]] = []
+    for rs in study.sets:
+        s = _slug(rs)
+        jobs += [
+            (f"histories_{s}", functools.partial(figure_histories, study, rs)),
+            (f"hysteresis_{s}", functools.partial(figure_hysteresis, study, rs)),
+            (f"rocking_{s}", functools.partial(figure_rocking, study, rs)),
+            (f"plane_path_{s}", functools.partial(figure_plane, study, rs)),
+            (f"plane_ratio_{s}", functools.partial(figure_plane_ratio, study, rs)),
+        ]
+        if z is not None:
+            jobs.append((f"frs_{s}", functools.partial(figure_frs, study, rs, z)))
+        jobs += [
+            (f"slide_vs_mu_{s}", functools.partial(figure_slide_vs_mu, study, tables, rs)),
+            (f"oscillators_{s}", functools.partial(figure_oscillators, study, tables, rs)),
+            (f"overturning_{s}", functools.partial(figure_overturning, study, tables, rs)),
+        ]
+        for comp in tables.comparisons:
+            a, b = comp.spec.split(":")
+            jobs.append(
+                (
+                    f"slide_ratio_{s}_{_slug(a)}-over-{_slug(b)}",
+                    functools.partial(figure_slide_ratio, study, tables, rs, comp.spec),
+                )
+            )
     try:
         directory.mkdir(parents=True, exist_ok=True)
-        for rs in study.sets:
-            s = _slug(rs)
-            fig = figure_histories(study, rs)
-            if fig is not None:
-                written.append(_save(fig, target(f"histories_{s}")))
-            fig = figure_hysteresis(study, rs)
-            if fig is not None:
-                written.append(_save(fig, target(f"hysteresis_{s}")))
-            fig = figure_rocking(study, rs)
-            if fig is not None:
-                written.append(_save(fig, target(f"rocking_{s}")))
-            fig = figure_plane(study, rs)
-            if fig is not None:
-                written.append(_save(fig, target(f"plane_path_{s}")))
-            fig = figure_plane_ratio(study, rs)
-            if fig is not None:
-                written.append(_save(fig, target(f"plane_ratio_{s}")))
-            if z is not None:
-                fig = figure_frs(study, rs, z)
-                if fig is not None:
-                    written.append(_save(fig, target(f"frs_{s}")))
-            fig = figure_slide_vs_mu(study, tables, rs)
-            if fig is not None:
-                written.append(_save(fig, target(f"slide_vs_mu_{s}")))
-            fig = figure_oscillators(study, tables, rs)
-            if fig is not None:
-                written.append(_save(fig, target(f"oscillators_{s}")))
-            fig = figure_overturning(study, tables, rs)
-            if fig is not None:
-                written.append(_save(fig, target(f"overturning_{s}")))
-            for comp in tables.comparisons:
-                fig = figure_slide_ratio(study, tables, rs, comp.spec)
-                if fig is not None:
-                    a, b = comp.spec.split(":")
-                    written.append(
-                        _save(fig, target(f"slide_ratio_{s}_{_slug(a)}-over-{_slug(b)}"))
-                    )
+        for stem, png in zip(
+            (stem for stem, _ in jobs), _render([job for _, job in jobs], workers), strict=True
+        ):
+            if png is not None:
+                path = target(stem)
+                path.write_bytes(png)
+                written.append(path)
     except OSError as exc:
         raise FloorslideError(
             f"cannot write the figures: {exc.strerror or exc}", str(directory)
