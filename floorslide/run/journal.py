@@ -95,7 +95,7 @@ def _encode_node(node: Node, blobs: list[bytes], offset: list[int]) -> dict:
     }
 
 
-def encode(task_id: str, scene_sha256: str, node: Node) -> bytes:
+def encode(task_id: str, scene_sha256: str, node: Node, node_digest: str | None = None) -> bytes:
     """The bytes of the journal entry of one task.
 
     Parameters
@@ -106,10 +106,14 @@ def encode(task_id: str, scene_sha256: str, node: Node) -> bytes:
         SHA-256 (hex) of the text of the scene the task belongs to.
     node
         The task's group, as it goes into the result file.
+    node_digest
+        ``digest(node)`` when the caller has it already (the writer stores the same digest in
+        the result file); computed here otherwise.
     """
     blobs: list[bytes] = []
     group = _encode_node(node, blobs, [0])
-    node_digest = digest(node)
+    if node_digest is None:
+        node_digest = digest(node)
     header = {
         "version": VERSION,
         "task_id": task_id,

@@ -694,18 +694,20 @@ class ResultWriter:
             One line: what could not be written (a full disk: "no space left on device"), how
             many tasks are kept, and to rerun with ``--resume``.
         """
-        node = task_node(result)
+        node = task_node(result)  # holds no bookkeeping attribute: digest(node) is its digest
+        node_digest = digest(node)
         tid = result.task_id
         entry = self.journal / f"{tid}{ENTRY_SUFFIX}"
         try:
-            _write_file(entry, journal.encode(tid, self.scene_sha256, node))
+            _write_file(entry, journal.encode(tid, self.scene_sha256, node, node_digest))
         except OSError as exc:
             raise self._failure(exc, entry) from None
         self.kept.add(tid)
-        self._store(tid, node)
+        self._store(tid, node, node_digest)
 
-    def _store(self, tid: str, node: Node) -> None:
-        """Write one task's group with its digest, close the file, then mark the task done."""
+    def _store(self, tid: str, node: Node, node_digest: str | None = None) -> None:
+        """Write one task's group with its digest (`node_digest` if given, else computed),
+        close the file, then mark the task done."""
         nbytes, objects = _node_size(node)
         try:
             _reserve(self.path, 2 * nbytes + RESERVE_PER_OBJECT * objects + RESERVE_MIN)
@@ -714,7 +716,7 @@ class ResultWriter:
                 if tid in tasks:
                     del tasks[tid]
                 group = write_node(tasks, tid, node)
-                group.attrs[DIGEST_ATTR] = digest(node, BOOKKEEPING)
+                group.attrs[DIGEST_ATTR] = node_digest or digest(node, BOOKKEEPING)
                 f.flush()
             _reserve(self.path, RESERVE_MIN)
             with _open_h5(self.path, "a") as f:
