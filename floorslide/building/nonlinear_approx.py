@@ -50,7 +50,6 @@ import time
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
 from floorslide._jit import njit
 from floorslide.building.nonlinear import NonlinearIsolatedBuilding
@@ -505,6 +504,8 @@ def smooth_isolator_response(
     ApproxIsolatorResponse
         Peaks over the samples and the solver's steps.
     """
+    from scipy.integrate import solve_ivp  # SciPy's integrators: only when asked for
+
     acc, dt, floors, notes = _check(building, acc, dt, floors)
     if method not in ("LSODA", "Radau", "BDF", "RK45", "DOP853", "RK23"):
         raise ModelError(f"unknown integrator {method!r}", "method")

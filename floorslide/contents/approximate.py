@@ -14,7 +14,6 @@
 from __future__ import annotations
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
 from floorslide._jit import njit
 from floorslide.building.exact_motion import single_use_motion
@@ -208,6 +207,8 @@ def _ivp_one(
     a, dt, muk, mub, building, floor, vert, allow_pos, allow_neg, rtol, integrator, max_step=None
 ):
     """One block by SciPy's solve_ivp with event location; building and block together."""
+    from scipy.integrate import solve_ivp  # SciPy's integrators: only when asked for
+
     if building is not None:
         A, B = building.state_matrices()
         b = B[:, 0]

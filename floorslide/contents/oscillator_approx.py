@@ -59,8 +59,6 @@ import math
 from operator import itemgetter
 
 import numpy as np
-from scipy.integrate import BDF, LSODA, Radau
-from scipy.optimize import brentq
 
 from floorslide._jit import njit
 from floorslide.building.model import LinearBuilding
@@ -68,8 +66,8 @@ from floorslide.building.motions import floor_motions
 from floorslide.errors import ModelError
 
 METHODS = ("newmark", "penalty")
-SOLVERS = {"LSODA": LSODA, "Radau": Radau, "BDF": BDF}
-INTEGRATORS = tuple(SOLVERS)
+INTEGRATORS = ("LSODA", "Radau", "BDF")
+"""SciPy integrators of the penalty method (imported when it runs)."""
 
 
 def slide_oscillator(
@@ -337,6 +335,8 @@ def _root(g, dense, t0, t1, g0, g1):
     does not bracket it — LSODA's can disagree with its own step ends, scipy issue #14480)."""
     f0, f1 = g(dense(t0)), g(dense(t1))
     if f0 * f1 < 0.0:
+        from scipy.optimize import brentq
+
         return brentq(lambda tt: g(dense(tt)), t0, t1, xtol=1e-15, rtol=4 * np.finfo(float).eps)
     return t0 + (t1 - t0) * (g0 / (g0 - g1)) if g0 != g1 else t1
 
@@ -359,7 +359,9 @@ def _penalty_one(a, dt, A, b, ca, da, w, xi, r, g, mub, muk, kg, cg, rtol, integ
         return np.array([0.0, 0.0, 0.0, 0.0, abs(da * a[0]), 0.0, 0.0])
     c2, w2 = 2.0 * xi * w, w * w
     atol = 1e-3 * rtol
-    Solver = SOLVERS[integrator]
+    import scipy.integrate
+
+    Solver = getattr(scipy.integrate, integrator)
     # offsets: a phase that starts on its switching surface (gripped at mu_k·N = mu_s·N, or
     # released at v = 0) must not end at once on rounding
     fb_event = fb * (1.0 + 1e-9)

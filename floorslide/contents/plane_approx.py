@@ -97,7 +97,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
 from floorslide._jit import njit
 from floorslide.building.directions import per_direction
@@ -517,6 +516,8 @@ def _slide_field(floor_acc, xdot, fk, v_stop, n1, n, AX, c1, c2):
 def _ivp_block(h1, h2, dt, fk, fb, systems, rtol, atol, v_stop, integrator, histories):
     """One block by solve_ivp, step by step; returns its peak, angle (deg), time of peak,
     residual, slide time, breakaways, stops, path, work, final velocity and history."""
+    from scipy.integrate import solve_ivp  # SciPy's integrators: only when asked for
+
     (A1, b1, c1, d1), (A2, b2, c2, d2) = systems
     n1, n2 = A1.shape[0], A2.shape[0]
     n = n1 + n2
