@@ -1,0 +1,372 @@
+"""Compiled batched kernel of the 2-DOF sliding oscillator: all friction values in one call,
+most parts cleared by exact propagators and rigorous chord bounds.
+
+The model and the state columns are those of :mod:`floorslide.contents._oscillator_kernel`
+(per unit top mass; ``y = [u, v, z, zd]``; ``q = 2ξw z' + w² z``): in stick
+
+    z'' = −a_f − q,                  F = r a_f − q,   admissible while |F| ≤ mu_s (1+r) g,   (1)
+
+and in slip with sign ``s``
+
+    v' = −a_f + q/r − s mu_k (1+r) g / r,   z'' = −q (1 + 1/r) + s mu_k (1+r) g / r.         (2)
+
+Both phases are linear with constant coefficients, driven by the floor acceleration ``a_f``
+(on each part of a sub-step the polynomial ``Σ_l c_l τ^l``, shared by every oscillator) and, in
+slip, by the constant friction force. On a part of length ``ho`` (``ρ·ho ≤ 0.5``) the end state
+is therefore
+
+    y(ho) = Φ_p y(0) + Σ_l G_p[:, l] c_l + s mu_k g e,                                        (3)
+
+with ``Φ_p, G_p, e`` the part's propagators of phase ``p`` — the Taylor series of the event
+kernel (:func:`~floorslide.contents._oscillator_kernel._phase_series`) applied to unit inputs
+and summed at ``ho``, so the same truncated exact solution, computed once per (``ho``, ``w``,
+``ξ``, ``r``) instead of once per part and friction value (:func:`phase_propagators`). The
+floor terms ``Σ_l G_p c_l`` are formed once per part for all oscillators.
+
+A part needs the event kernel (:func:`~floorslide.contents._oscillator_kernel._advance_part`:
+root isolation of events and peaks) only if something may happen inside it. That is decided
+by the chord bound: for a function ``p`` on ``[0, ho]``,
+
+    max |p| ≤ max(|p(0)|, |p(ho)|) + ho²/8 · max |p''|,                                       (4)
+
+and ``min p ≥ min(p(0), p(ho)) − ho²/8 · max |p''|``. Every output (``F``, ``v``, ``z``, ``q``)
+is, on the part, a polynomial whose coefficients are linear in the inputs (the start state,
+the floor coefficients, the friction force), so
+
+    max |p''| ≤ Σ_i W_i |x_i|,   W_i = Σ_{j≥2} j (j−1) ho^{j−2} |p_j(e_i)|,                     (5)
+
+with weights ``W`` computed with the propagators (the floor's share once per part). A stick
+part is cleared when (4) keeps ``|F|`` below the static limit and ``|z|``, ``|q|`` at or below
+their peaks so far; a slip part when ``s·v`` stays positive (no stop: ``u`` is then monotone,
+its peak at an end) and ``|z|``, ``|q|`` and the base's acceleration stay at or below their
+peaks. The base's acceleration in stick is the floor's, whose peak on the part is computed at
+most once per part for all oscillators (:func:`~floorslide.numerics.polynomial.max_abs_on`,
+as the event kernel does). Every other part goes through the event kernel from the same state
+columns: events and new peaks are found exactly as before; a cleared part changes no peak and
+no phase, and its end state (3) equals the event kernel's to rounding (a different order of
+the same operations: differences at the rounding level, ~1e-16 of the state per part).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from floorslide._jit import njit
+from floorslide.building._instep import poly_val, substep_inputs, taylor_coefficients
+from floorslide.contents._oscillator_kernel import (
+    O_MODE,
+    O_PEAK_BASE,
+    O_PEAK_TOP,
+    O_PEAK_U,
+    O_PEAK_Z,
+    O_SLIDE_TIME,
+    O_U,
+    O_V,
+    O_Z,
+    O_ZD,
+    _advance_part,
+    _phase_series,
+    _shift,
+)
+from floorslide.numerics.polynomial import curvature_bound, max_abs_on, scratch
+
+STICK, SLIP = 0, 1
+"""Phase index of the propagators."""
+B_EVENT, B_Z, B_Q = 0, 1, 2
+"""Bounded outputs: the event function (``F`` in stick, ``v`` in slip), ``z`` and ``q``."""
+W_FRICTION = 4
+"""Column of the friction force's weight; the state's are 0–3, the floor's shares are
+formed per part (:func:`part_inputs`)."""
+SAFETY = 1.0 + 1e-9
+"""Factor on every curvature bound (covers the rounding of the weights and of (5))."""
+MARGIN = 1e-12
+"""Relative margin of a cleared part: its bound must stay this far inside the limit (scaled by
+the magnitudes), so that the event kernel's own rounding could not have found an event there."""
+
+# packed per-part floor inputs (:func:`part_inputs`)
+S_AF0, S_AF1 = 0, 1
+"""Floor acceleration at the part's start and end."""
+S_BST = 2
+"""Stick floor response: z, zd (2 entries)."""
+S_BSL = 4
+"""Slip floor response: u, v, z, zd (4 entries)."""
+S_WST = 8
+"""Floor share of the stick curvature bounds of F, z, q (3 entries)."""
+S_WSL = 11
+"""Floor share of the slip curvature bounds of v, z, q (3 entries)."""
+S_FLOOR_HI = 14
+"""Upper bound of the floor's ``|a_f|`` on the part, by (4)."""
+S_FLOOR_PEAK = 15
+"""The floor's exact ``max |a_f|`` on the part, or −1 until some oscillator needs it."""
+S_NCOL = 16
+
+# diagnostics counted by the kernel
+C_STICK_FAST, C_SLIP_FAST, C_STICK_EVENT, C_SLIP_EVENT = 0, 1, 2, 3
+"""Parts cleared in stick / slip, and parts sent to the event kernel from stick / slip."""
+C_NCOL = 4
+
+
+@njit(cache=True)
+def phase_propagators(ho, K, w, xi, r):
+    """Propagators (3) and curvature weights (5) of both phases on a part of length ``ho``.
+
+    Returns
+    -------
+    PHI : (2, 4, 4)
+        ``PHI[p] y0``: the end state from the start state (no floor motion, no friction).
+    GF : (2, 4, K+1)
+        ``GF[p][:, l]``: the end state from rest under the floor acceleration ``τ^l``.
+    EF : (4,)
+        End state from rest in slip under the friction of ``s·mu_k·g = 1`` (eq. (2)).
+    WS : (2, 3, 5)
+        Weights (5) of the event function, ``z`` and ``q`` on the start state (columns 0–3)
+        and on the friction force ``s·mu_k·g`` (column :data:`W_FRICTION`).
+    WF : (2, 3, K+1)
+        Weights (5) on the floor coefficients ``|c_l|``.
+    """
+    PHI = np.zeros((2, 4, 4))
+    GF = np.zeros((2, 4, K + 1))
+    EF = np.zeros(4)
+    WS = np.zeros((2, 3, 5))
+    WF = np.zeros((2, 3, K + 1))
+    Y = np.zeros((4, K + 1))
+    y = np.zeros(4)
+    cs = np.zeros(K + 1)
+    ends = np.zeros(4)
+    wsum = np.zeros(3)
+    c2 = 2.0 * xi * w
+    w2 = w * w
+    for p in range(2):
+        for inp in range(4 + K + 1 + p):
+            y[:] = 0.0
+            cs[:] = 0.0
+            fk = 0.0
+            if inp < 4:
+                y[inp] = 1.0
+            elif inp < 5 + K:
+                cs[inp - 4] = 1.0
+            else:
+                fk = 1.0
+            _phase_series(y, p, cs, K, w, xi, r, fk, False, Y)
+            for i in range(4):
+                ends[i] = poly_val(Y[i], K, ho)
+            wsum[:] = 0.0
+            hj = 1.0
+            for j in range(2, K + 1):
+                f = j * (j - 1) * hj
+                ev = r * cs[j] - c2 * Y[3, j] - w2 * Y[2, j] if p == STICK else Y[1, j]
+                wsum[B_EVENT] += f * abs(ev)
+                wsum[B_Z] += f * abs(Y[2, j])
+                wsum[B_Q] += f * abs(c2 * Y[3, j] + w2 * Y[2, j])
+                hj *= ho
+            for i in range(4):
+                if inp < 4:
+                    PHI[p, i, inp] = ends[i]
+                elif inp < 5 + K:
+                    GF[p, i, inp - 4] = ends[i]
+                else:
+                    EF[i] = ends[i]
+            for b in range(3):
+                if inp < 4:
+                    WS[p, b, inp] = wsum[b] * SAFETY
+                elif inp < 5 + K:
+                    WF[p, b, inp - 4] = wsum[b] * SAFETY
+                else:
+                    WS[p, b, W_FRICTION] = wsum[b] * SAFETY
+    return PHI, GF, EF, WS, WF
+
+
+@njit(cache=True, _nrt=False)
+def part_inputs(cs, kf, K, ho, GF, WF, sh):
+    """The floor's share of one part, common to every oscillator, into ``sh`` (columns
+    ``S_*``): the floor responses ``Σ_l G_p[:, l] c_l`` of (3), the floor shares
+    ``Σ_l W_l |c_l|`` of the bounds (5), the floor acceleration at both ends and the bound (4)
+    of its peak. ``cs``: the floor polynomial on the part (degree ``kf ≤ K``)."""
+    for i in range(S_NCOL):
+        sh[i] = 0.0
+    for l in range(kf + 1):
+        c = cs[l]
+        ac = abs(c)
+        sh[S_BST] += GF[STICK, 2, l] * c
+        sh[S_BST + 1] += GF[STICK, 3, l] * c
+        for i in range(4):
+            sh[S_BSL + i] += GF[SLIP, i, l] * c
+        for b in range(3):
+            sh[S_WST + b] += WF[STICK, b, l] * ac
+            sh[S_WSL + b] += WF[SLIP, b, l] * ac
+    sh[S_AF0] = cs[0]
+    sh[S_AF1] = poly_val(cs, K, ho)
+    sh[S_FLOOR_HI] = max(abs(sh[S_AF0]), abs(sh[S_AF1])) + 0.125 * ho * ho * SAFETY * (
+        curvature_bound(cs, K, ho)
+    )
+    sh[S_FLOOR_PEAK] = -1.0
+
+
+@njit(cache=True, _nrt=False)
+def stick_part(states, o, sh, PHI, WS, r, c2, w2, fb, k8):
+    """Advance stuck oscillator ``o`` through a part if (4) clears it: ``|F| < fb`` throughout
+    (no breakaway) and ``|z|``, ``|q|`` at or below their peaks. Returns False, changing
+    nothing, when the part needs the event kernel. The base's acceleration (the floor's) is
+    left to the caller."""
+    z0 = states[o, O_Z]
+    zd0 = states[o, O_ZD]
+    az0 = abs(z0)
+    azd0 = abs(zd0)
+    z1 = PHI[STICK, 2, 2] * z0 + PHI[STICK, 2, 3] * zd0 + sh[S_BST]
+    zd1 = PHI[STICK, 3, 2] * z0 + PHI[STICK, 3, 3] * zd0 + sh[S_BST + 1]
+    q0 = c2 * zd0 + w2 * z0
+    q1 = c2 * zd1 + w2 * z1
+    # breakaway: F = r a_f − q, eq. (1)
+    f0 = r * sh[S_AF0] - q0
+    f1 = r * sh[S_AF1] - q1
+    m2 = WS[STICK, B_EVENT, 2] * az0 + WS[STICK, B_EVENT, 3] * azd0 + sh[S_WST + B_EVENT]
+    if max(abs(f0), abs(f1)) + k8 * m2 > fb * (1.0 - MARGIN):
+        return False
+    m2 = WS[STICK, B_Z, 2] * az0 + WS[STICK, B_Z, 3] * azd0 + sh[S_WST + B_Z]
+    if max(az0, abs(z1)) + k8 * m2 > states[o, O_PEAK_Z]:
+        return False
+    m2 = WS[STICK, B_Q, 2] * az0 + WS[STICK, B_Q, 3] * azd0 + sh[S_WST + B_Q]
+    if max(abs(q0), abs(q1)) + k8 * m2 > states[o, O_PEAK_TOP]:
+        return False
+    states[o, O_Z] = z1
+    states[o, O_ZD] = zd1
+    return True
+
+
+@njit(cache=True, _nrt=False)
+def slip_part(states, o, sh, PHI, EF, WS, r, c2, w2, fkg, ho, k8):
+    """Advance slipping oscillator ``o`` (sign ``s`` of its velocity) through a part if (4)
+    clears it: ``s·v > 0`` throughout (no stop; ``u`` monotone, its peak at an end) and ``|z|``,
+    ``|q|`` and ``|q/r − s mu_k (1+r) g/r|`` (the base's acceleration) at or below their peaks.
+    Returns False, changing nothing, when the part needs the event kernel."""
+    s = states[o, O_MODE]
+    f = s * fkg
+    y0 = states[o, O_U]
+    y1_ = states[o, O_V]
+    y2 = states[o, O_Z]
+    y3 = states[o, O_ZD]
+    v1 = PHI[SLIP, 1, 0] * y0 + PHI[SLIP, 1, 1] * y1_ + PHI[SLIP, 1, 2] * y2
+    v1 += PHI[SLIP, 1, 3] * y3 + sh[S_BSL + 1] + f * EF[1]
+    av = abs(y1_)
+    az = abs(y2)
+    azd = abs(y3)
+    af = abs(f)
+    # no stop: s·v > 0 on the whole part
+    m2 = WS[SLIP, B_EVENT, 1] * av + WS[SLIP, B_EVENT, 2] * az + WS[SLIP, B_EVENT, 3] * azd
+    m2 += WS[SLIP, B_EVENT, W_FRICTION] * af + sh[S_WSL + B_EVENT]
+    if min(s * y1_, s * v1) - k8 * m2 <= MARGIN * (av + abs(v1) + k8 * m2):
+        return False
+    z1 = PHI[SLIP, 2, 0] * y0 + PHI[SLIP, 2, 1] * y1_ + PHI[SLIP, 2, 2] * y2
+    z1 += PHI[SLIP, 2, 3] * y3 + sh[S_BSL + 2] + f * EF[2]
+    m2 = WS[SLIP, B_Z, 1] * av + WS[SLIP, B_Z, 2] * az + WS[SLIP, B_Z, 3] * azd
+    m2 += WS[SLIP, B_Z, W_FRICTION] * af + sh[S_WSL + B_Z]
+    if max(az, abs(z1)) + k8 * m2 > states[o, O_PEAK_Z]:
+        return False
+    zd1 = PHI[SLIP, 3, 0] * y0 + PHI[SLIP, 3, 1] * y1_ + PHI[SLIP, 3, 2] * y2
+    zd1 += PHI[SLIP, 3, 3] * y3 + sh[S_BSL + 3] + f * EF[3]
+    q0 = c2 * y3 + w2 * y2
+    q1 = c2 * zd1 + w2 * z1
+    m2 = WS[SLIP, B_Q, 1] * av + WS[SLIP, B_Q, 2] * az + WS[SLIP, B_Q, 3] * azd
+    m2 += WS[SLIP, B_Q, W_FRICTION] * af + sh[S_WSL + B_Q]
+    qmax = max(abs(q0), abs(q1)) + k8 * m2
+    if qmax > states[o, O_PEAK_TOP]:
+        return False
+    fr = f * (1.0 + r) / r
+    bmax = max(abs(q0 / r - fr), abs(q1 / r - fr)) + k8 * m2 / r
+    if bmax > states[o, O_PEAK_BASE]:
+        return False
+    u1 = PHI[SLIP, 0, 0] * y0 + PHI[SLIP, 0, 1] * y1_ + PHI[SLIP, 0, 2] * y2
+    u1 += PHI[SLIP, 0, 3] * y3 + sh[S_BSL] + f * EF[0]
+    states[o, O_U] = u1
+    states[o, O_V] = v1
+    states[o, O_Z] = z1
+    states[o, O_ZD] = zd1
+    if abs(u1) > states[o, O_PEAK_U]:
+        states[o, O_PEAK_U] = abs(u1)
+    states[o, O_SLIDE_TIME] += ho
+    return True
+
+
+@njit(cache=True)
+def oscillator_batch_kernel(X, k0, R, beta, acc, substeps, h, m_o, K, w, xi, r, g, mub, muk,
+                            PHI, GF, EF, WS, WF, states, hist, want_hist, max_events,
+                            counts):  # fmt: skip
+    """Advance 2-DOF sliding oscillators (one per friction pair) through the record, as
+    :func:`~floorslide.contents._oscillator_kernel.oscillator_kernel` (same arguments, same
+    state columns and histories) with the propagators and weights of
+    :func:`phase_propagators` for parts of length ``h/m_o``: per part, the floor's share is
+    formed once (:func:`part_inputs`), then each oscillator is cleared by :func:`stick_part` /
+    :func:`slip_part` or advanced by the event kernel
+    (:func:`~floorslide.contents._oscillator_kernel._advance_part`). ``counts``: parts cleared
+    and parts sent to the event kernel, by phase (columns ``C_*``), incremented.
+    """
+    nobj = muk.size
+    nsteps = (X.shape[0] - 1) // substeps
+    ho = h / m_o
+    k8 = 0.125 * ho * ho
+    c = np.zeros(K + 1)
+    cs = np.zeros(K + 1)
+    cs_ev = np.zeros(K + 1)
+    Y = np.zeros((4, K + 1))
+    poly = np.zeros(K + 1)
+    y = np.zeros(4)
+    pk = np.zeros(4)
+    sh = np.zeros(S_NCOL)
+    work = scratch(K + 1)
+    c2 = 2.0 * xi * w
+    w2 = w * w
+    kr = R.shape[0] - 1
+    for kk in range(nsteps):
+        k = k0 + kk
+        a = acc[k]
+        a1 = acc[k + 1]
+        slope = (a1 - a) / (substeps * h)
+        for sub in range(substeps):
+            aa, _ = substep_inputs(a, a1, sub, substeps)
+            for j in range(K + 1):
+                c[j] = 0.0
+            taylor_coefficients(R, beta, X[kk * substeps + sub], aa, slope, c[: kr + 1])
+            for so in range(m_o):
+                base = so * ho
+                if base == 0.0:
+                    for j in range(K + 1):
+                        cs[j] = c[j]
+                else:
+                    _shift(c, K, base, cs)
+                part_inputs(cs, kr, K, ho, GF, WF, sh)
+                t_part = (k * substeps + sub) * h + base
+                for o in range(nobj):
+                    mode = states[o, O_MODE]
+                    if mode == 0.0:
+                        fb = mub[o] * (1.0 + r) * g
+                        done = stick_part(states, o, sh, PHI, WS, r, c2, w2, fb, k8)
+                        if done:
+                            counts[C_STICK_FAST] += 1
+                            if sh[S_FLOOR_HI] > states[o, O_PEAK_BASE]:
+                                if sh[S_FLOOR_PEAK] < 0.0:
+                                    # the value the event kernel finds when it exceeds a peak
+                                    fpk, _ = max_abs_on(cs, K, ho, -1.0, work)
+                                    sh[S_FLOOR_PEAK] = fpk
+                                if sh[S_FLOOR_PEAK] > states[o, O_PEAK_BASE]:
+                                    states[o, O_PEAK_BASE] = sh[S_FLOOR_PEAK]
+                        else:
+                            counts[C_STICK_EVENT] += 1
+                    else:
+                        done = slip_part(states, o, sh, PHI, EF, WS, r, c2, w2, muk[o] * g,
+                                         ho, k8)  # fmt: skip
+                        counts[C_SLIP_FAST if done else C_SLIP_EVENT] += 1
+                    if not done:
+                        _advance_part(c, K, base, ho, o, w, xi, r, g, mub, muk, states,
+                                      t_part, max_events, cs_ev, Y, poly, y, pk, work)  # fmt: skip
+            if want_hist and sub == substeps - 1:
+                af_end = poly_val(c, K, h)
+                for o in range(nobj):
+                    mode = states[o, O_MODE]
+                    q_ = c2 * states[o, O_ZD] + w2 * states[o, O_Z]
+                    hist[o, k + 1, 0] = states[o, O_U]
+                    hist[o, k + 1, 1] = states[o, O_Z]
+                    hist[o, k + 1, 2] = -q_
+                    if mode == 0.0:
+                        hist[o, k + 1, 3] = af_end
+                    else:
+                        hist[o, k + 1, 3] = q_ / r - mode * muk[o] * g * (1.0 + r) / r
