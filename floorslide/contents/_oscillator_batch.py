@@ -67,6 +67,7 @@ from floorslide.contents._oscillator_kernel import (
     _advance_part,
     _phase_series,
     _shift,
+    _update_peak,
 )
 from floorslide.numerics.polynomial import curvature_bound, max_abs_on, scratch
 
@@ -100,10 +101,15 @@ S_FLOOR_PEAK = 15
 """The floor's exact ``max |a_f|`` on the part, or −1 until some oscillator needs it."""
 S_NCOL = 16
 
-# diagnostics counted by the kernel
-C_STICK_FAST, C_SLIP_FAST, C_STICK_EVENT, C_SLIP_EVENT = 0, 1, 2, 3
-"""Parts cleared in stick / slip, and parts sent to the event kernel from stick / slip."""
-C_NCOL = 4
+# what became of each oscillator's part (:func:`stick_part`, :func:`slip_part`), counted by the
+# kernel
+CLEARED = 0
+"""Cleared by the bounds."""
+C_EVENT, C_Z, C_Q, C_BASE = 1, 2, 3, 4
+"""Sent to the event kernel: an event (breakaway, stop) may lie in the part, or a new peak of
+``|z|``, of the top's or of the base's acceleration."""
+C_NCOL = 10
+"""Counter columns: ``C_* `` for stick, ``5 + C_*`` for slip."""
 
 
 @njit(cache=True)
@@ -205,9 +211,9 @@ def part_inputs(cs, kf, K, ho, GF, WF, sh):
 @njit(cache=True, _nrt=False)
 def stick_part(states, o, sh, PHI, WS, r, c2, w2, fb, k8):
     """Advance stuck oscillator ``o`` through a part if (4) clears it: ``|F| < fb`` throughout
-    (no breakaway) and ``|z|``, ``|q|`` at or below their peaks. Returns False, changing
-    nothing, when the part needs the event kernel. The base's acceleration (the floor's) is
-    left to the caller."""
+    (no breakaway) and ``|z|``, ``|q|`` at or below their peaks. Returns :data:`CLEARED`, or,
+    changing nothing, why the part needs the event kernel (``C_*``). The base's acceleration
+    (the floor's) is left to the caller."""
     z0 = states[o, O_Z]
     zd0 = states[o, O_ZD]
     az0 = abs(z0)
@@ -221,16 +227,16 @@ def stick_part(states, o, sh, PHI, WS, r, c2, w2, fb, k8):
     f1 = r * sh[S_AF1] - q1
     m2 = WS[STICK, B_EVENT, 2] * az0 + WS[STICK, B_EVENT, 3] * azd0 + sh[S_WST + B_EVENT]
     if max(abs(f0), abs(f1)) + k8 * m2 > fb * (1.0 - MARGIN):
-        return False
+        return C_EVENT
     m2 = WS[STICK, B_Z, 2] * az0 + WS[STICK, B_Z, 3] * azd0 + sh[S_WST + B_Z]
     if max(az0, abs(z1)) + k8 * m2 > states[o, O_PEAK_Z]:
-        return False
+        return C_Z
     m2 = WS[STICK, B_Q, 2] * az0 + WS[STICK, B_Q, 3] * azd0 + sh[S_WST + B_Q]
     if max(abs(q0), abs(q1)) + k8 * m2 > states[o, O_PEAK_TOP]:
-        return False
+        return C_Q
     states[o, O_Z] = z1
     states[o, O_ZD] = zd1
-    return True
+    return CLEARED
 
 
 @njit(cache=True, _nrt=False)
@@ -238,7 +244,8 @@ def slip_part(states, o, sh, PHI, EF, WS, r, c2, w2, fkg, ho, k8):
     """Advance slipping oscillator ``o`` (sign ``s`` of its velocity) through a part if (4)
     clears it: ``s·v > 0`` throughout (no stop; ``u`` monotone, its peak at an end) and ``|z|``,
     ``|q|`` and ``|q/r − s mu_k (1+r) g/r|`` (the base's acceleration) at or below their peaks.
-    Returns False, changing nothing, when the part needs the event kernel."""
+    Returns :data:`CLEARED`, or, changing nothing, why the part needs the event kernel
+    (``C_*``)."""
     s = states[o, O_MODE]
     f = s * fkg
     y0 = states[o, O_U]
@@ -251,17 +258,35 @@ def slip_part(states, o, sh, PHI, EF, WS, r, c2, w2, fkg, ho, k8):
     az = abs(y2)
     azd = abs(y3)
     af = abs(f)
-    # no stop: s·v > 0 on the whole part
+    # no stop: s·v > 0 on the whole part, by the chord bound (4) or, better just after a
+    # breakaway (v small, |v'| large), by Taylor's bounds from each end over its half:
+    # s·v(t) ≥ s·v(0) + s·v'(0) t − m2 t²/2 on [0, ho/2], concave, so ≥ its value at an end
+    # (and likewise from ho backwards on [ho/2, ho])
     m2 = WS[SLIP, B_EVENT, 1] * av + WS[SLIP, B_EVENT, 2] * az + WS[SLIP, B_EVENT, 3] * azd
     m2 += WS[SLIP, B_EVENT, W_FRICTION] * af + sh[S_WSL + B_EVENT]
-    if min(s * y1_, s * v1) - k8 * m2 <= MARGIN * (av + abs(v1) + k8 * m2):
-        return False
+    p0 = s * y1_
+    p1 = s * v1
+    low = min(p0, p1) - k8 * m2
+    tol = MARGIN * (av + abs(v1) + k8 * m2)
+    if low <= tol:
+        z1 = PHI[SLIP, 2, 0] * y0 + PHI[SLIP, 2, 1] * y1_ + PHI[SLIP, 2, 2] * y2
+        z1 += PHI[SLIP, 2, 3] * y3 + sh[S_BSL + 2] + f * EF[2]
+        zd1 = PHI[SLIP, 3, 0] * y0 + PHI[SLIP, 3, 1] * y1_ + PHI[SLIP, 3, 2] * y2
+        zd1 += PHI[SLIP, 3, 3] * y3 + sh[S_BSL + 3] + f * EF[3]
+        # v' = −a_f + q/r − s mu_k (1+r) g/r, eq. (2)
+        fr = f * (1.0 + r) / r
+        d0 = s * (-sh[S_AF0] + (c2 * y3 + w2 * y2) / r - fr)
+        d1 = s * (-sh[S_AF1] + (c2 * zd1 + w2 * z1) / r - fr)
+        half = 0.5 * ho
+        low = min(p0, p0 + d0 * half - k8 * m2, p1, p1 - d1 * half - k8 * m2)
+        if low <= tol:
+            return C_EVENT
     z1 = PHI[SLIP, 2, 0] * y0 + PHI[SLIP, 2, 1] * y1_ + PHI[SLIP, 2, 2] * y2
     z1 += PHI[SLIP, 2, 3] * y3 + sh[S_BSL + 2] + f * EF[2]
     m2 = WS[SLIP, B_Z, 1] * av + WS[SLIP, B_Z, 2] * az + WS[SLIP, B_Z, 3] * azd
     m2 += WS[SLIP, B_Z, W_FRICTION] * af + sh[S_WSL + B_Z]
     if max(az, abs(z1)) + k8 * m2 > states[o, O_PEAK_Z]:
-        return False
+        return C_Z
     zd1 = PHI[SLIP, 3, 0] * y0 + PHI[SLIP, 3, 1] * y1_ + PHI[SLIP, 3, 2] * y2
     zd1 += PHI[SLIP, 3, 3] * y3 + sh[S_BSL + 3] + f * EF[3]
     q0 = c2 * y3 + w2 * y2
@@ -270,11 +295,11 @@ def slip_part(states, o, sh, PHI, EF, WS, r, c2, w2, fkg, ho, k8):
     m2 += WS[SLIP, B_Q, W_FRICTION] * af + sh[S_WSL + B_Q]
     qmax = max(abs(q0), abs(q1)) + k8 * m2
     if qmax > states[o, O_PEAK_TOP]:
-        return False
+        return C_Q
     fr = f * (1.0 + r) / r
     bmax = max(abs(q0 / r - fr), abs(q1 / r - fr)) + k8 * m2 / r
     if bmax > states[o, O_PEAK_BASE]:
-        return False
+        return C_BASE
     u1 = PHI[SLIP, 0, 0] * y0 + PHI[SLIP, 0, 1] * y1_ + PHI[SLIP, 0, 2] * y2
     u1 += PHI[SLIP, 0, 3] * y3 + sh[S_BSL] + f * EF[0]
     states[o, O_U] = u1
@@ -284,7 +309,47 @@ def slip_part(states, o, sh, PHI, EF, WS, r, c2, w2, fkg, ho, k8):
     if abs(u1) > states[o, O_PEAK_U]:
         states[o, O_PEAK_U] = abs(u1)
     states[o, O_SLIDE_TIME] += ho
-    return True
+    return CLEARED
+
+
+@njit(cache=True)
+def quiet_part(cs, K, ho, o, w, xi, r, g, muk, states, Y, poly, y, pk, work):
+    """Advance oscillator ``o`` through a part that has no event (its bound cleared it) but may
+    hold a new peak, as the event kernel does a part without events: the phase's Taylor series
+    on the part (floor polynomial ``cs``), every peak on it by
+    :func:`~floorslide.numerics.polynomial.max_abs_on`, the end state from the series. The
+    event kernel's work without its event searches (``y``, ``pk``: scratch of 4)."""
+    c2 = 2.0 * xi * w
+    w2 = w * w
+    mode = int(states[o, O_MODE])
+    fkg = muk[o] * g
+    for i in range(4):
+        y[i] = states[o, O_U + i]
+        pk[i] = states[o, O_PEAK_U + i]
+    _phase_series(y, mode, cs, K, w, xi, r, fkg, False, Y)
+    for j in range(K + 1):
+        poly[j] = Y[0, j]
+    _update_peak(poly, K, 0.0, ho, pk, 0, work)
+    for j in range(K + 1):
+        poly[j] = Y[2, j]
+    _update_peak(poly, K, 0.0, ho, pk, 1, work)
+    for j in range(K + 1):
+        poly[j] = -(c2 * Y[3, j] + w2 * Y[2, j])
+    _update_peak(poly, K, 0.0, ho, pk, 2, work)
+    if mode == 0:
+        for j in range(K + 1):
+            poly[j] = cs[j]
+        _update_peak(poly, K, 0.0, ho, pk, 3, work)
+    else:
+        sgn = float(mode)
+        for j in range(K + 1):
+            poly[j] = (c2 * Y[3, j] + w2 * Y[2, j]) / r
+        poly[0] -= sgn * fkg * (1.0 + r) / r
+        _update_peak(poly, K, 0.0, ho, pk, 3, work)
+        states[o, O_SLIDE_TIME] += ho
+    for i in range(4):
+        states[o, O_U + i] = poly_val(Y[i], K, ho)
+        states[o, O_PEAK_U + i] = pk[i]
 
 
 @njit(cache=True)
@@ -297,8 +362,9 @@ def oscillator_batch_kernel(X, k0, R, beta, acc, substeps, h, m_o, K, w, xi, r, 
     :func:`phase_propagators` for parts of length ``h/m_o``: per part, the floor's share is
     formed once (:func:`part_inputs`), then each oscillator is cleared by :func:`stick_part` /
     :func:`slip_part` or advanced by the event kernel
-    (:func:`~floorslide.contents._oscillator_kernel._advance_part`). ``counts``: parts cleared
-    and parts sent to the event kernel, by phase (columns ``C_*``), incremented.
+    (:func:`~floorslide.contents._oscillator_kernel._advance_part`). ``counts``
+    (:data:`C_NCOL`): parts cleared and parts sent to the event kernel, by reason and phase,
+    incremented.
     """
     nobj = muk.size
     nsteps = (X.shape[0] - 1) // substeps
@@ -339,23 +405,22 @@ def oscillator_batch_kernel(X, k0, R, beta, acc, substeps, h, m_o, K, w, xi, r, 
                     mode = states[o, O_MODE]
                     if mode == 0.0:
                         fb = mub[o] * (1.0 + r) * g
-                        done = stick_part(states, o, sh, PHI, WS, r, c2, w2, fb, k8)
-                        if done:
-                            counts[C_STICK_FAST] += 1
-                            if sh[S_FLOOR_HI] > states[o, O_PEAK_BASE]:
-                                if sh[S_FLOOR_PEAK] < 0.0:
-                                    # the value the event kernel finds when it exceeds a peak
-                                    fpk, _ = max_abs_on(cs, K, ho, -1.0, work)
-                                    sh[S_FLOOR_PEAK] = fpk
-                                if sh[S_FLOOR_PEAK] > states[o, O_PEAK_BASE]:
-                                    states[o, O_PEAK_BASE] = sh[S_FLOOR_PEAK]
-                        else:
-                            counts[C_STICK_EVENT] += 1
+                        why = stick_part(states, o, sh, PHI, WS, r, c2, w2, fb, k8)
+                        counts[why] += 1
+                        if why == CLEARED and sh[S_FLOOR_HI] > states[o, O_PEAK_BASE]:
+                            if sh[S_FLOOR_PEAK] < 0.0:
+                                # the value the event kernel finds when it exceeds a peak
+                                fpk, _ = max_abs_on(cs, K, ho, -1.0, work)
+                                sh[S_FLOOR_PEAK] = fpk
+                            if sh[S_FLOOR_PEAK] > states[o, O_PEAK_BASE]:
+                                states[o, O_PEAK_BASE] = sh[S_FLOOR_PEAK]
                     else:
-                        done = slip_part(states, o, sh, PHI, EF, WS, r, c2, w2, muk[o] * g,
-                                         ho, k8)  # fmt: skip
-                        counts[C_SLIP_FAST if done else C_SLIP_EVENT] += 1
-                    if not done:
+                        why = slip_part(states, o, sh, PHI, EF, WS, r, c2, w2, muk[o] * g,
+                                        ho, k8)  # fmt: skip
+                        counts[5 + why] += 1
+                    if why != CLEARED and why != C_EVENT:
+                        quiet_part(cs, K, ho, o, w, xi, r, g, muk, states, Y, poly, y, pk, work)
+                    elif why == C_EVENT:
                         _advance_part(c, K, base, ho, o, w, xi, r, g, mub, muk, states,
                                       t_part, max_events, cs_ev, Y, poly, y, pk, work)  # fmt: skip
             if want_hist and sub == substeps - 1:
