@@ -119,7 +119,10 @@ def phase_propagators(ho, K, w, xi, r):
     Returns
     -------
     PHI : (2, 4, 4)
-        ``PHI[p] y0``: the end state from the start state (no floor motion, no friction).
+        ``PHI[p] y0``: the end state from the start state (no floor motion, no friction). Neither
+        phase's derivatives depend on ``u``, nor on ``v`` but ``u' = v``: the first two
+        columns are ``[1, 0, 0, 0]`` and ``[ho, 1, 0, 0]`` (the kernel adds increments to
+        ``u`` and ``v`` instead of multiplying them by 1).
     GF : (2, 4, K+1)
         ``GF[p][:, l]``: the end state from rest under the floor acceleration ``τ^l``.
     EF : (4,)
@@ -248,60 +251,54 @@ def slip_part(states, o, sh, PHI, EF, WS, r, c2, w2, fkg, ho, k8):
     (``C_*``)."""
     s = states[o, O_MODE]
     f = s * fkg
-    y0 = states[o, O_U]
-    y1_ = states[o, O_V]
-    y2 = states[o, O_Z]
-    y3 = states[o, O_ZD]
-    v1 = PHI[SLIP, 1, 0] * y0 + PHI[SLIP, 1, 1] * y1_ + PHI[SLIP, 1, 2] * y2
-    v1 += PHI[SLIP, 1, 3] * y3 + sh[S_BSL + 1] + f * EF[1]
-    av = abs(y1_)
-    az = abs(y2)
-    azd = abs(y3)
+    u0 = states[o, O_U]
+    v0 = states[o, O_V]
+    z0 = states[o, O_Z]
+    zd0 = states[o, O_ZD]
+    # the end state, eq. (3); no derivative depends on u, none on v but u' = v (eq. (2)), so
+    # u and v get increments: one rounding of the (drifting) u and v per part, as in the
+    # series' Horner sums
+    v1 = v0 + (PHI[SLIP, 1, 2] * z0 + PHI[SLIP, 1, 3] * zd0 + sh[S_BSL + 1] + f * EF[1])
+    z1 = PHI[SLIP, 2, 2] * z0 + PHI[SLIP, 2, 3] * zd0 + sh[S_BSL + 2] + f * EF[2]
+    zd1 = PHI[SLIP, 3, 2] * z0 + PHI[SLIP, 3, 3] * zd0 + sh[S_BSL + 3] + f * EF[3]
+    av = abs(v0)
+    az = abs(z0)
+    azd = abs(zd0)
     af = abs(f)
+    q0 = c2 * zd0 + w2 * z0
+    q1 = c2 * zd1 + w2 * z1
+    fr = f * (1.0 + r) / r
     # no stop: s·v > 0 on the whole part, by the chord bound (4) or, better just after a
     # breakaway (v small, |v'| large), by Taylor's bounds from each end over its half:
     # s·v(t) ≥ s·v(0) + s·v'(0) t − m2 t²/2 on [0, ho/2], concave, so ≥ its value at an end
     # (and likewise from ho backwards on [ho/2, ho])
     m2 = WS[SLIP, B_EVENT, 1] * av + WS[SLIP, B_EVENT, 2] * az + WS[SLIP, B_EVENT, 3] * azd
     m2 += WS[SLIP, B_EVENT, W_FRICTION] * af + sh[S_WSL + B_EVENT]
-    p0 = s * y1_
+    p0 = s * v0
     p1 = s * v1
     low = min(p0, p1) - k8 * m2
     tol = MARGIN * (av + abs(v1) + k8 * m2)
     if low <= tol:
-        z1 = PHI[SLIP, 2, 0] * y0 + PHI[SLIP, 2, 1] * y1_ + PHI[SLIP, 2, 2] * y2
-        z1 += PHI[SLIP, 2, 3] * y3 + sh[S_BSL + 2] + f * EF[2]
-        zd1 = PHI[SLIP, 3, 0] * y0 + PHI[SLIP, 3, 1] * y1_ + PHI[SLIP, 3, 2] * y2
-        zd1 += PHI[SLIP, 3, 3] * y3 + sh[S_BSL + 3] + f * EF[3]
         # v' = −a_f + q/r − s mu_k (1+r) g/r, eq. (2)
-        fr = f * (1.0 + r) / r
-        d0 = s * (-sh[S_AF0] + (c2 * y3 + w2 * y2) / r - fr)
-        d1 = s * (-sh[S_AF1] + (c2 * zd1 + w2 * z1) / r - fr)
+        d0 = s * (-sh[S_AF0] + q0 / r - fr)
+        d1 = s * (-sh[S_AF1] + q1 / r - fr)
         half = 0.5 * ho
         low = min(p0, p0 + d0 * half - k8 * m2, p1, p1 - d1 * half - k8 * m2)
         if low <= tol:
             return C_EVENT
-    z1 = PHI[SLIP, 2, 0] * y0 + PHI[SLIP, 2, 1] * y1_ + PHI[SLIP, 2, 2] * y2
-    z1 += PHI[SLIP, 2, 3] * y3 + sh[S_BSL + 2] + f * EF[2]
     m2 = WS[SLIP, B_Z, 1] * av + WS[SLIP, B_Z, 2] * az + WS[SLIP, B_Z, 3] * azd
     m2 += WS[SLIP, B_Z, W_FRICTION] * af + sh[S_WSL + B_Z]
     if max(az, abs(z1)) + k8 * m2 > states[o, O_PEAK_Z]:
         return C_Z
-    zd1 = PHI[SLIP, 3, 0] * y0 + PHI[SLIP, 3, 1] * y1_ + PHI[SLIP, 3, 2] * y2
-    zd1 += PHI[SLIP, 3, 3] * y3 + sh[S_BSL + 3] + f * EF[3]
-    q0 = c2 * y3 + w2 * y2
-    q1 = c2 * zd1 + w2 * z1
     m2 = WS[SLIP, B_Q, 1] * av + WS[SLIP, B_Q, 2] * az + WS[SLIP, B_Q, 3] * azd
     m2 += WS[SLIP, B_Q, W_FRICTION] * af + sh[S_WSL + B_Q]
-    qmax = max(abs(q0), abs(q1)) + k8 * m2
-    if qmax > states[o, O_PEAK_TOP]:
+    if max(abs(q0), abs(q1)) + k8 * m2 > states[o, O_PEAK_TOP]:
         return C_Q
-    fr = f * (1.0 + r) / r
-    bmax = max(abs(q0 / r - fr), abs(q1 / r - fr)) + k8 * m2 / r
-    if bmax > states[o, O_PEAK_BASE]:
+    # the base's acceleration q/r − s mu_k (1+r) g/r: its curvature is q's over r
+    if max(abs(q0 / r - fr), abs(q1 / r - fr)) + k8 * m2 / r > states[o, O_PEAK_BASE]:
         return C_BASE
-    u1 = PHI[SLIP, 0, 0] * y0 + PHI[SLIP, 0, 1] * y1_ + PHI[SLIP, 0, 2] * y2
-    u1 += PHI[SLIP, 0, 3] * y3 + sh[S_BSL] + f * EF[0]
+    du = PHI[SLIP, 0, 1] * v0 + PHI[SLIP, 0, 2] * z0 + PHI[SLIP, 0, 3] * zd0
+    u1 = u0 + (du + sh[S_BSL] + f * EF[0])
     states[o, O_U] = u1
     states[o, O_V] = v1
     states[o, O_Z] = z1
