@@ -23,7 +23,7 @@ and summed at ``ho``, so the same truncated exact solution, computed once per (`
 ``ξ``, ``r``) instead of once per part and friction value (:func:`phase_propagators`). The
 floor terms ``Σ_l G_p c_l`` are formed once per part for all oscillators.
 
-A part needs the event kernel (:func:`~floorslide.contents._oscillator_kernel._advance_part`:
+A part needs the event kernel (:func:`~floorslide.contents._oscillator_kernel.event_part`:
 root isolation of events and peaks) only if something may happen inside it. That is decided
 by the chord bound: for a function ``p`` on ``[0, ho]``,
 
@@ -64,10 +64,10 @@ from floorslide.contents._oscillator_kernel import (
     O_V,
     O_Z,
     O_ZD,
-    _advance_part,
     _phase_series,
     _shift,
     _update_peak,
+    event_part,
 )
 from floorslide.numerics.polynomial import curvature_bound, max_abs_on, scratch
 
@@ -359,7 +359,7 @@ def oscillator_batch_kernel(X, k0, R, beta, acc, substeps, h, m_o, K, w, xi, r, 
     :func:`phase_propagators` for parts of length ``h/m_o``: per part, the floor's share is
     formed once (:func:`part_inputs`), then each oscillator is cleared by :func:`stick_part` /
     :func:`slip_part` or advanced by the event kernel
-    (:func:`~floorslide.contents._oscillator_kernel._advance_part`). ``counts``
+    (:func:`~floorslide.contents._oscillator_kernel.event_part`). ``counts``
     (:data:`C_NCOL`): parts cleared and parts sent to the event kernel, by reason and phase,
     incremented.
     """
@@ -418,8 +418,8 @@ def oscillator_batch_kernel(X, k0, R, beta, acc, substeps, h, m_o, K, w, xi, r, 
                     if why != CLEARED and why != C_EVENT:
                         quiet_part(cs, K, ho, o, w, xi, r, g, muk, states, Y, poly, y, pk, work)
                     elif why == C_EVENT:
-                        _advance_part(c, K, base, ho, o, w, xi, r, g, mub, muk, states,
-                                      t_part, max_events, cs_ev, Y, poly, y, pk, work)  # fmt: skip
+                        event_part(c, K, base, ho, o, w, xi, r, g, mub, muk, states, t_part,
+                                   max_events, cs_ev, Y, poly, y, pk, work, True)  # fmt: skip
             if want_hist and sub == substeps - 1:
                 af_end = poly_val(c, K, h)
                 for o in range(nobj):

@@ -151,3 +151,39 @@ def test_batched_handles_a_floor_at_rest_and_no_friction():
     assert np.all(np.isfinite(res.u)) and np.all(np.isfinite(res.z))
     assert res.slip_phases[1] == 0 and res.peak_slide[1] == 0.0
     assert res.slide_fraction[0] > 0.5
+
+
+def test_monotone_rise_is_first_rise():
+    """Newton's first rise of a certified increasing polynomial settles on the machine number
+    root isolation finds (stops and breakaways of the oscillator's series, degree 15), and
+    defers to root isolation otherwise."""
+    from floorslide.contents._oscillator_kernel import _phase_series, monotone_rise
+    from floorslide.numerics.polynomial import first_rise, scratch
+
+    K, w, xi, r = 15, 2 * np.pi * 5.0, 0.02, 1.0
+    rng = np.random.default_rng(7)
+    Y = np.zeros((4, K + 1))
+    work = scratch(K + 1)
+    cs = np.zeros(K + 1)
+    found = 0
+    for _ in range(400):
+        mode = int(rng.choice([0, 1, -1]))
+        y0 = np.array([0.0, 0.0, 0.0, 0.0])
+        y0[2:] = rng.normal(size=2) * [0.005, 0.2]
+        cs[:2] = rng.normal(size=2) * [3.0, 80.0]
+        fkg = rng.uniform(0.0, 0.5) * G
+        if mode:
+            y0[1] = mode * abs(rng.normal()) * 0.02
+        _phase_series(y0, mode, cs, K, w, xi, r, fkg, False, Y)
+        if mode:
+            p = -mode * Y[1]
+        else:
+            p = r * cs - 2 * xi * w * Y[3] - w * w * Y[2]
+            p = p * float(rng.choice([1.0, -1.0]))
+            p[0] -= abs(p[0]) * rng.uniform(0.0, 0.5) + 1e-3
+        for hi in (0.01, 0.004):
+            a = first_rise(p, K, 0.0, hi, 0.0, work)
+            b = monotone_rise(p, K, hi, work)
+            assert a == b, (a, b)
+            found += a > 0.0
+    assert found > 50
