@@ -22,6 +22,7 @@ import numpy as np
 
 from floorslide._jit import njit
 from floorslide.building._instep import (
+    poly_der,
     poly_val,
     substep_inputs,
     taylor_coefficients,
@@ -94,14 +95,104 @@ def _update_peak(poly, K, lo, hi, peaks, idx, work):
         peaks[idx] = m
 
 
+SETTLE_STEPS = 16
+"""Most machine numbers :func:`monotone_rise` steps through to settle a root."""
+
+
+@njit(cache=True)
+def monotone_rise(c, K, hi, work):
+    """:func:`~floorslide.numerics.polynomial.first_rise` of ``p = Σ c_j τ^j`` above 0 on
+    ``(0, hi]``, by Newton's method when ``p`` is certified increasing.
+
+    When ``p(0) < 0`` and ``p' > 0`` on ``[0, hi]`` — by the chord bound
+    ``min p' ≥ min(p'(0), p'(hi)) − hi²/8 · Σ_{j≥3} j(j−1)(j−2)|c_j| hi^{j−3}`` — ``p`` has at
+    most one root there, a rise: none if ``p(hi)`` is certified ``≤ 0`` (its Horner rounding
+    bound, Higham 2002 §5.1), else it is found by Newton's method safeguarded by bisection and
+    settled on the smallest machine number with ``p > 0`` (the one after it ``≤ 0``), as root
+    isolation settles it where the evaluated ``p`` is monotone. Any other case (a start at or
+    above 0, no certified slope, a root within rounding of ``hi``, a root that does not settle
+    within :data:`SETTLE_STEPS` machine numbers) goes to ``first_rise``. The events of a
+    2-DOF oscillator (a stop, a breakaway) are simple roots crossed at a certified slope
+    nearly always: one Newton solve instead of root isolation's Bernstein subdivision.
+    """
+    p0 = c[0]
+    if not p0 < 0.0:
+        return first_rise(c, K, 0.0, hi, 0.0, work)
+    # first_rise's own quick rejection, operation for operation: p ≤ 0 on [0, hi]
+    span = 0.0
+    hj = 1.0
+    for j in range(1, K + 1):
+        hj *= hi
+        span += abs(c[j]) * hj
+    if p0 + span <= 0.0:
+        return -1.0
+    m3 = 0.0
+    for j in range(K, 2, -1):
+        m3 = m3 * hi + j * (j - 1) * (j - 2) * abs(c[j])
+    d0 = c[1]
+    d1 = poly_der(c, K, hi)
+    if not min(d0, d1) - 0.125 * hi * hi * m3 > 0.0:
+        return first_rise(c, K, 0.0, hi, 0.0, work)
+    p1 = poly_val(c, K, hi)
+    err = 4.0 * (K + 1) * 1.12e-16 * (abs(p0) + span) + 1e-300
+    if p1 < -err:
+        return -1.0
+    if not p1 > err:
+        return first_rise(c, K, 0.0, hi, 0.0, work)
+    lo = 0.0
+    up = hi
+    x = hi * (-p0 / (p1 - p0))
+    if not 0.0 < x < hi:
+        x = 0.5 * hi
+    for _ in range(100):
+        f = poly_val(c, K, x)
+        if f > 0.0:
+            up = x
+        else:
+            lo = x
+        xn = x - f / poly_der(c, K, x)
+        if abs(xn - x) <= 4.0 * (np.nextafter(x, np.inf) - x):
+            x = xn  # converged to a few machine numbers: settled below
+            break
+        if not lo < xn < up:
+            xn = 0.5 * (lo + up)
+        if xn <= lo or xn >= up:
+            break
+        x = xn
+    # settle: p(x) > 0 and p(x⁻) ≤ 0, x⁻ the machine number before x
+    x = min(max(x, np.nextafter(0.0, 1.0)), hi)
+    for _ in range(SETTLE_STEPS):
+        if not poly_val(c, K, x) > 0.0:
+            if x >= hi:
+                break
+            x = np.nextafter(x, np.inf)
+            continue
+        xp = np.nextafter(x, -np.inf)
+        if xp > 0.0 and poly_val(c, K, xp) > 0.0:
+            x = xp
+            continue
+        return x
+    return first_rise(c, K, 0.0, hi, 0.0, work)
+
+
 @njit(cache=True)
 def _advance_part(c, K, base, ho, o, w, xi, r, g, mub, muk, states, t_part, max_events, cs, Y,
                   poly, y, pk, work):  # fmt: skip
     """Advance oscillator ``o`` through one part ``[base, base + ho]`` of a piece on which the
     floor's absolute acceleration is the polynomial ``c`` (degree ``K``, origin at the piece's
     start), by events: the phase's Taylor series, breakaway, stop and reversal as first
-    crossings, peaks inside. ``t_part``: the part's start in the record (for the event limit).
-    Shared by :func:`oscillator_kernel` and the nonlinear-isolation kernel."""
+    crossings (by root isolation), peaks inside. ``t_part``: the part's start in the record
+    (for the event limit). Shared by :func:`oscillator_kernel` and the nonlinear-isolation
+    kernel (:func:`event_part` with root isolation throughout)."""
+    return event_part(c, K, base, ho, o, w, xi, r, g, mub, muk, states, t_part, max_events, cs,
+                      Y, poly, y, pk, work, False)  # fmt: skip
+
+
+@njit(cache=True)
+def event_part(c, K, base, ho, o, w, xi, r, g, mub, muk, states, t_part, max_events, cs, Y,
+               poly, y, pk, work, newton):  # fmt: skip
+    """:func:`_advance_part`; with ``newton``, each event is first sought by
+    :func:`monotone_rise` (the batched kernel, :mod:`floorslide.contents._oscillator_batch`)."""
     c2 = 2.0 * xi * w
     w2 = w * w
     mode = int(states[o, O_MODE])
@@ -140,11 +231,17 @@ def _advance_part(c, K, base, ho, o, w, xi, r, g, mub, muk, states, t_part, max_
                 for j in range(K + 1):
                     poly[j] = r * cs[j] - c2 * Y[3, j] - w2 * Y[2, j]
                 poly[0] -= fb
-                t_up = first_rise(poly, K, 0.0, span, 0.0, work)
+                if newton:
+                    t_up = monotone_rise(poly, K, span, work)
+                else:
+                    t_up = first_rise(poly, K, 0.0, span, 0.0, work)
                 for j in range(K + 1):
                     poly[j] = -(r * cs[j] - c2 * Y[3, j] - w2 * Y[2, j])
                 poly[0] -= fb
-                t_lo = first_rise(poly, K, 0.0, span, 0.0, work)
+                if newton:
+                    t_lo = monotone_rise(poly, K, span, work)
+                else:
+                    t_lo = first_rise(poly, K, 0.0, span, 0.0, work)
             if t_up >= 0.0 and (t_lo < 0.0 or t_up <= t_lo):
                 t_ev, new_mode = t_up, -1
             elif t_lo >= 0.0:
@@ -153,7 +250,10 @@ def _advance_part(c, K, base, ho, o, w, xi, r, g, mub, muk, states, t_part, max_
             sgn = float(mode)
             for j in range(K + 1):
                 poly[j] = -sgn * Y[1, j]
-            t_ev = first_rise(poly, K, 0.0, span, 0.0, work)
+            if newton:
+                t_ev = monotone_rise(poly, K, span, work)
+            else:
+                t_ev = first_rise(poly, K, 0.0, span, 0.0, work)
         t_end = span if t_ev < 0.0 else t_ev
         # peaks on [0, t_end]
         for j in range(K + 1):

@@ -11,6 +11,7 @@ peak in the 1989 study).
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field, replace
 
@@ -20,6 +21,7 @@ from floorslide.building.exact import spectral_radius, substeps_for, taylor_degr
 from floorslide.building.exact_motion import FloorMotion, single_use_motion, unwrap
 from floorslide.building.model import LinearBuilding
 from floorslide.constants import G
+from floorslide.contents import _oscillator_batch as batch
 from floorslide.contents import _oscillator_kernel as cols
 from floorslide.contents._oscillator_kernel import oscillator_kernel
 from floorslide.contents.events import OSCILLATOR_MAX_EVENTS, check_event_limit
@@ -28,6 +30,7 @@ from floorslide.errors import ModelError
 from floorslide.inputs import RecordLike
 
 
+@functools.lru_cache(maxsize=64)
 def phase_radius(w: float, xi: float, r: float) -> float:
     """Largest spectral radius of the oscillator's two phase matrices: stick
     ``[[0, 1], [−w², −2ξw]]`` and slip ``[[0, 1], [−w²k, −2ξwk]]`` with ``k = 1 + 1/r`` (the
@@ -183,7 +186,6 @@ def slide_oscillator(
     if not (np.isfinite(r) and r > 0):
         raise ModelError(f"mass_ratio must be > 0, got {mass_ratio}", "mass_ratio")
     w = 2 * math.pi * f
-    rho_obj = phase_radius(w, xi, r)
     if building is not None and floor is None:
         raise ModelError("floor is required with building=", "floor")
     on_floor = building is not None and building.dof_of(floor) is not None
@@ -198,40 +200,7 @@ def slide_oscillator(
         return replace(result, notes=notes) if notes else result
     if fm is None:
         fm = single_use_motion(building if on_floor else None, a, dt, floor if on_floor else 0)
-    # the floor motion's own sub-steps, each split so that the oscillator's phases have
-    # ρ·h ≤ 0.5 (the floor polynomial is shifted to each part)
-    rho_b = 0.0 if fm.ground else spectral_radius(fm.motion.stepper.A)
-    m_o = substeps_for(rho_obj, fm.h)
-    ho = fm.h / m_o
-    K = max(fm.order, taylor_degree(max(rho_b, rho_obj) * ho))
-    states = np.zeros((mk.size, cols.O_NCOL))
-    states[:, cols.O_LIMIT_AT] = -1.0
-    hist = np.zeros((mk.size, a.size, 4) if histories else (0, 0, 4))
-    if histories:
-        hist[:, 0, 3] = fm.beta[0] * a[0]
-    mub = np.maximum(mk, ms)
-    for k0, X in fm.chunks():
-        oscillator_kernel(
-            X,
-            k0,
-            fm.R,
-            fm.beta,
-            a,
-            fm.substeps,
-            fm.h,
-            m_o,
-            K,
-            w,
-            xi,
-            r,
-            G,
-            mub,
-            mk,
-            states,
-            hist,
-            histories,
-            OSCILLATOR_MAX_EVENTS,
-        )
+    states, hist = _exact_states(fm, a, mk, ms, w, xi, r, histories)
     check_event_limit(states[:, cols.O_LIMIT_AT], mk, OSCILLATOR_MAX_EVENTS, "slide_oscillator")
     duration = (a.size - 1) * dt
     return OscillatorResult(
@@ -252,6 +221,58 @@ def slide_oscillator(
         base_accel=hist[:, :, 3].copy() if histories else None,
         notes=notes,
     )
+
+
+def _exact_states(fm, a, mk, ms, w, xi, r, histories, batched=True, counts=None):
+    """Run the exact kernel over the floor motion `fm` for every friction pair at once:
+    ``(states, hist)``, the kernel's state columns per pair and the histories at the samples.
+
+    ``batched``: the batched kernel (:mod:`floorslide.contents._oscillator_batch`: exact
+    propagators shared by all pairs, the event kernel only for parts where something may
+    happen), or else the event kernel on every part
+    (:func:`~floorslide.contents._oscillator_kernel.oscillator_kernel`, the reference the
+    tests compare with). ``counts``: the batched kernel's part counters
+    (:data:`~floorslide.contents._oscillator_batch.C_NCOL` integers), incremented.
+    """
+    # the floor motion's own sub-steps, each split so that the oscillator's phases have
+    # ρ·h ≤ 0.5 (the floor polynomial is shifted to each part)
+    rho_obj = phase_radius(w, xi, r)
+    rho_b = 0.0 if fm.ground else spectral_radius(fm.motion.stepper.A)
+    m_o = substeps_for(rho_obj, fm.h)
+    ho = fm.h / m_o
+    K = max(fm.order, taylor_degree(max(rho_b, rho_obj) * ho))
+    states = np.zeros((mk.size, cols.O_NCOL))
+    states[:, cols.O_LIMIT_AT] = -1.0
+    hist = np.zeros((mk.size, a.size, 4) if histories else (0, 0, 4))
+    if histories:
+        hist[:, 0, 3] = fm.beta[0] * a[0]
+    mub = np.maximum(mk, ms)
+    if batched:
+        prop = _propagators(ho, K, w, xi, r)
+        if counts is None:
+            counts = np.zeros(batch.C_NCOL, dtype=np.int64)
+    for k0, X in fm.chunks():
+        if batched:
+            batch.oscillator_batch_kernel(
+                X, k0, fm.R, fm.beta, a, fm.substeps, fm.h, m_o, K, w, xi, r, G, mub, mk,
+                *prop, states, hist, histories, OSCILLATOR_MAX_EVENTS, counts,
+            )  # fmt: skip
+        else:
+            oscillator_kernel(
+                X, k0, fm.R, fm.beta, a, fm.substeps, fm.h, m_o, K, w, xi, r, G, mub, mk,
+                states, hist, histories, OSCILLATOR_MAX_EVENTS,
+            )  # fmt: skip
+    return states, hist
+
+
+@functools.lru_cache(maxsize=32)
+def _propagators(ho: float, K: int, w: float, xi: float, r: float):
+    """:func:`~floorslide.contents._oscillator_batch.phase_propagators`, kept for repeated
+    calls with the same oscillator and part length (read-only arrays)."""
+    out = batch.phase_propagators(ho, K, w, xi, r)
+    for arr in out:
+        arr.setflags(write=False)
+    return out
 
 
 def _approximate(a, dt, mk, ms, w, xi, r, building, floor, method, histories, settings):
