@@ -17,6 +17,7 @@ from floorslide.building.exact_motion import FloorMotion, single_use_motion, unw
 from floorslide.building.model import LinearBuilding
 from floorslide.constants import G
 from floorslide.contents import _kernels as cols
+from floorslide.contents._ground_kernel import NOT_FINITE, ground_kernel
 from floorslide.contents._kernels import slide_kernel
 from floorslide.contents.events import SLIDE_MAX_EVENTS, check_event_limit
 from floorslide.errors import ModelError
@@ -277,6 +278,9 @@ def slide(
             integrator,
             max_step,
         )
+    elif fm is None and building is None and vert is None:
+        # the ground (floor None or 0, checked above): no motion to build
+        result = _slide_ground(a, dt, mk, ms, direction, histories)
     else:
         if fm is None:
             fm = single_use_motion(building, a, dt, floor)
@@ -284,7 +288,14 @@ def slide(
     return replace(result, notes=notes) if notes else result
 
 
-def _slide_exact(fm: FloorMotion, mk, ms, vert, direction, histories) -> SlideResult:
+def _slide_exact(
+    fm: FloorMotion, mk, ms, vert, direction, histories, general: bool = False
+) -> SlideResult:
+    """The exact solver on a floor motion: the ground's own kernel on the ground without
+    vertical shaking (:func:`_slide_ground`), else the general kernel (always, with
+    ``general=True``: the reference of the ground's kernel in the tests)."""
+    if fm.ground and vert is None and not general:
+        return _slide_ground(fm.acc, fm.dt, mk, ms, direction, histories)
     allow_pos, allow_neg = _allowed(direction)
     a, dt = fm.acc, fm.dt
     nobj = mk.size
@@ -321,7 +332,34 @@ def _slide_exact(fm: FloorMotion, mk, ms, vert, direction, histories) -> SlideRe
             lift,
             SLIDE_MAX_EVENTS,
         )
+    return _result(states, mk, ms, a.size, dt, direction, lift, hu, hv, ha, histories)
+
+
+def _slide_ground(a, dt, mk, ms, direction, histories) -> SlideResult:
+    """Rigid blocks on the ground without vertical shaking: the ground's kernel
+    (:func:`floorslide.contents._ground_kernel.ground_kernel`), the general kernel's results
+    bit for bit at a fraction of its cost. `a`: validated samples (finite, float64, C-ordered);
+    `mk`, `ms` from :func:`friction_pairs`."""
+    allow_pos, allow_neg = _allowed(direction)
+    nobj = mk.size
+    npts = a.size
+    states = np.zeros((nobj, cols.NCOL))
+    states[:, cols.LIMIT_AT] = -1.0
+    hist = np.empty((3, nobj, npts)) if histories else np.empty((3, 0, 0))
+    MU = np.empty((2, nobj))
+    np.maximum(mk, ms, out=MU[0])
+    MU[1] = mk
+    flags = np.array([allow_pos, allow_neg, SLIDE_MAX_EVENTS, histories], dtype=np.int64)
+    if ground_kernel(a, MU, np.array([dt, G]), flags, states, hist) == NOT_FINITE:
+        raise ModelError("acc has NaN or infinite samples", "acc")
+    return _result(states, mk, ms, npts, dt, direction, None, *hist, histories)
+
+
+def _result(states, mk, ms, npts, dt, direction, lift, hu, hv, ha, histories) -> SlideResult:
+    """The :class:`SlideResult` of the kernels' final states (and lift-off record ``lift``,
+    None without vertical shaking); raises if an object reached the event limit."""
     check_event_limit(states[:, cols.LIMIT_AT], mk, SLIDE_MAX_EVENTS, "slide")
+    nobj = mk.size
     duration = (npts - 1) * dt
     return SlideResult(
         mu_k=mk,
@@ -332,8 +370,8 @@ def _slide_exact(fm: FloorMotion, mk, ms, vert, direction, histories) -> SlideRe
         slide_fraction=states[:, cols.SLIDE_TIME] / duration if duration > 0 else np.zeros(nobj),
         slip_phases=states[:, cols.SLIPS].astype(int),
         time_of_peak=states[:, cols.T_PEAK].copy(),
-        liftoff_time=float(lift[0]),
-        liftoff_count=int(lift[1]),
+        liftoff_time=0.0 if lift is None else float(lift[0]),
+        liftoff_count=0 if lift is None else int(lift[1]),
         duration=duration,
         method="exact",
         direction=direction,

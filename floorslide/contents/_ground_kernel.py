@@ -1,0 +1,473 @@
+"""Compiled kernel of rigid blocks sliding with Coulomb friction on the ground (no building).
+
+On the ground the floor acceleration inside a record step is the record's own linear segment,
+``a(τ) = a_k + s_k·τ`` with ``s_k = (a_{k+1} − a_k)/Δt``, and without vertical shaking the
+normal acceleration is ``g``. Everything the event-driven solver of
+:mod:`floorslide.contents._kernels` finds by polynomial root isolation is then closed form
+(docs/design.md §2, with ``N = g``):
+
+* stick → slip when ``|a(τ)|`` reaches the breakaway level ``mu_b·g``
+  (``mu_b = max(mu_s, mu_k)``): the root of a linear function;
+* during slip with relative velocity of sign ``σ``,
+  ``v(τ) = v_0 − a_k τ − s_k τ²/2 − σ mu_k g τ`` (a quadratic) and
+  ``u(τ) = u_0 + v_0 τ − a_k τ²/2 − s_k τ³/6 − σ mu_k g τ²/2`` (a cubic);
+* slip → stop at the first root of the quadratic ``v`` (then stick, or slip the other way if
+  ``|a| > mu_b·g`` there: Westermo & Udwadia 1983); ``|u|`` is monotone while ``v`` keeps its
+  sign, so the peak slide is at a stop or a step end.
+
+This kernel is that solver specialised to the ground: the same decisions, in the same floating
+point operations, as the general kernel run on the ground's motion (a floor with no states,
+Taylor degree ``K = 1``, one sub-step per record step), so its results are the same bits
+(checked by ``tests/contents/test_ground_fast_path.py``). What makes it faster:
+
+* a step's shared quantities (the changes of the ground velocity ``ΔV_k = Δt (a_k + a_{k+1})/2``
+  and of its displacement ``ΔD_k = a_k Δt²/2 + s_k Δt³/6``) are formed once per block of
+  :data:`BLOCK` steps for all objects, not once per object;
+* objects are advanced one at a time through a block (their state in registers, the block's
+  ground quantities in cache); most steps are decided by two comparisons (a block that stays
+  stuck: ``mu_b·g`` above ``|a|`` at both ends; a block that keeps slipping one way: the
+  relative velocity keeps its sign and the friction dominates the floor throughout) and
+  advanced in closed form;
+* only steps with an event (breakaway, stop, reversal) go through :func:`_events`, the event
+  loop of the general kernel with ``K = 1``; its roots are found by the same
+  :func:`~floorslide.numerics.polynomial.first_rise` (closed form for degrees 1 and 2, root
+  isolation when a sign is within rounding).
+
+Vertical shaking (normal force ``g + a_v``, lift-off) is not handled here: those calls use the
+general kernel.
+
+References
+----------
+Westermo, B., Udwadia, F. (1983). Periodic response of a sliding oscillator system to harmonic
+excitation. *Earthquake Eng. Struct. Dyn.* 11, 135–146.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from floorslide._jit import njit
+from floorslide.contents._kernels import (
+    DISP,
+    LIMIT_AT,
+    MODE,
+    NCOL,
+    PEAK_ACC,
+    PEAK_DISP,
+    SLIDE_TIME,
+    SLIPS,
+    STICK,
+    T_PEAK,
+    VEL,
+)
+from floorslide.numerics.polynomial import first_rise, scratch
+
+BLOCK = 1024
+"""Record steps whose shared ground quantities are formed at once (they stay in the L1 cache
+while every object crosses the block)."""
+
+NOT_FINITE = 1
+"""Returned by :func:`ground_kernel` when the record holds NaN or infinite samples (nothing is
+computed)."""
+
+
+@njit(cache=True)
+def _events(a0, slope, h, g, mub, muk, allow_pos, allow_neg, t0, st, q, rw, max_events):
+    """Advance one block through one record step event by event, exactly.
+
+    The event loop of :func:`floorslide.contents._kernels._general` on the ground without
+    vertical shaking: floor acceleration ``a0 + slope·τ`` (Taylor degree 1), normal
+    acceleration ``g``; operation for operation the same arithmetic (terms that vanish
+    identically there, such as the slope of the normal force, are dropped only where that
+    cannot change a bit: ``g + 0·τ = g`` for finite ``τ ≥ 0``).
+
+    Parameters
+    ----------
+    a0, slope
+        Floor acceleration at the step start and its slope, m/s², m/s³ (its Taylor
+        coefficients, formed as the general kernel forms them).
+    h
+        Step length, s.
+    g
+        Gravity, m/s².
+    mub, muk
+        Breakaway ``max(mu_s, mu_k)`` and kinetic friction coefficients.
+    allow_pos, allow_neg
+        Whether slip with positive / negative relative velocity is allowed.
+    t0
+        Time of the step start, s.
+    st
+        One object's state row (columns :data:`~floorslide.contents._kernels.MODE` …
+        :data:`~floorslide.contents._kernels.LIMIT_AT`), in/out.
+    q, rw
+        Scratch: three coefficients, and the root isolation's
+        (:func:`~floorslide.numerics.polynomial.scratch`).
+    max_events
+        Most events in the step (:mod:`floorslide.contents.events`); reaching it records
+        ``t0`` in ``st[LIMIT_AT]`` and leaves the rest of the step undone.
+    """
+    mode = int(st[MODE])
+    v = st[VEL]
+    u = st[DISP]
+    fb = mub * g  # breakaway level mu_b·(g + 0·τ)
+    fk = muk * g
+    tau = 0.0
+    guard = 0
+    while tau < h:
+        if guard >= max_events:
+            if st[LIMIT_AT] < 0.0:
+                st[LIMIT_AT] = t0
+            break
+        guard += 1
+        tau_end = h
+        if mode == STICK:
+            # a floor already beyond the breakaway level when a stick phase begins moves the
+            # block at once
+            a_now = slope * tau + a0
+            if a_now > fb and allow_neg:
+                mode = -1
+                v = 0.0
+                st[SLIPS] += 1
+                continue
+            if a_now < -fb and allow_pos:
+                mode = 1
+                v = 0.0
+                st[SLIPS] += 1
+                continue
+            # first instant a(τ) leaves [−mu_b g, mu_b g] in an allowed way: the root of a
+            # linear function (first_rise decides degree 1 in closed form)
+            t_up = -1.0
+            t_lo = -1.0
+            if allow_neg:
+                q[0] = a0 - mub * g
+                q[1] = slope  # slope − mu_b·0: the same bits
+                t_up = first_rise(q, 1, tau, tau_end, 0.0, rw)
+            if allow_pos:
+                q[0] = -a0 - mub * g
+                q[1] = -slope
+                t_lo = first_rise(q, 1, tau, tau_end, 0.0, rw)
+            t_ev = -1.0
+            new_mode = STICK
+            if t_up >= 0.0 and (t_lo < 0.0 or t_up <= t_lo):
+                t_ev = t_up
+                new_mode = -1
+            elif t_lo >= 0.0:
+                t_ev = t_lo
+                new_mode = 1
+            t_stop = tau_end if t_ev < 0.0 else t_ev
+            # the block moves with the ground on [tau, t_stop]: |a| peaks at an end (linear),
+            # and friction transmits at most mu_b·g
+            a_abs = max(abs(slope * tau + a0), abs(slope * t_stop + a0))
+            a_abs = min(a_abs, fb)
+            if a_abs > st[PEAK_ACC]:
+                st[PEAK_ACC] = a_abs
+            if t_ev < 0.0:
+                tau = tau_end
+            else:
+                tau = t_ev
+                mode = new_mode
+                v = 0.0
+                st[SLIPS] += 1
+            continue
+        # slipping in direction s: v(τ) = p0 + p1 τ + p2 τ² (the general kernel's series of
+        # the relative velocity, its coefficients formed by the same operations)
+        s = float(mode)
+        p1 = -a0 / 1
+        p2 = -slope / 2
+        p1 -= s * muk * g
+        p2 -= s * muk * 0.0 * 0.5  # the normal force's slope term (sign of a zero included)
+        p0 = v - ((p2 * tau + p1) * tau + 0.0)
+        # stop: first τ where −s·v(τ) rises above 0 (a quadratic: closed form in first_rise)
+        q[0] = -s * p0
+        q[1] = -s * p1
+        q[2] = -s * p2
+        t_s = first_rise(q, 2, tau, tau_end, 0.0, rw)
+        t_stop = tau_end if t_s < 0.0 else t_s
+        # u(τ) = u + U(τ) − U(tau), U the integral of v (Horner, as poly_val)
+        w1 = p0 / 1
+        w2 = p1 / 2
+        w3 = p2 / 3
+        u = u + (((w3 * t_stop + w2) * t_stop + w1) * t_stop + 0.0)
+        u = u - (((w3 * tau + w2) * tau + w1) * tau + 0.0)
+        if fk > st[PEAK_ACC]:
+            st[PEAK_ACC] = fk
+        st[SLIDE_TIME] += t_stop - tau
+        # |u| is monotone while v keeps its sign: its peak is at the stop or the step end
+        if abs(u) > st[PEAK_DISP]:
+            st[PEAK_DISP] = abs(u)
+            st[T_PEAK] = t0 + t_stop
+        if t_s < 0.0:
+            v = (p2 * tau_end + p1) * tau_end + p0
+            tau = tau_end
+            continue
+        # the relative velocity reached zero: stick, or slip on the other way if the floor
+        # acceleration exceeds the breakaway level right now
+        v = 0.0
+        tau = t_s
+        a_now = slope * tau + a0
+        if a_now > fb and allow_neg:
+            mode = -1
+            st[SLIPS] += 1
+        elif a_now < -fb and allow_pos:
+            mode = 1
+            st[SLIPS] += 1
+        else:
+            mode = STICK
+    st[MODE] = mode
+    st[VEL] = v
+    st[DISP] = u
+
+
+@njit(cache=True, inline="always")
+def _no_rise(q0, q1, q2, h):
+    """True when :func:`~floorslide.numerics.polynomial.first_rise` of ``q0 + q1 τ + q2 τ²``
+    above 0 on ``(0, h]`` returns "none" by one of its quick rejections, replayed operation
+    for operation (``p(0) + Σ|q_j| h^j ≤ 0``, then every Bernstein coefficient ``≤ 0``, for
+    the degree left once zero leading coefficients are dropped); False when they do not
+    decide (then the search itself must run)."""
+    if q2 != 0.0:
+        if q0 + (abs(q1) * h + abs(q2) * (h * h)) <= 0.0:
+            return True
+        lq2 = 0.0 * q2
+        t1 = q1 + lq2
+        b0 = q0 + 0.0 * t1
+        o1 = (t1 + lq2) * h
+        return max(b0, max(b0 + 0.5 * o1, (b0 + o1) + q2 * (h * h))) <= 0.0
+    if q1 != 0.0:
+        if q0 + abs(q1) * h <= 0.0:
+            return True
+        b0 = q0 + 0.0 * q1
+        return max(b0, b0 + q1 * h) <= 0.0
+    return not q0 > 0.0
+
+
+@njit(cache=True, inline="always")
+def _slip_no_stop(mode, c0, c1, v, u, muk, g, h):
+    """A whole step of slip in direction ``mode`` (±1) by the formulas of :func:`_events`
+    (from ``τ = 0``, Taylor coefficients ``c0, c1`` of the floor acceleration), when its stop
+    search provably finds no stop (:func:`_no_rise`): ``(True, u_end, v_end)``; else
+    ``(False, u, v)``.
+
+    With ``τ = 0`` two of its terms are exact zeros: ``v − V(0)`` and ``u − U(0)`` (``V``,
+    ``U`` its Horner polynomials without constant term, ``±0 + 0.0 = +0.0`` at ``τ = 0``) are
+    ``v`` and ``u`` bit for bit.
+    """
+    s = mode
+    p1 = -c0 / 1
+    p2 = -c1 / 2
+    p1 -= s * muk * g
+    p2 -= s * muk * 0.0 * 0.5
+    if not _no_rise(-s * v, -s * p1, -s * p2, h):
+        return False, u, v
+    w1 = v / 1
+    w2 = p1 / 2
+    w3 = p2 / 3
+    u_end = u + (((w3 * h + w2) * h + w1) * h + 0.0)
+    v_end = (p2 * h + p1) * h + v
+    return True, u_end, v_end
+
+
+@njit(cache=True, inline="always")
+def _not_finite(acc):
+    """Whether `acc` holds a NaN or an infinity (every exponent bit set), by integer
+    operations that vectorise."""
+    bits = acc.view(np.int64)
+    mask = 0x7FF0000000000000
+    bad = 0
+    for k in range(bits.size):
+        bad += (bits[k] & mask) == mask
+    return bad != 0
+
+
+@njit(cache=True)
+def ground_kernel(acc, MU, p, flags, states, hist):
+    """Rigid blocks on the ground, exact for the piecewise-linear record, without vertical
+    shaking: the general :func:`~floorslide.contents._kernels.slide_kernel` on the ground's
+    motion, specialised (same results, bit for bit; see the module notes).
+
+    Parameters
+    ----------
+    acc
+        Ground acceleration samples, m/s² (at least one).
+    MU
+        ``(2, n_obj)``: breakaway ``max(mu_s, mu_k)`` and kinetic friction coefficients.
+    p
+        ``[dt, g]``: the record step and gravity.
+    flags
+        ``[allow_pos, allow_neg, max_events, want_hist]``: the allowed slip directions, the
+        most events per object and step (:mod:`floorslide.contents.events`), and whether to
+        fill `hist`.
+    states
+        ``(n_obj, NCOL)`` in/out, columns :data:`~floorslide.contents._kernels.MODE` …
+        :data:`~floorslide.contents._kernels.LIMIT_AT`, zero but ``LIMIT_AT = −1`` at the
+        start (a reached event limit is reported by the caller).
+    hist
+        ``(3, n_obj, npts)``: ``u``, ``v`` and the object's absolute acceleration at the
+        samples, when ``want_hist`` (else any shape).
+
+    Returns
+    -------
+    int
+        0, or :data:`NOT_FINITE` when `acc` holds NaN or infinite samples (nothing is done).
+
+    Notes
+    -----
+    Per object and step, as :func:`~floorslide.contents._kernels.objects_on_substep` on the
+    ground: a stuck block whose ground acceleration stays within ``±mu_b·g`` at both step ends
+    (``a`` is linear) stays stuck, its acceleration peaking at an end; a block slipping with
+    relative velocity of sign ``σ`` whose velocity at the step end,
+    ``v_1 = v_0 − ΔV_k − σ mu_k g Δt``, has kept the sign, with friction dominating the ground
+    throughout (``σ a > −mu_k g`` at both ends: ``v`` monotone), moves by
+    ``u_1 = u_0 + v_0 Δt − ΔD_k − σ mu_k g Δt²/2``; every other step goes through
+    :func:`_events`.
+    """
+    h = p[0]
+    g = p[1]
+    allow_pos = flags[0] != 0
+    allow_neg = flags[1] != 0
+    max_events = flags[2]
+    want_hist = flags[3] != 0
+    npts = acc.size
+    if _not_finite(acc):
+        return NOT_FINITE
+    nobj = MU.shape[1]
+    nsteps = npts - 1
+    # the ground's normal acceleration and its integrals over a step (as slide_kernel forms
+    # them without vertical shaking)
+    nint = g * h
+    nint2 = g * h * h / 2.0
+    rw = scratch(4)
+    q = np.zeros(3)
+    st = np.empty(NCOL)
+    dV = np.empty(BLOCK)
+    dD = np.empty(BLOCK)
+    # the start (the ground at rest): friction transmits at most mu_b·g
+    a_start = 1.0 * acc[0]
+    for i in range(nobj):
+        a_obj = min(abs(a_start), MU[0, i] * max(g, 0.0))
+        if a_obj > states[i, PEAK_ACC]:
+            states[i, PEAK_ACC] = a_obj
+        if want_hist:
+            hist[0, i, 0] = states[i, DISP]
+            hist[1, i, 0] = states[i, VEL]
+            hist[2, i, 0] = a_start
+    for k0 in range(0, nsteps, BLOCK):
+        k1 = min(k0 + BLOCK, nsteps)
+        # shared by every object: the changes of the ground velocity and of its displacement
+        # (minus v_0·Δt) over each step, by slide_kernel's operations on a floor with no states
+        for k in range(k0, k1):
+            aa = acc[k]
+            ab = acc[k + 1]
+            slope = (ab - aa) / h
+            dV[k - k0] = 0.0 + 0.5 * h * (aa + ab)
+            dD[k - k0] = 0.0 + (aa * h * h / 2.0 + slope * h * h * h / 6.0)
+        for i in range(nobj):
+            mub = MU[0, i]
+            muk = MU[1, i]
+            fb = mub * g  # breakaway level
+            fk = muk * g  # kinetic friction
+            # σ·mu_k·g·Δt and σ·mu_k·g·Δt²/2 for σ = ±1
+            kv_pos = 1.0 * muk * nint
+            kv_neg = -1.0 * muk * nint
+            ku_pos = 1.0 * muk * nint2
+            ku_neg = -1.0 * muk * nint2
+            mode = states[i, MODE]
+            v = states[i, VEL]
+            u = states[i, DISP]
+            peak = states[i, PEAK_DISP]
+            t_peak = states[i, T_PEAK]
+            slide_time = states[i, SLIDE_TIME]
+            peak_acc = states[i, PEAK_ACC]
+            for k in range(k0, k1):
+                a0 = acc[k]
+                a1 = acc[k + 1]
+                amin = min(a0, a1)
+                amax = max(a0, a1)
+                done = False
+                if mode == 0.0:
+                    if (amax <= fb or not allow_neg) and (amin >= -fb or not allow_pos):
+                        a_abs = max(amax, -amin)
+                        if a_abs > peak_acc:
+                            peak_acc = a_abs
+                        done = True
+                elif mode == 1.0 or mode == -1.0:
+                    pos = mode > 0.0
+                    v_end = v - dV[k - k0] - (kv_pos if pos else kv_neg)
+                    if mode * v_end > 0.0 and ((amin > -fk) if pos else (amax < fk)):
+                        u = u + v * h - dD[k - k0] - (ku_pos if pos else ku_neg)
+                        v = v_end
+                        slide_time += h
+                        if abs(u) > peak:
+                            peak = abs(u)
+                            t_peak = k * h + h
+                        if fk > peak_acc:
+                            peak_acc = fk
+                        done = True
+                    else:
+                        # the general kernel hands this step to its event loop; when that
+                        # loop's stop search provably finds no stop, its formulas are applied
+                        # here (_slip_no_stop), else the loop itself runs
+                        c1 = 0.0 + (a1 - a0) / h
+                        c0 = 0.0 + (a0 + (a1 - a0) * 0.0)
+                        ok, u1, v1 = _slip_no_stop(mode, c0, c1, v, u, muk, g, h)
+                        if ok:
+                            u = u1
+                            v = v1
+                            if fk > peak_acc:
+                                peak_acc = fk
+                            slide_time += h
+                            if abs(u) > peak:
+                                peak = abs(u)
+                                t_peak = k * h + h
+                            done = True
+                if not done:
+                    st[MODE] = mode
+                    st[VEL] = v
+                    st[DISP] = u
+                    st[PEAK_DISP] = peak
+                    st[T_PEAK] = t_peak
+                    st[SLIDE_TIME] = slide_time
+                    st[SLIPS] = states[i, SLIPS]
+                    st[PEAK_ACC] = peak_acc
+                    st[LIMIT_AT] = states[i, LIMIT_AT]
+                    # the Taylor coefficients of the step's acceleration as the general kernel
+                    # forms them (taylor_coefficients on the ground: a −0 becomes +0)
+                    _events(
+                        0.0 + (a0 + (a1 - a0) * 0.0),
+                        0.0 + (a1 - a0) / h,
+                        h,
+                        g,
+                        mub,
+                        muk,
+                        allow_pos,
+                        allow_neg,
+                        k * h,
+                        st,
+                        q,
+                        rw,
+                        max_events,
+                    )
+                    mode = st[MODE]
+                    v = st[VEL]
+                    u = st[DISP]
+                    peak = st[PEAK_DISP]
+                    t_peak = st[T_PEAK]
+                    slide_time = st[SLIDE_TIME]
+                    states[i, SLIPS] = st[SLIPS]
+                    peak_acc = st[PEAK_ACC]
+                    states[i, LIMIT_AT] = st[LIMIT_AT]
+                if want_hist:
+                    hist[0, i, k + 1] = u
+                    hist[1, i, k + 1] = v
+                    if mode == 0.0:
+                        hist[2, i, k + 1] = 0.0 + a1
+                    else:
+                        hist[2, i, k + 1] = -mode * muk * g
+            states[i, MODE] = mode
+            states[i, VEL] = v
+            states[i, DISP] = u
+            states[i, PEAK_DISP] = peak
+            states[i, T_PEAK] = t_peak
+            states[i, SLIDE_TIME] = slide_time
+            states[i, PEAK_ACC] = peak_acc
+    return 0
