@@ -66,9 +66,17 @@ BLOCK = 1024
 """Record steps whose shared ground quantities are formed at once (they stay in the L1 cache
 while every object crosses the block)."""
 
+SUB = 16
+"""Record steps per sub-block: a stuck block crosses a whole sub-block at once when the
+ground stays within its breakaway level there (the sub-block's extreme samples)."""
+
 NOT_FINITE = 1
 """Returned by :func:`ground_kernel` when the record holds NaN or infinite samples (nothing is
 computed)."""
+
+LIMIT_REACHED = 2
+"""Returned by :func:`ground_kernel` when an object reached the event limit (its
+``LIMIT_AT`` column says where)."""
 
 
 @njit(cache=True)
@@ -138,14 +146,20 @@ def _events(a0, slope, h, g, mub, muk, allow_pos, allow_neg, t0, st, q, rw, max_
             # linear function (first_rise decides degree 1 in closed form)
             t_up = -1.0
             t_lo = -1.0
+            # (slope − mu_b·0 is slope, bit for bit); the search only runs when first_rise's
+            # quick rejections do not already answer "none" (_rejected)
             if allow_neg:
-                q[0] = a0 - mub * g
-                q[1] = slope  # slope − mu_b·0: the same bits
-                t_up = first_rise(q, 1, tau, tau_end, 0.0, rw)
+                q0 = a0 - mub * g
+                if not _rejected(q0, slope, 0.0, tau, tau_end):
+                    q[0] = q0
+                    q[1] = slope
+                    t_up = first_rise(q, 1, tau, tau_end, 0.0, rw)
             if allow_pos:
-                q[0] = -a0 - mub * g
-                q[1] = -slope
-                t_lo = first_rise(q, 1, tau, tau_end, 0.0, rw)
+                q0 = -a0 - mub * g
+                if not _rejected(q0, -slope, 0.0, tau, tau_end):
+                    q[0] = q0
+                    q[1] = -slope
+                    t_lo = first_rise(q, 1, tau, tau_end, 0.0, rw)
             t_ev = -1.0
             new_mode = STICK
             if t_up >= 0.0 and (t_lo < 0.0 or t_up <= t_lo):
@@ -178,10 +192,12 @@ def _events(a0, slope, h, g, mub, muk, allow_pos, allow_neg, t0, st, q, rw, max_
         p2 -= s * muk * 0.0 * 0.5  # the normal force's slope term (sign of a zero included)
         p0 = v - ((p2 * tau + p1) * tau + 0.0)
         # stop: first τ where −s·v(τ) rises above 0 (a quadratic: closed form in first_rise)
-        q[0] = -s * p0
-        q[1] = -s * p1
-        q[2] = -s * p2
-        t_s = first_rise(q, 2, tau, tau_end, 0.0, rw)
+        t_s = -1.0
+        if not _rejected(-s * p0, -s * p1, -s * p2, tau, tau_end):
+            q[0] = -s * p0
+            q[1] = -s * p1
+            q[2] = -s * p2
+            t_s = first_rise(q, 2, tau, tau_end, 0.0, rw)
         t_stop = tau_end if t_s < 0.0 else t_s
         # u(τ) = u + U(τ) − U(tau), U the integral of v (Horner, as poly_val)
         w1 = p0 / 1
@@ -219,33 +235,45 @@ def _events(a0, slope, h, g, mub, muk, allow_pos, allow_neg, t0, st, q, rw, max_
 
 
 @njit(cache=True, inline="always")
-def _no_rise(q0, q1, q2, h):
+def _rejected(q0, q1, q2, lo, hi):
     """True when :func:`~floorslide.numerics.polynomial.first_rise` of ``q0 + q1 τ + q2 τ²``
-    above 0 on ``(0, h]`` returns "none" by one of its quick rejections, replayed operation
-    for operation (``p(0) + Σ|q_j| h^j ≤ 0``, then every Bernstein coefficient ``≤ 0``, for
-    the degree left once zero leading coefficients are dropped); False when they do not
-    decide (then the search itself must run)."""
+    (degree 2, or 1 with ``q2 = 0``) above 0 on ``(lo, hi]`` answers "none" by one of its quick
+    rejections, replayed operation for operation for the degree left once zero leading
+    coefficients are dropped: ``p(0) + Σ|q_j| hi^j ≤ 0`` from ``lo = 0``, then every Bernstein
+    coefficient on ``[lo, hi]`` ``≤ 0`` (degrees 1, 2: :func:`~floorslide.numerics.polynomial.
+    _rise_low`, finite inputs only), or ``q0 ≤ 0`` (degree 0). False when they do not decide:
+    then the search itself must run."""
+    if q2 == 0.0 and q1 == 0.0:
+        return not q0 > 0.0
+    if not (
+        abs(q0) < np.inf
+        and abs(q1) < np.inf
+        and abs(q2) < np.inf
+        and abs(lo) < np.inf
+        and abs(hi) < np.inf
+        and lo < hi
+    ):
+        return False
+    w = hi - lo
     if q2 != 0.0:
-        if q0 + (abs(q1) * h + abs(q2) * (h * h)) <= 0.0:
+        if lo == 0.0 and q0 + (abs(q1) * hi + abs(q2) * (hi * hi)) <= 0.0:
             return True
-        lq2 = 0.0 * q2
+        lq2 = lo * q2
         t1 = q1 + lq2
-        b0 = q0 + 0.0 * t1
-        o1 = (t1 + lq2) * h
-        return max(b0, max(b0 + 0.5 * o1, (b0 + o1) + q2 * (h * h))) <= 0.0
-    if q1 != 0.0:
-        if q0 + abs(q1) * h <= 0.0:
-            return True
-        b0 = q0 + 0.0 * q1
-        return max(b0, b0 + q1 * h) <= 0.0
-    return not q0 > 0.0
+        b0 = q0 + lo * t1
+        o1 = (t1 + lq2) * w
+        return max(b0, max(b0 + 0.5 * o1, (b0 + o1) + q2 * (w * w))) <= 0.0
+    if lo == 0.0 and q0 + abs(q1) * hi <= 0.0:
+        return True
+    b0 = q0 + lo * q1
+    return max(b0, b0 + q1 * w) <= 0.0
 
 
 @njit(cache=True, inline="always")
 def _slip_no_stop(mode, c0, c1, v, u, muk, g, h):
     """A whole step of slip in direction ``mode`` (±1) by the formulas of :func:`_events`
     (from ``τ = 0``, Taylor coefficients ``c0, c1`` of the floor acceleration), when its stop
-    search provably finds no stop (:func:`_no_rise`): ``(True, u_end, v_end)``; else
+    search provably finds no stop (:func:`_rejected`): ``(True, u_end, v_end)``; else
     ``(False, u, v)``.
 
     With ``τ = 0`` two of its terms are exact zeros: ``v − V(0)`` and ``u − U(0)`` (``V``,
@@ -257,7 +285,7 @@ def _slip_no_stop(mode, c0, c1, v, u, muk, g, h):
     p2 = -c1 / 2
     p1 -= s * muk * g
     p2 -= s * muk * 0.0 * 0.5
-    if not _no_rise(-s * v, -s * p1, -s * p2, h):
+    if not _rejected(-s * v, -s * p1, -s * p2, 0.0, h):
         return False, u, v
     w1 = v / 1
     w2 = p1 / 2
@@ -277,6 +305,19 @@ def _not_finite(acc):
     for k in range(bits.size):
         bad += (bits[k] & mask) == mask
     return bad != 0
+
+
+@njit(cache=True, inline="always")
+def _changes(aa, ab, h):
+    """The slope of the ground acceleration on a step from ``aa`` to ``ab`` and the changes of
+    the ground velocity, ``ΔV = h (aa + ab)/2``, and of its displacement minus ``v_0 h``,
+    ``ΔD = aa h²/2 + slope h³/6``, over it: the operations of
+    :func:`~floorslide.contents._kernels.slide_kernel` on a floor with no states (whose state
+    terms are exact zeros: ``0.0 + x`` keeps their only trace, a −0 made +0)."""
+    slope = (ab - aa) / h
+    dv = 0.0 + 0.5 * h * (aa + ab)
+    dd = 0.0 + (aa * h * h / 2.0 + slope * h * h * h / 6.0)
+    return slope, dv, dd
 
 
 @njit(cache=True)
@@ -300,7 +341,7 @@ def ground_kernel(acc, MU, p, flags, states, hist):
     states
         ``(n_obj, NCOL)`` in/out, columns :data:`~floorslide.contents._kernels.MODE` …
         :data:`~floorslide.contents._kernels.LIMIT_AT`, zero but ``LIMIT_AT = −1`` at the
-        start (a reached event limit is reported by the caller).
+        start.
     hist
         ``(3, n_obj, npts)``: ``u``, ``v`` and the object's absolute acceleration at the
         samples, when ``want_hist`` (else any shape).
@@ -308,18 +349,30 @@ def ground_kernel(acc, MU, p, flags, states, hist):
     Returns
     -------
     int
-        0, or :data:`NOT_FINITE` when `acc` holds NaN or infinite samples (nothing is done).
+        0; :data:`NOT_FINITE` when `acc` holds NaN or infinite samples (nothing is done);
+        :data:`LIMIT_REACHED` when an object reached the event limit (the caller raises).
 
     Notes
     -----
-    Per object and step, as :func:`~floorslide.contents._kernels.objects_on_substep` on the
-    ground: a stuck block whose ground acceleration stays within ``±mu_b·g`` at both step ends
-    (``a`` is linear) stays stuck, its acceleration peaking at an end; a block slipping with
-    relative velocity of sign ``σ`` whose velocity at the step end,
-    ``v_1 = v_0 − ΔV_k − σ mu_k g Δt``, has kept the sign, with friction dominating the ground
-    throughout (``σ a > −mu_k g`` at both ends: ``v`` monotone), moves by
-    ``u_1 = u_0 + v_0 Δt − ΔD_k − σ mu_k g Δt²/2``; every other step goes through
-    :func:`_events`.
+    Objects cross the record block by block (:data:`BLOCK` steps), one after the other, each
+    step decided as :func:`~floorslide.contents._kernels.objects_on_substep` decides it on the
+    ground:
+
+    * a stuck block whose ground acceleration stays within ``±mu_b·g`` at both step ends
+      (``a`` is linear) stays stuck, its acceleration peaking at an end — checked for a whole
+      sub-block of :data:`SUB` steps at once from its extreme samples (the same values: a
+      maximum of exact numbers);
+    * a block slipping with relative velocity of sign ``σ`` whose velocity at the step end,
+      ``v_1 = v_0 − ΔV_k − σ mu_k g Δt``, has kept the sign, with friction dominating the
+      ground throughout (``σ a > −mu_k g`` at both ends: ``v`` monotone), moves by
+      ``u_1 = u_0 + v_0 Δt − ΔD_k − σ mu_k g Δt²/2``;
+    * otherwise the general kernel runs its event loop on the step; here that loop's formulas
+      are applied at once when its stop search provably finds no stop (:func:`_slip_no_stop`),
+      else :func:`_events` runs it.
+
+    With several objects the step quantities ``s_k, ΔV_k, ΔD_k`` (:func:`_changes`) are
+    formed once per block, when a first object slips in it; a single object forms them where
+    it needs them.
     """
     h = p[0]
     g = p[1]
@@ -332,15 +385,19 @@ def ground_kernel(acc, MU, p, flags, states, hist):
         return NOT_FINITE
     nobj = MU.shape[1]
     nsteps = npts - 1
-    # the ground's normal acceleration and its integrals over a step (as slide_kernel forms
-    # them without vertical shaking)
+    shared = nobj > 1
+    # the ground's normal acceleration integrated over a step, once and twice (as
+    # slide_kernel forms them without vertical shaking)
     nint = g * h
     nint2 = g * h * h / 2.0
     rw = scratch(4)
     q = np.zeros(3)
     st = np.empty(NCOL)
+    SL = np.empty(BLOCK)
     dV = np.empty(BLOCK)
     dD = np.empty(BLOCK)
+    bmin = np.empty(BLOCK // SUB)
+    bmax = np.empty(BLOCK // SUB)
     # the start (the ground at rest): friction transmits at most mu_b·g
     a_start = 1.0 * acc[0]
     for i in range(nobj):
@@ -353,14 +410,17 @@ def ground_kernel(acc, MU, p, flags, states, hist):
             hist[2, i, 0] = a_start
     for k0 in range(0, nsteps, BLOCK):
         k1 = min(k0 + BLOCK, nsteps)
-        # shared by every object: the changes of the ground velocity and of its displacement
-        # (minus v_0·Δt) over each step, by slide_kernel's operations on a floor with no states
-        for k in range(k0, k1):
-            aa = acc[k]
-            ab = acc[k + 1]
-            slope = (ab - aa) / h
-            dV[k - k0] = 0.0 + 0.5 * h * (aa + ab)
-            dD[k - k0] = 0.0 + (aa * h * h / 2.0 + slope * h * h * h / 6.0)
+        # the extreme samples of each whole sub-block (steps k0 + j·SUB … + SUB − 1)
+        nsub = (k1 - k0) // SUB
+        for j in range(nsub):
+            lo = acc[k0 + j * SUB]
+            hi = lo
+            for k in range(k0 + j * SUB + 1, k0 + (j + 1) * SUB + 1):
+                lo = min(lo, acc[k])
+                hi = max(hi, acc[k])
+            bmin[j] = lo
+            bmax[j] = hi
+        formed = False
         for i in range(nobj):
             mub = MU[0, i]
             muk = MU[1, i]
@@ -378,7 +438,24 @@ def ground_kernel(acc, MU, p, flags, states, hist):
             t_peak = states[i, T_PEAK]
             slide_time = states[i, SLIDE_TIME]
             peak_acc = states[i, PEAK_ACC]
-            for k in range(k0, k1):
+            k = k0
+            while k < k1:
+                j = k - k0
+                if mode == 0.0 and j % SUB == 0 and j < nsub * SUB:
+                    lo = bmin[j // SUB]
+                    hi = bmax[j // SUB]
+                    if (hi <= fb or not allow_neg) and (lo >= -fb or not allow_pos):
+                        # stuck through the whole sub-block
+                        a_abs = max(hi, -lo)
+                        if a_abs > peak_acc:
+                            peak_acc = a_abs
+                        if want_hist:
+                            for kk in range(k + 1, k + SUB + 1):
+                                hist[0, i, kk] = u
+                                hist[1, i, kk] = v
+                                hist[2, i, kk] = 0.0 + acc[kk]
+                        k += SUB
+                        continue
                 a0 = acc[k]
                 a1 = acc[k + 1]
                 amin = min(a0, a1)
@@ -391,10 +468,22 @@ def ground_kernel(acc, MU, p, flags, states, hist):
                             peak_acc = a_abs
                         done = True
                 elif mode == 1.0 or mode == -1.0:
+                    if shared:
+                        if not formed:
+                            for kk in range(k0, k1):
+                                SL[kk - k0], dV[kk - k0], dD[kk - k0] = _changes(
+                                    acc[kk], acc[kk + 1], h
+                                )
+                            formed = True
+                        slope = SL[j]
+                        dv = dV[j]
+                        dd = dD[j]
+                    else:
+                        slope, dv, dd = _changes(a0, a1, h)
                     pos = mode > 0.0
-                    v_end = v - dV[k - k0] - (kv_pos if pos else kv_neg)
+                    v_end = v - dv - (kv_pos if pos else kv_neg)
                     if mode * v_end > 0.0 and ((amin > -fk) if pos else (amax < fk)):
-                        u = u + v * h - dD[k - k0] - (ku_pos if pos else ku_neg)
+                        u = u + v * h - dd - (ku_pos if pos else ku_neg)
                         v = v_end
                         slide_time += h
                         if abs(u) > peak:
@@ -406,10 +495,10 @@ def ground_kernel(acc, MU, p, flags, states, hist):
                     else:
                         # the general kernel hands this step to its event loop; when that
                         # loop's stop search provably finds no stop, its formulas are applied
-                        # here (_slip_no_stop), else the loop itself runs
-                        c1 = 0.0 + (a1 - a0) / h
-                        c0 = 0.0 + (a0 + (a1 - a0) * 0.0)
-                        ok, u1, v1 = _slip_no_stop(mode, c0, c1, v, u, muk, g, h)
+                        # here (the Taylor coefficients as taylor_coefficients forms them)
+                        ok, u1, v1 = _slip_no_stop(
+                            mode, 0.0 + (a0 + (a1 - a0) * 0.0), 0.0 + slope, v, u, muk, g, h
+                        )
                         if ok:
                             u = u1
                             v = v1
@@ -463,6 +552,7 @@ def ground_kernel(acc, MU, p, flags, states, hist):
                         hist[2, i, k + 1] = 0.0 + a1
                     else:
                         hist[2, i, k + 1] = -mode * muk * g
+                k += 1
             states[i, MODE] = mode
             states[i, VEL] = v
             states[i, DISP] = u
@@ -470,4 +560,7 @@ def ground_kernel(acc, MU, p, flags, states, hist):
             states[i, T_PEAK] = t_peak
             states[i, SLIDE_TIME] = slide_time
             states[i, PEAK_ACC] = peak_acc
+    for i in range(nobj):
+        if states[i, LIMIT_AT] >= 0.0:
+            return LIMIT_REACHED
     return 0

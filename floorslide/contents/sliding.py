@@ -17,7 +17,7 @@ from floorslide.building.exact_motion import FloorMotion, single_use_motion, unw
 from floorslide.building.model import LinearBuilding
 from floorslide.constants import G
 from floorslide.contents import _kernels as cols
-from floorslide.contents._ground_kernel import NOT_FINITE, ground_kernel
+from floorslide.contents._ground_kernel import LIMIT_REACHED, NOT_FINITE, ground_kernel
 from floorslide.contents._kernels import slide_kernel
 from floorslide.contents.events import SLIDE_MAX_EVENTS, check_event_limit
 from floorslide.errors import ModelError
@@ -215,6 +215,11 @@ def slide(
     Jibson, R. W. (1993). Predicting earthquake-induced landslide displacements using Newmark's
     sliding block analysis. *Transportation Research Record* 1411, 9–17.
     """
+    if building is None and floor is None and vertical is None and method == "exact":
+        # the ground: plain inputs are checked cheaply here and solved by the ground's kernel
+        result = _ground_fast(acc, dt, mu_k, mu_s, direction, histories)
+        if result is not None:
+            return result
     from floorslide.building.nonlinear import NonlinearIsolatedBuilding, slide_on_isolation
 
     if isinstance(building, NonlinearIsolatedBuilding):
@@ -288,6 +293,43 @@ def slide(
     return replace(result, notes=notes) if notes else result
 
 
+_ALLOWED = {d: _allowed(d) for d in DIRECTIONS}
+
+
+def _ground_fast(acc, dt, mu_k, mu_s, direction, histories) -> SlideResult | None:
+    """:func:`slide` on the ground without vertical shaking, exact, for plain inputs: samples
+    as a 1-D C-ordered float64 array, a float `dt`, friction as numbers or arrays, a known
+    `direction`. Checked here at a few attribute reads each (the samples' finiteness by the
+    kernel, as it reads them); None when an input is not plain or not valid — then
+    :func:`slide`'s full path checks everything in its order (the same errors as ever) and
+    solves it."""
+    if not (
+        type(acc) is np.ndarray
+        and acc.ndim == 1
+        and acc.dtype == np.float64
+        and acc.size > 0
+        and acc.flags.c_contiguous
+        and isinstance(dt, float | int)
+        and 0.0 < dt < np.inf
+        and direction in DIRECTIONS
+    ):
+        return None
+    if isinstance(mu_k, float | int) and (mu_s is None or isinstance(mu_s, float | int)):
+        k = float(mu_k)
+        s = k if mu_s is None else float(mu_s)
+        if not (0.0 <= k < np.inf and 0.0 <= s < np.inf):
+            return None
+        mk, ms = np.array([k]), np.array([s])
+    elif mu_k is None:
+        return None
+    else:
+        try:
+            mk, ms = friction_pairs(mu_k, mu_s)
+        except ModelError:
+            return None
+    return _slide_ground(acc, float(dt), mk, ms, direction, histories)
+
+
 def _slide_exact(
     fm: FloorMotion, mk, ms, vert, direction, histories, general: bool = False
 ) -> SlideResult:
@@ -340,7 +382,7 @@ def _slide_ground(a, dt, mk, ms, direction, histories) -> SlideResult:
     (:func:`floorslide.contents._ground_kernel.ground_kernel`), the general kernel's results
     bit for bit at a fraction of its cost. `a`: validated samples (finite, float64, C-ordered);
     `mk`, `ms` from :func:`friction_pairs`."""
-    allow_pos, allow_neg = _allowed(direction)
+    allow_pos, allow_neg = _ALLOWED[direction]
     nobj = mk.size
     npts = a.size
     states = np.zeros((nobj, cols.NCOL))
@@ -349,16 +391,23 @@ def _slide_ground(a, dt, mk, ms, direction, histories) -> SlideResult:
     MU = np.empty((2, nobj))
     np.maximum(mk, ms, out=MU[0])
     MU[1] = mk
-    flags = np.array([allow_pos, allow_neg, SLIDE_MAX_EVENTS, histories], dtype=np.int64)
-    if ground_kernel(a, MU, np.array([dt, G]), flags, states, hist) == NOT_FINITE:
+    flags = np.array([allow_pos, allow_neg, SLIDE_MAX_EVENTS, bool(histories)], dtype=np.int64)
+    code = ground_kernel(a, MU, np.array([dt, G]), flags, states, hist)
+    if code == NOT_FINITE:
         raise ModelError("acc has NaN or infinite samples", "acc")
-    return _result(states, mk, ms, npts, dt, direction, None, *hist, histories)
+    return _result(
+        states, mk, ms, npts, dt, direction, None, *hist, histories, code == LIMIT_REACHED
+    )
 
 
-def _result(states, mk, ms, npts, dt, direction, lift, hu, hv, ha, histories) -> SlideResult:
+def _result(
+    states, mk, ms, npts, dt, direction, lift, hu, hv, ha, histories, limit=True
+) -> SlideResult:
     """The :class:`SlideResult` of the kernels' final states (and lift-off record ``lift``,
-    None without vertical shaking); raises if an object reached the event limit."""
-    check_event_limit(states[:, cols.LIMIT_AT], mk, SLIDE_MAX_EVENTS, "slide")
+    None without vertical shaking); raises if an object reached the event limit (checked when
+    `limit`: a kernel that says none was reached spares the look)."""
+    if limit:
+        check_event_limit(states[:, cols.LIMIT_AT], mk, SLIDE_MAX_EVENTS, "slide")
     nobj = mk.size
     duration = (npts - 1) * dt
     return SlideResult(
