@@ -321,7 +321,7 @@ def _changes(aa, ab, h):
 
 
 @njit(cache=True)
-def ground_kernel(acc, MU, p, flags, states, hist):
+def ground_kernel(acc, MU, P, states, hist):
     """Rigid blocks on the ground, exact for the piecewise-linear record, without vertical
     shaking: the general :func:`~floorslide.contents._kernels.slide_kernel` on the ground's
     motion, specialised (same results, bit for bit; see the module notes).
@@ -331,17 +331,16 @@ def ground_kernel(acc, MU, p, flags, states, hist):
     acc
         Ground acceleration samples, m/s² (at least one).
     MU
-        ``(2, n_obj)``: breakaway ``max(mu_s, mu_k)`` and kinetic friction coefficients.
-    p
-        ``[dt, g]``: the record step and gravity.
-    flags
-        ``[allow_pos, allow_neg, max_events, want_hist]``: the allowed slip directions, the
-        most events per object and step (:mod:`floorslide.contents.events`), and whether to
-        fill `hist`.
+        ``(m ≥ 2, n_obj)``: rows 0 and 1 the breakaway ``max(mu_s, mu_k)`` and kinetic friction
+        coefficients (further rows are not read).
+    P
+        ``[dt, g, allow_pos, allow_neg, max_events, want_hist]``: the record step, gravity, the
+        allowed slip directions (1 or 0), the most events per object and step
+        (:mod:`floorslide.contents.events`), and whether to fill `hist` (one array: a numba
+        call costs per argument).
     states
-        ``(n_obj, NCOL)`` in/out, columns :data:`~floorslide.contents._kernels.MODE` …
-        :data:`~floorslide.contents._kernels.LIMIT_AT`, zero but ``LIMIT_AT = −1`` at the
-        start.
+        ``(n_obj, NCOL)`` out, columns :data:`~floorslide.contents._kernels.MODE` …
+        :data:`~floorslide.contents._kernels.LIMIT_AT` (the blocks start at rest).
     hist
         ``(3, n_obj, npts)``: ``u``, ``v`` and the object's absolute acceleration at the
         samples, when ``want_hist`` (else any shape).
@@ -374,23 +373,27 @@ def ground_kernel(acc, MU, p, flags, states, hist):
     formed once per block, when a first object slips in it; a single object forms them where
     it needs them.
     """
-    h = p[0]
-    g = p[1]
-    allow_pos = flags[0] != 0
-    allow_neg = flags[1] != 0
-    max_events = flags[2]
-    want_hist = flags[3] != 0
+    h = P[0]
+    g = P[1]
+    allow_pos = P[2] != 0.0
+    allow_neg = P[3] != 0.0
+    max_events = int(P[4])
+    want_hist = P[5] != 0.0
     npts = acc.size
     if _not_finite(acc):
         return NOT_FINITE
     nobj = MU.shape[1]
+    for i in range(nobj):
+        for j in range(NCOL):
+            states[i, j] = 0.0
+        states[i, LIMIT_AT] = -1.0
     nsteps = npts - 1
     shared = nobj > 1
     # the ground's normal acceleration integrated over a step, once and twice (as
     # slide_kernel forms them without vertical shaking)
     nint = g * h
     nint2 = g * h * h / 2.0
-    rw = scratch(4)
+    rw = scratch(4)  # the root isolation's scratch (made here: a loop that makes it costs 3x)
     q = np.zeros(3)
     st = np.empty(NCOL)
     SL = np.empty(BLOCK)

@@ -285,7 +285,7 @@ def slide(
         )
     elif fm is None and building is None and vert is None:
         # the ground (floor None or 0, checked above): no motion to build
-        result = _slide_ground(a, dt, mk, ms, direction, histories)
+        result = _slide_ground(a, dt, _friction_rows(mk, ms), direction, histories)
     else:
         if fm is None:
             fm = single_use_motion(building, a, dt, floor)
@@ -319,7 +319,8 @@ def _ground_fast(acc, dt, mu_k, mu_s, direction, histories) -> SlideResult | Non
         s = k if mu_s is None else float(mu_s)
         if not (0.0 <= k < np.inf and 0.0 <= s < np.inf):
             return None
-        mk, ms = np.array([k]), np.array([s])
+        # breakaway, kinetic, static (the breakaway as np.maximum picks it)
+        MU = np.array([k if k >= s else s, k, s]).reshape(3, 1)
     elif mu_k is None:
         return None
     else:
@@ -327,7 +328,8 @@ def _ground_fast(acc, dt, mu_k, mu_s, direction, histories) -> SlideResult | Non
             mk, ms = friction_pairs(mu_k, mu_s)
         except ModelError:
             return None
-    return _slide_ground(acc, float(dt), mk, ms, direction, histories)
+        MU = _friction_rows(mk, ms)
+    return _slide_ground(acc, float(dt), MU, direction, histories)
 
 
 def _slide_exact(
@@ -337,7 +339,7 @@ def _slide_exact(
     vertical shaking (:func:`_slide_ground`), else the general kernel (always, with
     ``general=True``: the reference of the ground's kernel in the tests)."""
     if fm.ground and vert is None and not general:
-        return _slide_ground(fm.acc, fm.dt, mk, ms, direction, histories)
+        return _slide_ground(fm.acc, fm.dt, _friction_rows(mk, ms), direction, histories)
     allow_pos, allow_neg = _allowed(direction)
     a, dt = fm.acc, fm.dt
     nobj = mk.size
@@ -377,27 +379,46 @@ def _slide_exact(
     return _result(states, mk, ms, a.size, dt, direction, lift, hu, hv, ha, histories)
 
 
-def _slide_ground(a, dt, mk, ms, direction, histories) -> SlideResult:
+def _slide_ground(a, dt, MU, direction, histories) -> SlideResult:
     """Rigid blocks on the ground without vertical shaking: the ground's kernel
     (:func:`floorslide.contents._ground_kernel.ground_kernel`), the general kernel's results
-    bit for bit at a fraction of its cost. `a`: validated samples (finite, float64, C-ordered);
-    `mk`, `ms` from :func:`friction_pairs`."""
+    bit for bit at a fraction of its cost. `a`: samples (float64, C-ordered; NaN or infinite
+    ones raise here); `MU`: the ``(3, n_obj)`` rows breakaway, kinetic and static friction
+    (:func:`_friction_rows`)."""
     allow_pos, allow_neg = _ALLOWED[direction]
-    nobj = mk.size
+    nobj = MU.shape[1]
     npts = a.size
-    states = np.zeros((nobj, cols.NCOL))
-    states[:, cols.LIMIT_AT] = -1.0
-    hist = np.empty((3, nobj, npts)) if histories else np.empty((3, 0, 0))
-    MU = np.empty((2, nobj))
-    np.maximum(mk, ms, out=MU[0])
-    MU[1] = mk
-    flags = np.array([allow_pos, allow_neg, SLIDE_MAX_EVENTS, bool(histories)], dtype=np.int64)
-    code = ground_kernel(a, MU, np.array([dt, G]), flags, states, hist)
+    states = np.empty((nobj, cols.NCOL))
+    hist = np.empty((3, nobj, npts) if histories else (3, 0, 0))
+    P = np.array([dt, G, allow_pos, allow_neg, SLIDE_MAX_EVENTS, bool(histories)], dtype=float)
+    code = ground_kernel(a, MU, P, states, hist)
     if code == NOT_FINITE:
         raise ModelError("acc has NaN or infinite samples", "acc")
+    hu, hv, ha = hist if histories else (None, None, None)
     return _result(
-        states, mk, ms, npts, dt, direction, None, *hist, histories, code == LIMIT_REACHED
+        states,
+        MU[1],
+        MU[2],
+        npts,
+        dt,
+        direction,
+        None,
+        hu,
+        hv,
+        ha,
+        histories,
+        code == LIMIT_REACHED,
     )
+
+
+def _friction_rows(mk, ms) -> np.ndarray:
+    """The ``(3, n)`` rows breakaway ``max(mu_s, mu_k)``, kinetic and static friction of the
+    ground's kernel, from :func:`friction_pairs`' arrays."""
+    MU = np.empty((3, mk.size))
+    np.maximum(mk, ms, out=MU[0])
+    MU[1] = mk
+    MU[2] = ms
+    return MU
 
 
 def _result(
@@ -410,15 +431,16 @@ def _result(
         check_event_limit(states[:, cols.LIMIT_AT], mk, SLIDE_MAX_EVENTS, "slide")
     nobj = mk.size
     duration = (npts - 1) * dt
+    columns = states.T.copy()  # one copy: each result field is a row of it
     return SlideResult(
         mu_k=mk,
         mu_s=ms,
-        peak_slide=states[:, cols.PEAK_DISP].copy(),
-        residual_slide=states[:, cols.DISP].copy(),
-        peak_abs_accel=states[:, cols.PEAK_ACC].copy(),
-        slide_fraction=states[:, cols.SLIDE_TIME] / duration if duration > 0 else np.zeros(nobj),
-        slip_phases=states[:, cols.SLIPS].astype(int),
-        time_of_peak=states[:, cols.T_PEAK].copy(),
+        peak_slide=columns[cols.PEAK_DISP],
+        residual_slide=columns[cols.DISP],
+        peak_abs_accel=columns[cols.PEAK_ACC],
+        slide_fraction=columns[cols.SLIDE_TIME] / duration if duration > 0 else np.zeros(nobj),
+        slip_phases=columns[cols.SLIPS].astype(int),
+        time_of_peak=columns[cols.T_PEAK],
         liftoff_time=0.0 if lift is None else float(lift[0]),
         liftoff_count=0 if lift is None else int(lift[1]),
         duration=duration,
