@@ -20,18 +20,21 @@ point operations, as the general kernel run on the ground's motion (a floor with
 Taylor degree ``K = 1``, one sub-step per record step), so its results are the same bits
 (checked by ``tests/contents/test_ground_fast_path.py``). What makes it faster:
 
-* a step's shared quantities (the changes of the ground velocity ``ΔV_k = Δt (a_k + a_{k+1})/2``
-  and of its displacement ``ΔD_k = a_k Δt²/2 + s_k Δt³/6``) are formed once per block of
-  :data:`BLOCK` steps for all objects, not once per object;
-* objects are advanced one at a time through a block (their state in registers, the block's
-  ground quantities in cache); most steps are decided by two comparisons (a block that stays
-  stuck: ``mu_b·g`` above ``|a|`` at both ends; a block that keeps slipping one way: the
-  relative velocity keeps its sign and the friction dominates the floor throughout) and
-  advanced in closed form;
-* only steps with an event (breakaway, stop, reversal) go through :func:`_events`, the event
-  loop of the general kernel with ``K = 1``; its roots are found by the same
-  :func:`~floorslide.numerics.polynomial.first_rise` (closed form for degrees 1 and 2, root
-  isolation when a sign is within rounding).
+* a stuck block crosses a sub-block of :data:`SUB` steps at once when the ground's extreme
+  samples there stay within ``±mu_b·g`` (``a`` is linear in a step: its extremes are samples);
+* objects are advanced one at a time through a block of :data:`BLOCK` steps (their state in
+  registers); with several objects the step quantities (the slope ``s_k`` and the changes of
+  the ground velocity ``ΔV_k = Δt (a_k + a_{k+1})/2`` and of its displacement
+  ``ΔD_k = a_k Δt²/2 + s_k Δt³/6``) are formed once per block for all of them;
+* a slipping block whose relative velocity provably keeps its sign through the step is
+  advanced in closed form: by the general kernel's quick formula when friction dominates the
+  ground throughout, else by its event loop's own formulas when the quick rejections of the
+  stop search (:func:`_rejected`, replayed operation for operation) show that there is no stop;
+* the other steps (breakaway, stop, reversal, or a stop search those rejections cannot
+  decide) go through :func:`_events`, the event loop of the general kernel with ``K = 1``:
+  its roots are found by the same :func:`~floorslide.numerics.polynomial.first_rise` (closed
+  form for degrees 1 and 2, root isolation when a sign is within rounding), called only when
+  its quick rejections do not already answer "none".
 
 Vertical shaking (normal force ``g + a_v``, lift-off) is not handled here: those calls use the
 general kernel.
