@@ -17,6 +17,7 @@ from floorslide.building.exact_motion import FloorMotion, single_use_motion, unw
 from floorslide.building.model import LinearBuilding
 from floorslide.constants import G
 from floorslide.contents import _kernels as cols
+from floorslide.contents._ground_kernel import LIMIT_REACHED, NOT_FINITE, ground_kernel
 from floorslide.contents._kernels import slide_kernel
 from floorslide.contents.events import SLIDE_MAX_EVENTS, check_event_limit
 from floorslide.errors import ModelError
@@ -214,6 +215,11 @@ def slide(
     Jibson, R. W. (1993). Predicting earthquake-induced landslide displacements using Newmark's
     sliding block analysis. *Transportation Research Record* 1411, 9–17.
     """
+    if building is None and floor is None and vertical is None and method == "exact":
+        # the ground: plain inputs are checked cheaply here and solved by the ground's kernel
+        result = _ground_fast(acc, dt, mu_k, mu_s, direction, histories)
+        if result is not None:
+            return result
     from floorslide.building.nonlinear import NonlinearIsolatedBuilding, slide_on_isolation
 
     if isinstance(building, NonlinearIsolatedBuilding):
@@ -277,6 +283,9 @@ def slide(
             integrator,
             max_step,
         )
+    elif fm is None and building is None and vert is None:
+        # the ground (floor None or 0, checked above): no motion to build
+        result = _slide_ground(a, dt, _friction_rows(mk, ms), direction, histories)
     else:
         if fm is None:
             fm = single_use_motion(building, a, dt, floor)
@@ -284,7 +293,53 @@ def slide(
     return replace(result, notes=notes) if notes else result
 
 
-def _slide_exact(fm: FloorMotion, mk, ms, vert, direction, histories) -> SlideResult:
+_ALLOWED = {d: _allowed(d) for d in DIRECTIONS}
+
+
+def _ground_fast(acc, dt, mu_k, mu_s, direction, histories) -> SlideResult | None:
+    """:func:`slide` on the ground without vertical shaking, exact, for plain inputs: samples
+    as a 1-D C-ordered float64 array, a float `dt`, friction as numbers or arrays, a known
+    `direction`. Checked here at a few attribute reads each (the samples' finiteness by the
+    kernel, as it reads them); None when an input is not plain or not valid — then
+    :func:`slide`'s full path checks everything in its order (the same errors as ever) and
+    solves it."""
+    if not (
+        type(acc) is np.ndarray
+        and acc.ndim == 1
+        and acc.dtype == np.float64
+        and acc.size > 0
+        and acc.flags.c_contiguous
+        and isinstance(dt, float | int)
+        and 0.0 < dt < np.inf
+        and direction in DIRECTIONS
+    ):
+        return None
+    if isinstance(mu_k, float | int) and (mu_s is None or isinstance(mu_s, float | int)):
+        k = float(mu_k)
+        s = k if mu_s is None else float(mu_s)
+        if not (0.0 <= k < np.inf and 0.0 <= s < np.inf):
+            return None
+        # breakaway, kinetic, static (the breakaway as np.maximum picks it)
+        MU = np.array([k if k >= s else s, k, s]).reshape(3, 1)
+    elif mu_k is None:
+        return None
+    else:
+        try:
+            mk, ms = friction_pairs(mu_k, mu_s)
+        except ModelError:
+            return None
+        MU = _friction_rows(mk, ms)
+    return _slide_ground(acc, float(dt), MU, direction, histories)
+
+
+def _slide_exact(
+    fm: FloorMotion, mk, ms, vert, direction, histories, general: bool = False
+) -> SlideResult:
+    """The exact solver on a floor motion: the ground's own kernel on the ground without
+    vertical shaking (:func:`_slide_ground`), else the general kernel (always, with
+    ``general=True``: the reference of the ground's kernel in the tests)."""
+    if fm.ground and vert is None and not general:
+        return _slide_ground(fm.acc, fm.dt, _friction_rows(mk, ms), direction, histories)
     allow_pos, allow_neg = _allowed(direction)
     a, dt = fm.acc, fm.dt
     nobj = mk.size
@@ -321,19 +376,73 @@ def _slide_exact(fm: FloorMotion, mk, ms, vert, direction, histories) -> SlideRe
             lift,
             SLIDE_MAX_EVENTS,
         )
-    check_event_limit(states[:, cols.LIMIT_AT], mk, SLIDE_MAX_EVENTS, "slide")
+    return _result(states, mk, ms, a.size, dt, direction, lift, hu, hv, ha, histories)
+
+
+def _slide_ground(a, dt, MU, direction, histories) -> SlideResult:
+    """Rigid blocks on the ground without vertical shaking: the ground's kernel
+    (:func:`floorslide.contents._ground_kernel.ground_kernel`), the general kernel's results
+    bit for bit at a fraction of its cost. `a`: samples (float64, C-ordered; NaN or infinite
+    ones raise here); `MU`: the ``(3, n_obj)`` rows breakaway, kinetic and static friction
+    (:func:`_friction_rows`)."""
+    allow_pos, allow_neg = _ALLOWED[direction]
+    nobj = MU.shape[1]
+    npts = a.size
+    states = np.empty((nobj, cols.NCOL))
+    hist = np.empty((3, nobj, npts) if histories else (3, 0, 0))
+    P = np.array([dt, G, allow_pos, allow_neg, SLIDE_MAX_EVENTS, bool(histories)], dtype=float)
+    code = ground_kernel(a, MU, P, states, hist)
+    if code == NOT_FINITE:
+        raise ModelError("acc has NaN or infinite samples", "acc")
+    hu, hv, ha = hist if histories else (None, None, None)
+    return _result(
+        states,
+        MU[1],
+        MU[2],
+        npts,
+        dt,
+        direction,
+        None,
+        hu,
+        hv,
+        ha,
+        histories,
+        code == LIMIT_REACHED,
+    )
+
+
+def _friction_rows(mk, ms) -> np.ndarray:
+    """The ``(3, n)`` rows breakaway ``max(mu_s, mu_k)``, kinetic and static friction of the
+    ground's kernel, from :func:`friction_pairs`' arrays."""
+    MU = np.empty((3, mk.size))
+    np.maximum(mk, ms, out=MU[0])
+    MU[1] = mk
+    MU[2] = ms
+    return MU
+
+
+def _result(
+    states, mk, ms, npts, dt, direction, lift, hu, hv, ha, histories, limit=True
+) -> SlideResult:
+    """The :class:`SlideResult` of the kernels' final states (and lift-off record ``lift``,
+    None without vertical shaking); raises if an object reached the event limit (checked when
+    `limit`: a kernel that says none was reached spares the look)."""
+    if limit:
+        check_event_limit(states[:, cols.LIMIT_AT], mk, SLIDE_MAX_EVENTS, "slide")
+    nobj = mk.size
     duration = (npts - 1) * dt
+    columns = states.T.copy()  # one copy: each result field is a row of it
     return SlideResult(
         mu_k=mk,
         mu_s=ms,
-        peak_slide=states[:, cols.PEAK_DISP].copy(),
-        residual_slide=states[:, cols.DISP].copy(),
-        peak_abs_accel=states[:, cols.PEAK_ACC].copy(),
-        slide_fraction=states[:, cols.SLIDE_TIME] / duration if duration > 0 else np.zeros(nobj),
-        slip_phases=states[:, cols.SLIPS].astype(int),
-        time_of_peak=states[:, cols.T_PEAK].copy(),
-        liftoff_time=float(lift[0]),
-        liftoff_count=int(lift[1]),
+        peak_slide=columns[cols.PEAK_DISP],
+        residual_slide=columns[cols.DISP],
+        peak_abs_accel=columns[cols.PEAK_ACC],
+        slide_fraction=columns[cols.SLIDE_TIME] / duration if duration > 0 else np.zeros(nobj),
+        slip_phases=columns[cols.SLIPS].astype(int),
+        time_of_peak=columns[cols.T_PEAK],
+        liftoff_time=0.0 if lift is None else float(lift[0]),
+        liftoff_count=0 if lift is None else int(lift[1]),
         duration=duration,
         method="exact",
         direction=direction,
