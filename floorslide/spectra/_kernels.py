@@ -160,11 +160,15 @@ def _search_step(
     gK,
     CG,
     XG,
+    cready,
+    R,
+    beta,
     S_Pqq,
     S_Pqx,
     S_pq,
     S_qq,
     need,
+    curv,
     out,
     c,
     Q,
@@ -180,45 +184,92 @@ def _search_step(
     bound (its end values plus the chord deviation ``h²/8·max|p''|``) and, when that can exceed
     its peak, searched (:func:`~floorslide.numerics.polynomial.max_abs_on`). ``n`` is the number
     of building states; the ground has its own :func:`_ground_search`.
+
+    The chord test is made twice. First, before any Taylor polynomial is formed, with the
+    bounds ``curv`` of the quantities' second derivatives over the whole record step (those of
+    :func:`_stage_floor`, from the equation of motion, :func:`_floor_curvatures`): a sub-step
+    ``m`` times shorter than the step has a chord deviation ``m²`` times smaller, so most
+    sub-steps of a short-period oscillator are settled by their end values alone. Only a
+    sub-step that fails it gets its polynomials — and the floor's Taylor coefficients on it,
+    ``CG[r]``, computed on first use from the rows ``R, beta`` and the sub-step's start state
+    ``XG[r]``, marked in ``cready`` and shared by the group's oscillators — and the sharper
+    test of ``max_abs_on``.
     """
     m = gm
     K = gK
     h = dt / m
     c2 = 2.0 * xi * w
     w2 = w * w
+    k8 = 0.125 * h * h
+    slope = (a1 - a) / dt
     q = q0
     v = v0
     for r in range(m):
         aa, ab = substep_inputs(a, a1, r, m)
-        for j in range(K + 1):
-            c[j] = CG[r, j]
         # sub-step end state
         qn = S_Pqq[0, 0] * q + S_Pqq[0, 1] * v + S_pq[0] * aa + S_qq[0] * ab
         vn = S_Pqq[1, 0] * q + S_Pqq[1, 1] * v + S_pq[1] * aa + S_qq[1] * ab
         for j in range(n):
             qn += S_Pqx[0, j] * XG[r, j]
             vn += S_Pqx[1, j] * XG[r, j]
-        Q[0] = q
-        Q[1] = v
-        for j in range(K - 1):
-            Q[j + 2] = (-c2 * (j + 1) * Q[j + 1] - w2 * Q[j] - c[j]) / ((j + 1) * (j + 2))
-        if need[0]:
-            pk, _ = max_abs_on(Q, K, h, out[o, 0], work)
-            out[o, 0] = max(out[o, 0], abs(qn), pk)
-        if need[1]:
-            for j in range(K):
-                poly[j] = (j + 1) * Q[j + 1]
-            poly[K] = 0.0
-            pk, _ = max_abs_on(poly, K, h, out[o, 1], work)
-            out[o, 1] = max(out[o, 1], abs(vn), pk)
-        if need[2]:
-            for j in range(K):
-                poly[j] = w2 * Q[j] + c2 * (j + 1) * Q[j + 1]
-            poly[K] = w2 * Q[K]
-            pk, _ = max_abs_on(poly, K, h, out[o, 2], work)
-            out[o, 2] = max(out[o, 2], abs(w2 * qn + c2 * vn), pk)
+        # chord pre-filter (rigorous: curv bounds the second derivatives on the whole step)
+        nd = need[0] and max(abs(q), abs(qn)) + k8 * curv[0] > out[o, 0]
+        nv = need[1] and max(abs(v), abs(vn)) + k8 * curv[1] > out[o, 1]
+        na = (
+            need[2] and max(abs(w2 * q + c2 * v), abs(w2 * qn + c2 * vn)) + k8 * curv[2] > out[o, 2]
+        )
+        if nd or nv or na:
+            if not cready[r]:
+                for j in range(CG.shape[1]):
+                    CG[r, j] = 0.0
+                taylor_coefficients(R, beta, XG[r], aa, slope, CG[r])
+                cready[r] = True
+            for j in range(K + 1):
+                c[j] = CG[r, j]
+            Q[0] = q
+            Q[1] = v
+            for j in range(K - 1):
+                Q[j + 2] = (-c2 * (j + 1) * Q[j + 1] - w2 * Q[j] - c[j]) / ((j + 1) * (j + 2))
+            if nd:
+                pk, _ = max_abs_on(Q, K, h, out[o, 0], work)
+                out[o, 0] = max(out[o, 0], abs(qn), pk)
+            if nv:
+                for j in range(K):
+                    poly[j] = (j + 1) * Q[j + 1]
+                poly[K] = 0.0
+                pk, _ = max_abs_on(poly, K, h, out[o, 1], work)
+                out[o, 1] = max(out[o, 1], abs(vn), pk)
+            if na:
+                for j in range(K):
+                    poly[j] = w2 * Q[j] + c2 * (j + 1) * Q[j + 1]
+                poly[K] = w2 * Q[K]
+                pk, _ = max_abs_on(poly, K, h, out[o, 2], work)
+                out[o, 2] = max(out[o, 2], abs(w2 * qn + c2 * vn), pk)
         q = qn
         v = vn
+
+
+@njit(cache=True, inline="always")
+def _floor_curvatures(C, o, q0, v0, dt, f0, f1, fdev, abound, jbound, curv):
+    """Bounds over one record step of ``|q''|``, ``|q'''|`` and ``|(ω²q + 2ξωq')''|`` for
+    oscillator ``o`` of a block on a floor, from its state ``q0, v0`` at the step start, into
+    ``curv``: the quantities ``m2q, m2v, m2a`` of :func:`_stage_floor` (same formulas)."""
+    w2 = C[W2 * NB + o]
+    c2 = C[C2 * NB + o]
+    fslope = (f1 - f0) / dt
+    iw2 = C[IW2 * NB + o]
+    bet = -fslope * iw2
+    alp = fslope * C[AS * NB + o] - f0 * iw2
+    e0 = q0 - alp
+    ci = (v0 - bet + C[XIW * NB + o] * e0) * C[IWD * NB + o]
+    cm = math.sqrt(e0 * e0 + ci * ci)
+    bd = max(abs(alp), abs(alp + bet * dt)) + cm + fdev * C[IH0 * NB + o]
+    bv = abs(bet) + C[W * NB + o] * cm + fdev * C[IH1 * NB + o]
+    m2q = abound + c2 * bv + w2 * bd
+    m2v = jbound + c2 * m2q + w2 * bv
+    curv[0] = m2q
+    curv[1] = m2v
+    curv[2] = w2 * m2q + c2 * m2v
 
 
 @njit(cache=True, inline="always")
@@ -673,16 +724,21 @@ def spectrum_kernel(setup, X, k0, acc, up, dt, search_all, S, out, counts):
     ready = np.zeros(ngroups, dtype=np.bool_)
     CG = np.zeros((ngroups, G_m.max(), G_R.shape[1]))
     XG = np.zeros((ngroups, G_m.max(), n))
+    cready = np.zeros((ngroups, G_m.max()), dtype=np.bool_)
+    curv = np.zeros(3)
     L = CHUNK
     FK = np.zeros((L, 5))  # floor: f0, f1, max|a_f|, deviation from the line, max|a_f'|
+    AK = np.zeros(L + 1)  # the record on the kernel's grid through the piece
     for c0 in range(kf0, kf1, L):
         c1 = min(c0 + L, kf1)
+        for k in range(c0, c1 + 1):
+            AK[k - c0] = _sample(acc, k, up)
         # the floor through this piece, once for every block
         for k in range(c0, c1):
             if n == 0:
                 break
-            a = _sample(acc, k, up)
-            a1 = _sample(acc, k + 1, up)
+            a = AK[k - c0]
+            a1 = AK[k + 1 - c0]
             x = X[k - kf0]
             xe = X[k + 1 - kf0]  # building state at the step end
             f1 = b_beta[0] * a1  # floor acceleration at the step end
@@ -703,8 +759,8 @@ def spectrum_kernel(setup, X, k0, acc, up, dt, search_all, S, out, counts):
             Sb = S[blk]
             nb = min(NB, nosc - blk * NB)
             for k in range(c0, c1):
-                a = _sample(acc, k, up)
-                a1 = _sample(acc, k + 1, up)
+                a = AK[k - c0]
+                a1 = AK[k + 1 - c0]
                 if n > 0:
                     PXb = PX[blk]
                     for o in range(NB):
@@ -735,7 +791,6 @@ def spectrum_kernel(setup, X, k0, acc, up, dt, search_all, S, out, counts):
                     nf = _stage_ground(Cb, Sb, flag, nb, a, a1, dt)
                 if nf == 0 and not search_all:
                     continue
-                slope = (a1 - a) / dt  # of the ground record
                 for o in range(nb):
                     f = 7 if search_all else flag[o]
                     if f == 0:
@@ -782,8 +837,9 @@ def spectrum_kernel(setup, X, k0, acc, up, dt, search_all, S, out, counts):
                     out[og, 2] = Sb[_PA * NB + o]
                     g = grp[og]
                     if n > 0 and not ready[g]:
-                        # the floor on this group's sub-steps: states and Taylor coefficients,
-                        # shared by the oscillators of the group in this block
+                        # the floor's states on this group's sub-steps, shared by the
+                        # oscillators of the group in this block (its Taylor coefficients are
+                        # computed by _search_step on the sub-steps that need them)
                         counts[1] += 1
                         mg = G_m[g]
                         for i in range(n):
@@ -792,13 +848,25 @@ def spectrum_kernel(setup, X, k0, acc, up, dt, search_all, S, out, counts):
                             aa, ab = substep_inputs(a, a1, r, mg)
                             for i in range(n):
                                 XG[g, r, i] = xs2[i]
-                            for j in range(CG.shape[2]):
-                                CG[g, r, j] = 0.0
-                            taylor_coefficients(G_R[g], G_beta[g], xs2, aa, slope, CG[g, r])
-                            foh_step(G_phi[g], G_p[g], G_q[g], xs2, aa, ab, xn)
-                            for i in range(n):
-                                xs2[i] = xn[i]
+                            cready[g, r] = False
+                            if r + 1 < mg:
+                                foh_step(G_phi[g], G_p[g], G_q[g], xs2, aa, ab, xn)
+                                for i in range(n):
+                                    xs2[i] = xn[i]
                         ready[g] = True
+                    _floor_curvatures(
+                        Cb,
+                        o,
+                        Sb[_QS * NB + o],
+                        Sb[_VS * NB + o],
+                        dt,
+                        FK[k - c0, 0],
+                        FK[k - c0, 1],
+                        FK[k - c0, 3],
+                        FK[k - c0, 2],
+                        FK[k - c0, 4],
+                        curv,
+                    )
                     _search_step(
                         og,
                         n,
@@ -813,11 +881,15 @@ def spectrum_kernel(setup, X, k0, acc, up, dt, search_all, S, out, counts):
                         K_osc[og],
                         CG[g],
                         XG[g],
+                        cready[g],
+                        G_R[g],
+                        G_beta[g],
                         S_Pqq[og],
                         S_Pqx[og],
                         S_pq[og],
                         S_qq[og],
                         need,
+                        curv,
                         out,
                         c,
                         Q,
