@@ -24,13 +24,17 @@ import numpy as np
 
 from floorslide.building.exact import (
     MAX_PHASE,
-    ExactStepper,
     spectral_radius,
     substeps_for,
     taylor_degree,
     taylor_degrees,
 )
-from floorslide.building.exact_motion import FloorMotion, single_use_motion, unwrap
+from floorslide.building.exact_motion import (
+    FloorMotion,
+    _cached_stepper,
+    single_use_motion,
+    unwrap,
+)
 from floorslide.building.model import LinearBuilding
 from floorslide.building.motions import floor_motions
 from floorslide.constants import MAX_LIST
@@ -343,7 +347,7 @@ def _kernel_data(
     one_crit = np.maximum(w, rho_b) * dt <= MAX_PHASE
     # the building: record step, and its own sub-steps for the floor-acceleration bound
     if on_floor:
-        own = ExactStepper.build(A, b, dt)
+        own = _cached_stepper(n, A.tobytes(), b.tobytes(), float(dt), None)
         b_R, b_beta = own.taylor_rows(Ca[None, :], np.array([da]))
         b_phi, (b_p, b_q), b_R, b_beta = own.phi, own.input_weights(), b_R[0], b_beta[0]
         b_K, b_m = own.order, own.substeps
@@ -380,7 +384,9 @@ def _kernel_data(
         )
     for g, m in enumerate(groups):
         if on_floor:
-            st = ExactStepper.build(A, b, dt, substeps=int(m))
+            # (the building's sub-step matrices: one small expm per group, cached with those
+            # of the floor motions)
+            st = _cached_stepper(n, A.tobytes(), b.tobytes(), float(dt), int(m))
             R, beta = st.taylor_rows(Ca[None, :], np.array([da]), order=int(G_K[g]))
             G_phi[g] = st.phi
             G_p[g], G_q[g] = st.input_weights()
