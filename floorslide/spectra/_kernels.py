@@ -51,19 +51,20 @@ from floorslide.numerics.polynomial import extreme_values, max_abs_on, newton_pe
 
 
 @njit(cache=True)
-def _floor_bound(phi_s, p_s, q_s, R, beta, K, x, a, a1, ms, hs, c, xs, xn, f0, f1):
+def _floor_bounds(phi_s, p_s, q_s, R, beta, K, x, a, a1, ms, hs, c, xs, xn, f0, f1):
     """Bounds of the floor acceleration ``a_f`` over one step (the building's own ``ms``
     sub-steps of ``hs``): its largest deviation from the straight line between its step-end
     values ``f0, f1``, ``δ ≤ (ms·hs)²/8·max|a_f''|``, and ``max|a_f| ≤ max(|f0|, |f1|) + δ``.
     On each sub-step ``a_f`` is its Taylor polynomial ``Σ c_j τ^j`` (equal to it to rounding),
     so ``|a_f''| ≤ Σ j(j−1)|c_j| hs^{j−2}``; likewise ``|a_f'| ≤ Σ j|c_j| hs^{j−1}``, the third
-    value returned."""
+    value returned, and ``|a_f'''| ≤ Σ j(j−1)(j−2)|c_j| hs^{j−3}``, the fourth."""
     n = x.size
     slope = (a1 - a) / (ms * hs)
     for i in range(n):
         xs[i] = x[i]
     m2 = 0.0
     m1 = 0.0
+    m3 = 0.0
     for r in range(ms):
         aa, ab = substep_inputs(a, a1, r, ms)
         for j in range(K + 1):
@@ -77,12 +78,30 @@ def _floor_bound(phi_s, p_s, q_s, R, beta, K, x, a, a1, ms, hs, c, xs, xn, f0, f
         for j in range(K, 0, -1):
             s1 = s1 * hs + j * abs(c[j])
         m1 = max(m1, s1)
+        s3 = 0.0
+        for j in range(K, 2, -1):
+            s3 = s3 * hs + j * (j - 1) * (j - 2) * abs(c[j])
+        m3 = max(m3, s3)
         if r + 1 < ms:
             foh_step(phi_s, p_s, q_s, xs, aa, ab, xn)
             for i in range(n):
                 xs[i] = xn[i]
     dev = (ms * hs) ** 2 / 8.0 * m2
-    return max(abs(f0), abs(f1)) + dev, dev, m1
+    return max(abs(f0), abs(f1)) + dev, dev, m1, m3
+
+
+@njit(cache=True)
+def _floor_bound(phi_s, p_s, q_s, R, beta, K, x, a, a1, ms, hs, c, xs, xn, f0, f1):
+    """Bounds of the floor acceleration ``a_f`` over one step (the building's own ``ms``
+    sub-steps of ``hs``): its largest deviation from the straight line between its step-end
+    values ``f0, f1``, ``δ ≤ (ms·hs)²/8·max|a_f''|``, and ``max|a_f| ≤ max(|f0|, |f1|) + δ``.
+    On each sub-step ``a_f`` is its Taylor polynomial ``Σ c_j τ^j`` (equal to it to rounding),
+    so ``|a_f''| ≤ Σ j(j−1)|c_j| hs^{j−2}``; likewise ``|a_f'| ≤ Σ j|c_j| hs^{j−1}``, the third
+    value returned."""
+    abound, dev, m1, _ = _floor_bounds(
+        phi_s, p_s, q_s, R, beta, K, x, a, a1, ms, hs, c, xs, xn, f0, f1
+    )
+    return abound, dev, m1
 
 
 @njit(cache=True, inline="always")
@@ -148,6 +167,7 @@ def _interior_peak(c, K, h, t0, work):
 @njit(cache=True)
 def _search_step(
     o,
+    g,
     n,
     a,
     a1,
@@ -160,11 +180,17 @@ def _search_step(
     gK,
     CG,
     XG,
+    cready,
+    G_R,
+    G_beta,
+    f0,
+    f1,
     S_Pqq,
     S_Pqx,
     S_pq,
     S_qq,
     need,
+    curv,
     out,
     c,
     Q,
@@ -174,51 +200,140 @@ def _search_step(
     """Peaks of oscillator `o` on a floor inside one record step, on its sub-steps.
 
     On every sub-step (``max(rho_building, w)·h <= 0.5``) the response of the oscillator is its
-    Taylor polynomial, from the floor's Taylor coefficients ``CG`` on that sub-step. The floor
+    Taylor polynomial, from the floor's Taylor coefficients ``CG[g]`` on that sub-step (``g``
+    the oscillator's group; ``o`` indexes the oscillator's data; the arrays are passed whole,
+    not as views, which would cost a reference count each call). The floor
     motion is a sum of the building's modes, with no bound on the critical points a quantity
     may have in a sub-step; each needed quantity is therefore first filtered by a rigorous
     bound (its end values plus the chord deviation ``h²/8·max|p''|``) and, when that can exceed
     its peak, searched (:func:`~floorslide.numerics.polynomial.max_abs_on`). ``n`` is the number
     of building states; the ground has its own :func:`_ground_search`.
+
+    The chord test is made twice. First, before any Taylor polynomial is formed, with the
+    bounds ``curv`` of the quantities' second derivatives over the whole record step (those of
+    :func:`_stage_floor`, from the equation of motion, :func:`_floor_curvatures`): a sub-step
+    ``m`` times shorter than the step has a chord deviation ``m²`` times smaller, so most
+    sub-steps of a short-period oscillator are settled by their end values alone. Only a
+    sub-step that fails it gets its polynomials — and the floor's Taylor coefficients on it,
+    ``CG[g, r]``, computed on first use from the group's rows ``G_R[g], G_beta[g]`` and the
+    sub-step's start state ``XG[g, r]``, marked in ``cready[g, r]`` and shared by the group's
+    oscillators — and the sharper test of ``max_abs_on``.
+
+    Between the two, a second rigorous filter that needs no polynomial either: the cubic
+    Hermite interpolant of each quantity's values and slopes at the sub-step's ends (slopes from
+    the equation of motion, with the floor acceleration ``f0, f1`` at the step's ends and
+    ``G_R[g, 0]·x + G_beta[g, 0]·a`` at inner sub-step ends) plus its error ``h⁴/384·max|p''''|``
+    (``curv[3]`` bounds ``|q''''|``, ``curv[4]`` ``|q⁽⁵⁾|``). That error is ``~(ωh)²/48`` of
+    the chord's, so it settles most of the steps the record-step tests flag.
     """
     m = gm
     K = gK
     h = dt / m
     c2 = 2.0 * xi * w
     w2 = w * w
+    k8 = 0.125 * h * h
+    slope = (a1 - a) / dt
+    h4 = h * h * h * h / 384.0
+    e4q = h4 * curv[3]
+    e4v = h4 * curv[4]
+    e4a = h4 * (w2 * curv[3] + c2 * curv[4])
     q = q0
     v = v0
+    fs = f0
     for r in range(m):
         aa, ab = substep_inputs(a, a1, r, m)
-        for j in range(K + 1):
-            c[j] = CG[r, j]
+        # floor acceleration at the sub-step's end
+        if r + 1 < m:
+            fe = G_beta[g, 0] * ab
+            for j in range(n):
+                fe += G_R[g, 0, j] * XG[g, r + 1, j]
+        else:
+            fe = f1
         # sub-step end state
-        qn = S_Pqq[0, 0] * q + S_Pqq[0, 1] * v + S_pq[0] * aa + S_qq[0] * ab
-        vn = S_Pqq[1, 0] * q + S_Pqq[1, 1] * v + S_pq[1] * aa + S_qq[1] * ab
+        qn = S_Pqq[o, 0, 0] * q + S_Pqq[o, 0, 1] * v + S_pq[o, 0] * aa + S_qq[o, 0] * ab
+        vn = S_Pqq[o, 1, 0] * q + S_Pqq[o, 1, 1] * v + S_pq[o, 1] * aa + S_qq[o, 1] * ab
         for j in range(n):
-            qn += S_Pqx[0, j] * XG[r, j]
-            vn += S_Pqx[1, j] * XG[r, j]
-        Q[0] = q
-        Q[1] = v
-        for j in range(K - 1):
-            Q[j + 2] = (-c2 * (j + 1) * Q[j + 1] - w2 * Q[j] - c[j]) / ((j + 1) * (j + 2))
-        if need[0]:
-            pk, _ = max_abs_on(Q, K, h, out[o, 0], work)
-            out[o, 0] = max(out[o, 0], abs(qn), pk)
-        if need[1]:
-            for j in range(K):
-                poly[j] = (j + 1) * Q[j + 1]
-            poly[K] = 0.0
-            pk, _ = max_abs_on(poly, K, h, out[o, 1], work)
-            out[o, 1] = max(out[o, 1], abs(vn), pk)
-        if need[2]:
-            for j in range(K):
-                poly[j] = w2 * Q[j] + c2 * (j + 1) * Q[j + 1]
-            poly[K] = w2 * Q[K]
-            pk, _ = max_abs_on(poly, K, h, out[o, 2], work)
-            out[o, 2] = max(out[o, 2], abs(w2 * qn + c2 * vn), pk)
+            qn += S_Pqx[o, 0, j] * XG[g, r, j]
+            vn += S_Pqx[o, 1, j] * XG[g, r, j]
+        # chord pre-filter (rigorous: curv bounds the second derivatives on the whole step)
+        nd = need[0] and max(abs(q), abs(qn)) + k8 * curv[0] > out[o, 0]
+        nv = need[1] and max(abs(v), abs(vn)) + k8 * curv[1] > out[o, 1]
+        na = (
+            need[2] and max(abs(w2 * q + c2 * v), abs(w2 * qn + c2 * vn)) + k8 * curv[2] > out[o, 2]
+        )
+        if nd or nv or na:
+            # Hermite filter (values and slopes at both ends, q'' from the equation of motion)
+            d0 = -(fs + w2 * q + c2 * v)
+            d1 = -(fe + w2 * qn + c2 * vn)
+            if nd:
+                nd = _hermite_max(q, v, qn, vn, h)[0] + e4q > out[o, 0]
+            if nv:
+                nv = _hermite_max(v, d0, vn, d1, h)[0] + e4v > out[o, 1]
+            if na:
+                A0 = w2 * q + c2 * v
+                A1 = w2 * qn + c2 * vn
+                na = (
+                    _hermite_max(A0, w2 * v + c2 * d0, A1, w2 * vn + c2 * d1, h)[0] + e4a
+                    > out[o, 2]
+                )
+        if nd or nv or na:
+            if not cready[g, r]:
+                for j in range(CG.shape[2]):
+                    CG[g, r, j] = 0.0
+                taylor_coefficients(G_R[g], G_beta[g], XG[g, r], aa, slope, CG[g, r])
+                cready[g, r] = True
+            for j in range(K + 1):
+                c[j] = CG[g, r, j]
+            Q[0] = q
+            Q[1] = v
+            for j in range(K - 1):
+                Q[j + 2] = (-c2 * (j + 1) * Q[j + 1] - w2 * Q[j] - c[j]) / ((j + 1) * (j + 2))
+            if nd:
+                pk, _ = max_abs_on(Q, K, h, out[o, 0], work)
+                out[o, 0] = max(out[o, 0], abs(qn), pk)
+            if nv:
+                for j in range(K):
+                    poly[j] = (j + 1) * Q[j + 1]
+                poly[K] = 0.0
+                pk, _ = max_abs_on(poly, K, h, out[o, 1], work)
+                out[o, 1] = max(out[o, 1], abs(vn), pk)
+            if na:
+                for j in range(K):
+                    poly[j] = w2 * Q[j] + c2 * (j + 1) * Q[j + 1]
+                poly[K] = w2 * Q[K]
+                pk, _ = max_abs_on(poly, K, h, out[o, 2], work)
+                out[o, 2] = max(out[o, 2], abs(w2 * qn + c2 * vn), pk)
         q = qn
         v = vn
+        fs = fe
+
+
+@njit(cache=True, inline="always")
+def _floor_curvatures(C, o, q0, v0, dt, f0, f1, fdev, abound, jbound, m3f, curv):
+    """Bounds over one record step of ``|q''|``, ``|q'''|`` and ``|(ω²q + 2ξωq')''|`` for
+    oscillator ``o`` of a block on a floor, from its state ``q0, v0`` at the step start, into
+    ``curv``: the quantities ``m2q, m2v, m2a`` of :func:`_stage_floor` (same formulas), then
+    bounds of ``|q''''|`` (``m4q``, as there) and ``|q⁽⁵⁾| ≤ max|a_f'''| + 2ξω·m4q + ω²·m2v``
+    (``m3f`` bounds ``|a_f'''|``, from :func:`_floor_bounds`)."""
+    w2 = C[W2 * NB + o]
+    c2 = C[C2 * NB + o]
+    fslope = (f1 - f0) / dt
+    iw2 = C[IW2 * NB + o]
+    bet = -fslope * iw2
+    alp = fslope * C[AS * NB + o] - f0 * iw2
+    e0 = q0 - alp
+    ci = (v0 - bet + C[XIW * NB + o] * e0) * C[IWD * NB + o]
+    cm = math.sqrt(e0 * e0 + ci * ci)
+    bd = max(abs(alp), abs(alp + bet * dt)) + cm + fdev * C[IH0 * NB + o]
+    bv = abs(bet) + C[W * NB + o] * cm + fdev * C[IH1 * NB + o]
+    m2q = abound + c2 * bv + w2 * bd
+    m2v = jbound + c2 * m2q + w2 * bv
+    curv[0] = m2q
+    curv[1] = m2v
+    curv[2] = w2 * m2q + c2 * m2v
+    m4q = 8.0 * fdev / (dt * dt) + c2 * m2v + w2 * m2q
+    curv[3] = m4q
+    curv[4] = m3f + c2 * m4q + w2 * m2v
 
 
 @njit(cache=True, inline="always")
@@ -234,7 +349,28 @@ def _sample(acc, k, up):
 
 @njit(cache=True)
 def _ground_search(
-    f, a, a1, dt, m, K, q0, v0, w, xi, s00, s01, s10, s11, sp0, sp1, sq0, sq1, pk, Q, poly, work
+    f,
+    a,
+    a1,
+    dt,
+    m,
+    K,
+    q0,
+    v0,
+    w,
+    xi,
+    s00,
+    s01,
+    s10,
+    s11,
+    sp0,
+    sp1,
+    sq0,
+    sq1,
+    pk,
+    Q,
+    poly,
+    work,
 ):
     """Peaks of one oscillator on the ground inside one record step, on its ``m`` sub-steps.
 
@@ -673,40 +809,62 @@ def spectrum_kernel(setup, X, k0, acc, up, dt, search_all, S, out, counts):
     ready = np.zeros(ngroups, dtype=np.bool_)
     CG = np.zeros((ngroups, G_m.max(), G_R.shape[1]))
     XG = np.zeros((ngroups, G_m.max(), n))
+    cready = np.zeros((ngroups, G_m.max()), dtype=np.bool_)
+    curv = np.zeros(5)
     L = CHUNK
-    FK = np.zeros((L, 5))  # floor: f0, f1, max|a_f|, deviation from the line, max|a_f'|
+    # floor: f0, f1, max|a_f|, deviation from the line, max|a_f'|, max|a_f'''|
+    FK = np.zeros((L, 6))
+    AK = np.zeros(L + 1)  # the record on the kernel's grid through the piece
     for c0 in range(kf0, kf1, L):
         c1 = min(c0 + L, kf1)
+        for k in range(c0, c1 + 1):
+            AK[k - c0] = _sample(acc, k, up)
         # the floor through this piece, once for every block
         for k in range(c0, c1):
             if n == 0:
                 break
-            a = _sample(acc, k, up)
-            a1 = _sample(acc, k + 1, up)
+            a = AK[k - c0]
+            a1 = AK[k + 1 - c0]
             x = X[k - kf0]
             xe = X[k + 1 - kf0]  # building state at the step end
             f1 = b_beta[0] * a1  # floor acceleration at the step end
             for j in range(n):
                 f1 += b_R[0, j] * xe[j]
-            abound, fdev, jbound = _floor_bound(
-                b_phi, b_p, b_q, b_R, b_beta, b_K, x, a, a1, b_m, dt / b_m, c, xs, xn, f0, f1
+            abound, fdev, jbound, m3f = _floor_bounds(
+                b_phi,
+                b_p,
+                b_q,
+                b_R,
+                b_beta,
+                b_K,
+                x,
+                a,
+                a1,
+                b_m,
+                dt / b_m,
+                c,
+                xs,
+                xn,
+                f0,
+                f1,
             )
             FK[k - c0, 0] = f0
             FK[k - c0, 1] = f1
             FK[k - c0, 2] = abound
             FK[k - c0, 3] = fdev
             FK[k - c0, 4] = jbound
+            FK[k - c0, 5] = m3f
             f0 = f1
         # each block of oscillators through the chunk, its data staying in the L1 cache
         for blk in range(nblk):
             Cb = C[blk]
             Sb = S[blk]
+            PXb = PX[blk]
             nb = min(NB, nosc - blk * NB)
             for k in range(c0, c1):
-                a = _sample(acc, k, up)
-                a1 = _sample(acc, k + 1, up)
+                a = AK[k - c0]
+                a1 = AK[k + 1 - c0]
                 if n > 0:
-                    PXb = PX[blk]
                     for o in range(NB):
                         Sb[_CP0 * NB + o] = 0.0
                         Sb[_CP1 * NB + o] = 0.0
@@ -735,7 +893,6 @@ def spectrum_kernel(setup, X, k0, acc, up, dt, search_all, S, out, counts):
                     nf = _stage_ground(Cb, Sb, flag, nb, a, a1, dt)
                 if nf == 0 and not search_all:
                     continue
-                slope = (a1 - a) / dt  # of the ground record
                 for o in range(nb):
                     f = 7 if search_all else flag[o]
                     if f == 0:
@@ -782,8 +939,9 @@ def spectrum_kernel(setup, X, k0, acc, up, dt, search_all, S, out, counts):
                     out[og, 2] = Sb[_PA * NB + o]
                     g = grp[og]
                     if n > 0 and not ready[g]:
-                        # the floor on this group's sub-steps: states and Taylor coefficients,
-                        # shared by the oscillators of the group in this block
+                        # the floor's states on this group's sub-steps, shared by the
+                        # oscillators of the group in this block (its Taylor coefficients are
+                        # computed by _search_step on the sub-steps that need them)
                         counts[1] += 1
                         mg = G_m[g]
                         for i in range(n):
@@ -792,15 +950,29 @@ def spectrum_kernel(setup, X, k0, acc, up, dt, search_all, S, out, counts):
                             aa, ab = substep_inputs(a, a1, r, mg)
                             for i in range(n):
                                 XG[g, r, i] = xs2[i]
-                            for j in range(CG.shape[2]):
-                                CG[g, r, j] = 0.0
-                            taylor_coefficients(G_R[g], G_beta[g], xs2, aa, slope, CG[g, r])
-                            foh_step(G_phi[g], G_p[g], G_q[g], xs2, aa, ab, xn)
-                            for i in range(n):
-                                xs2[i] = xn[i]
+                            cready[g, r] = False
+                            if r + 1 < mg:
+                                foh_step(G_phi[g], G_p[g], G_q[g], xs2, aa, ab, xn)
+                                for i in range(n):
+                                    xs2[i] = xn[i]
                         ready[g] = True
+                    _floor_curvatures(
+                        Cb,
+                        o,
+                        Sb[_QS * NB + o],
+                        Sb[_VS * NB + o],
+                        dt,
+                        FK[k - c0, 0],
+                        FK[k - c0, 1],
+                        FK[k - c0, 3],
+                        FK[k - c0, 2],
+                        FK[k - c0, 4],
+                        FK[k - c0, 5],
+                        curv,
+                    )
                     _search_step(
                         og,
+                        g,
                         n,
                         a,
                         a1,
@@ -811,13 +983,19 @@ def spectrum_kernel(setup, X, k0, acc, up, dt, search_all, S, out, counts):
                         xi[og],
                         G_m[g],
                         K_osc[og],
-                        CG[g],
-                        XG[g],
-                        S_Pqq[og],
-                        S_Pqx[og],
-                        S_pq[og],
-                        S_qq[og],
+                        CG,
+                        XG,
+                        cready,
+                        G_R,
+                        G_beta,
+                        FK[k - c0, 0],
+                        FK[k - c0, 1],
+                        S_Pqq,
+                        S_Pqx,
+                        S_pq,
+                        S_qq,
                         need,
+                        curv,
                         out,
                         c,
                         Q,

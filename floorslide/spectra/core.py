@@ -24,20 +24,24 @@ import numpy as np
 
 from floorslide.building.exact import (
     MAX_PHASE,
-    ExactStepper,
     spectral_radius,
     substeps_for,
     taylor_degree,
     taylor_degrees,
 )
-from floorslide.building.exact_motion import FloorMotion, single_use_motion, unwrap
+from floorslide.building.exact_motion import (
+    FloorMotion,
+    _cached_stepper,
+    single_use_motion,
+    unwrap,
+)
 from floorslide.building.model import LinearBuilding
 from floorslide.building.motions import floor_motions
 from floorslide.constants import MAX_LIST
 from floorslide.errors import ModelError
 from floorslide.inputs import RecordLike
-from floorslide.numerics.blas import expm
 from floorslide.spectra import _kernels as K
+from floorslide.spectra._closed_forms import coupled_recurrence, impulse_integrals
 from floorslide.spectra._kernels import (
     NB,
     NCOEF,
@@ -247,44 +251,15 @@ def _sdof_recurrence(w, xi, h):
 
 
 def _oscillator_blocks(A, b, Ca, da, w, xi, h):
-    """Exact sub-step recurrence of oscillators coupled to a floor, from one batched expm of the
-    augmented first-order-hold matrices (Van Loan 1978); on the ground, in closed form
+    """Exact sub-step recurrence of oscillators coupled to a floor, by the series of
+    :func:`~floorslide.spectra._closed_forms.coupled_recurrence` (the augmented first-order hold
+    of Van Loan 1978 without a matrix exponential per oscillator); on the ground, in closed form
     (:func:`_sdof_recurrence`)."""
     n = A.shape[0]
     if n == 0:
         Pqq, pq, qq = _sdof_recurrence(w, xi, h)
         return Pqq, np.zeros((w.size, 2, 0)), pq, qq
-    m = w.size
-    N = n + 2
-    aug = np.zeros((m, N + 2, N + 2))
-    aug[:, :n, :n] = A
-    aug[:, :n, N] = b
-    aug[:, n, n + 1] = 1.0
-    aug[:, n + 1, :n] = -Ca
-    aug[:, n + 1, n] = -(w**2)
-    aug[:, n + 1, n + 1] = -2 * xi * w
-    aug[:, n + 1, N] = -da
-    aug[:, N, N + 1] = 1.0
-    E = expm(aug * h)
-    Pqq = np.ascontiguousarray(E[:, n:N, n:N])
-    Pqx = np.ascontiguousarray(E[:, n:N, :n])
-    g0 = E[:, n:N, N]
-    g1 = E[:, n:N, N + 1]
-    return Pqq, Pqx, np.ascontiguousarray(g0 - g1 / h), np.ascontiguousarray(g1 / h)
-
-
-def _impulse_integrals(w, xi, dt, n=513):
-    """``∫₀^dt |h|``, ``∫₀^dt |h'|`` and ``∫₀^dt |ω²h + 2ξωh'|`` of the oscillators' impulse
-    responses ``h = e^{−ξωt} sin(ω_d t)/ω_d`` (trapezoid on a fine grid, 2 % safety margin: they
-    only make a skip test conservative)."""
-    t = np.linspace(0.0, dt, n)[:, None]
-    wd = w * np.sqrt(1 - xi**2)
-    env = np.exp(-xi * w * t)
-    h = env * np.sin(wd * t) / wd
-    hd = env * (np.cos(wd * t) - xi * w / wd * np.sin(wd * t))
-    ha = w**2 * h + 2 * xi * w * hd
-    out = np.stack([np.trapezoid(np.abs(f), dx=dt / (n - 1), axis=0) for f in (h, hd, ha)])
-    return np.ascontiguousarray(out * 1.02)
+    return coupled_recurrence(A, b, Ca, da, w, xi, h)
 
 
 def _blocks(w, xi, dt, Pqq, Pqx, pq, qq, one_crit, Ih):
@@ -336,12 +311,19 @@ def _blocks(w, xi, dt, Pqq, Pqx, pq, qq, one_crit, Ih):
 
 
 @functools.lru_cache(maxsize=16)
-def _kernel_data(dt: float, T_bytes: bytes, Z_bytes: bytes, n: int, system: bytes) -> SpectrumSetup:
+def _kernel_data(
+    dt: float, T_bytes: bytes, Z_bytes: bytes, n: int, system: bytes, period_major: bool = False
+) -> SpectrumSetup:
     """Everything the spectrum kernel needs but the record, for oscillators of periods ``T`` and
     damping ratios ``Z`` on a floor whose state-space data (``n`` states; ``A``, ``b``, ``Ca``,
     ``da`` packed in ``system``) is given, or on the ground (``n = 0``). Cached: a study asks for
     the same periods, damping ratios, dt and building record after record. The arrays returned
-    are shared between calls: they are returned read-only."""
+    are shared between calls: they are returned read-only.
+
+    Oscillators are numbered damping-major (``i_Z·len(T) + i_T``), or with `period_major`
+    period-major (``i_T·len(Z) + i_Z``): then the damping ratios of one period sit in one block
+    of the kernel and share the floor's sub-step data of their group (same sub-steps), which
+    the kernel computes once per block and step."""
     T = np.frombuffer(T_bytes)
     Z = np.frombuffer(Z_bytes)
     on_floor = n > 0
@@ -355,6 +337,8 @@ def _kernel_data(dt: float, T_bytes: bytes, Z_bytes: bytes, n: int, system: byte
     else:
         A, b, Ca, da, rho_b = np.zeros((0, 0)), np.zeros(0), np.zeros(0), 1.0, 0.0
     TT, ZZ = np.meshgrid(T, Z)
+    if period_major:
+        TT, ZZ = TT.T, ZZ.T
     w = np.ascontiguousarray(2 * np.pi / TT.ravel())
     xi = np.ascontiguousarray(ZZ.ravel())
     nosc = w.size
@@ -363,7 +347,7 @@ def _kernel_data(dt: float, T_bytes: bytes, Z_bytes: bytes, n: int, system: byte
     one_crit = np.maximum(w, rho_b) * dt <= MAX_PHASE
     # the building: record step, and its own sub-steps for the floor-acceleration bound
     if on_floor:
-        own = ExactStepper.build(A, b, dt)
+        own = _cached_stepper(n, A.tobytes(), b.tobytes(), float(dt), None)
         b_R, b_beta = own.taylor_rows(Ca[None, :], np.array([da]))
         b_phi, (b_p, b_q), b_R, b_beta = own.phi, own.input_weights(), b_R[0], b_beta[0]
         b_K, b_m = own.order, own.substeps
@@ -389,22 +373,26 @@ def _kernel_data(dt: float, T_bytes: bytes, Z_bytes: bytes, n: int, system: byte
     S_Pqx = np.zeros((nosc, 2, n))
     S_pq = np.zeros((nosc, 2))
     S_qq = np.zeros((nosc, 2))
+    # the oscillators' own sub-steps: the record step itself for one sub-step, else all in one
+    # batch (each with its own sub-step dt/m)
+    one = m_all == 1
+    S_Pqq[one], S_Pqx[one], S_pq[one], S_qq[one] = Pqq[one], Pqx[one], pq[one], qq[one]
+    if not one.all():
+        more = ~one
+        S_Pqq[more], S_Pqx[more], S_pq[more], S_qq[more] = _oscillator_blocks(
+            A, b, Ca, da, w[more], xi[more], dt / m_all[more]
+        )
     for g, m in enumerate(groups):
-        idx = m_all == m
-        if m == 1:  # the record step itself
-            S_Pqq[idx], S_Pqx[idx], S_pq[idx], S_qq[idx] = Pqq[idx], Pqx[idx], pq[idx], qq[idx]
-        else:
-            S_Pqq[idx], S_Pqx[idx], S_pq[idx], S_qq[idx] = _oscillator_blocks(
-                A, b, Ca, da, w[idx], xi[idx], dt / m
-            )
         if on_floor:
-            st = ExactStepper.build(A, b, dt, substeps=int(m))
+            # (the building's sub-step matrices: one small expm per group, cached with those
+            # of the floor motions)
+            st = _cached_stepper(n, A.tobytes(), b.tobytes(), float(dt), int(m))
             R, beta = st.taylor_rows(Ca[None, :], np.array([da]), order=int(G_K[g]))
             G_phi[g] = st.phi
             G_p[g], G_q[g] = st.input_weights()
             G_R[g, : R.shape[1]] = R[0]
             G_beta[g, : R.shape[1]] = beta[0]
-    Ih = _impulse_integrals(w, xi, dt) if on_floor else np.zeros((3, nosc))
+    Ih = impulse_integrals(w, xi, dt) if on_floor else np.zeros((3, nosc))
     C, PX = _blocks(w, xi, dt, Pqq, Pqx, pq, qq, one_crit, Ih)
     return SpectrumSetup(
         *_read_only(
@@ -470,7 +458,11 @@ def _exact(fm, T, Z, search_all=False, counts=None):
     out = np.zeros((int(pos.sum()) * Z.size, 3))
     if pos.any():  # (periods 0 only: no oscillator)
         setup = _kernel_data(
-            float(h), np.asarray(T[pos], float).tobytes(), np.asarray(Z, float).tobytes(), *system
+            float(h),
+            np.asarray(T[pos], float).tobytes(),
+            np.asarray(Z, float).tobytes(),
+            *system,
+            period_major=True,
         )
         S = spectrum_state(setup.C.shape[0], fm.beta[0] * a[0])
         for k0, X in fm.chunks():
@@ -478,9 +470,10 @@ def _exact(fm, T, Z, search_all=False, counts=None):
     sd = np.zeros((Z.size, T.size))
     sv = np.zeros((Z.size, T.size))
     sa = np.zeros((Z.size, T.size))
-    sd[:, pos] = out[:, 0].reshape(Z.size, -1)
-    sv[:, pos] = out[:, 1].reshape(Z.size, -1)
-    sa[:, pos] = out[:, 2].reshape(Z.size, -1)
+    # (oscillators period-major: see _kernel_data)
+    sd[:, pos] = out[:, 0].reshape(-1, Z.size).T
+    sv[:, pos] = out[:, 1].reshape(-1, Z.size).T
+    sa[:, pos] = out[:, 2].reshape(-1, Z.size).T
     if (~pos).any():
         sa[:, ~pos] = fm.peak()[0]
     return sd, sv, sa
