@@ -316,6 +316,14 @@ def _initial(building: NonlinearIsolatedBuilding, x0: np.ndarray, a0: float) -> 
     return SLIP_POS if F > 0 else SLIP_NEG
 
 
+_OSCILLATORS_BY_SERIES = False
+"""Private switch: advance the riders of ``oscillators=`` by the series on every sub-step (the
+reference path of the tests) instead of their exact linear update on sub-steps without events
+(:func:`floorslide.building._nonlinear_kernel._riders_fast`)."""
+_LAST_RIDER_STATS = np.zeros(4, dtype=np.int64)
+"""Counters of the last call with riders (sub-steps on the fast path, rider·sub-steps there,
+flagged rider·sub-steps, polynomial searches): for profiling and tests."""
+
 _CACHE_SIZE = 32
 """Most buildings (with their floors, time step …) whose matrices are kept per cache."""
 _PREPARED_CACHE: dict = {}
@@ -581,8 +589,9 @@ def isolator_response(
         bstates = np.zeros((len(blocks), NCOL))
         bstates[:, LIMIT_AT] = -1.0
         hist_u = np.zeros((len(blocks), acc.size) if block_histories else (0, 0))
-        osc_S = np.zeros((len(oscillators), 2))
-        osc_P = np.zeros((len(oscillators), 3))
+        osc_S = np.zeros((2, len(oscillators)))
+        osc_P = np.zeros((3, len(oscillators)))
+        osc_stats = np.zeros(4, dtype=np.int64)
         S2 = np.zeros((muk2.size, O_NCOL))
         S2[:, O_LIMIT_AT] = -1.0
         rk_states = np.array(rk_states0, dtype=float, copy=True)
@@ -594,6 +603,7 @@ def isolator_response(
             bstates, n,
             hist_u, osc_out, osc_w, osc_xi, osc_rho, osc_S, osc_P, D, flex, mub2, muk2, S2,
             Yo, H2, rk_out, rk_par, rk_states, rk_D, bool(rk_nonlinear), rk_phase, rk_hist,
+            not _OSCILLATORS_BY_SERIES, osc_stats,
         )  # fmt: skip
         if len(blocks) and (bstates[:, LIMIT_AT] >= 0).any():
             t = float(bstates[bstates[:, LIMIT_AT] >= 0, LIMIT_AT].min())
@@ -612,6 +622,8 @@ def isolator_response(
         if n_ev <= cap:
             break
         cap = n_ev
+    if oscillators:
+        _LAST_RIDER_STATS[:] = osc_stats
     h = dt / m
     samples = X
     br = BR
@@ -657,7 +669,7 @@ def isolator_response(
         notes=notes,
         block_states=bstates[np.argsort(order, kind="stable")] if len(blocks) else None,
         block_slides=hist_u[np.argsort(order, kind="stable")] if block_histories else None,
-        oscillator_peaks=osc_P[np.argsort(osc_order, kind="stable")] if oscillators else None,
+        oscillator_peaks=osc_P.T[np.argsort(osc_order, kind="stable")] if oscillators else None,
         flexible_states=S2 if flexible is not None else None,
         flexible_histories=H2 if flexible is not None and flexible_histories else None,
         rocker_states=rk_states if rockers is not None else None,
