@@ -17,7 +17,7 @@ import pytest
 import floorslide as fs
 from floorslide.building import _nonlinear_kernel as kern
 from floorslide.building import nonlinear as nl
-from tests.conftest import G, SLAMMER
+from tests.conftest import SLAMMER, G
 
 PERIODS = np.geomspace(0.02, 5.0, 12)
 DAMPING = [0.0, 0.05, 0.3]
@@ -106,9 +106,7 @@ def _sampled_peaks(b, a, dt, floor, w, xi):
         kern.nonlinear_run = run
     X = grabbed["X"]
     q, v = X[:, -2], X[:, -1]
-    return np.array(
-        [np.abs(q).max(), np.abs(v).max(), np.abs(w * w * q + 2 * xi * w * v).max()]
-    )
+    return np.array([np.abs(q).max(), np.abs(v).max(), np.abs(w * w * q + 2 * xi * w * v).max()])
 
 
 @pytest.mark.parametrize(
