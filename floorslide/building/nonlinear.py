@@ -437,10 +437,14 @@ def isolator_response(
         ``max|q|, max|q'|, max|ω²q + 2ξωq'|`` (SD, SV, SA) are then ``pfa`` instead of the
         floors' (the augmented form; a reference for the next).
     oscillators
-        ``[(floor, ω, ξ), …]``: linear oscillators riding along (they do not act back), each
-        advanced through every segment by the Taylor series of its exact response to the
-        floor's in-step polynomial; their peaks ``(SD, SV, SA)`` are in
-        ``oscillator_peaks`` (:func:`floor_spectrum_on_isolation` wraps this).
+        ``[(floor, ω, ξ), …]``: linear oscillators riding along (they do not act back); their
+        peaks ``(SD, SV, SA)`` are in ``oscillator_peaks`` (:func:`floor_spectrum_on_isolation`
+        wraps this). On a sub-step without isolator events (the common case) each is advanced
+        by its exact linear update ``(q, q')(h) = Φ·(q, q')(0) + W_branch·[x; a_g; slope]``
+        and searched inside the sub-step only where a rigorous filter cannot rule out a new
+        peak; through a segment between events by the Taylor series of its exact response to
+        the floor's in-step polynomial (``_OSCILLATORS_BY_SERIES`` forces the series
+        everywhere: the reference of the tests).
     flexible
         ``(floor, f, ξ, r, mu_b, mu_k)``: 2-DOF sliding oscillators (frequency ``f`` Hz, damping
         ξ, mass ratio ``r``; breakaway and kinetic friction arrays) riding along, advanced by
@@ -750,10 +754,12 @@ def floor_spectrum_on_isolation(
     """Floor response spectra of a building on nonlinear isolation, exact end to end.
 
     Every oscillator ``(T, ξ)`` rides along one integration of the building (it does not act
-    back): through each segment between the layer's events it is advanced by the Taylor series
-    of its exact response to the floor's in-step polynomial, and its peaks are found inside
-    steps (:func:`isolator_response` with ``oscillators=``). The building keeps its own
-    sub-steps; each oscillator goes through them in parts short for it (``ω h ≤ 0.5``).
+    back), and its peaks are found inside steps (:func:`isolator_response` with
+    ``oscillators=``): on a sub-step without isolator events by its exact linear update
+    (precomputed per branch) and a rigorous filter that leaves few sub-steps to search; through
+    a segment between events by the Taylor series of its exact response to the floor's
+    in-step polynomial. The building keeps its own sub-steps; each oscillator's series goes
+    through them in parts short for it (``ω h ≤ 0.5``).
 
     Returns
     -------
