@@ -1179,7 +1179,17 @@ def nonlinear_run(
                         _pack_segment(XW, pk, x, y, a_s, a_end, slope, L, t0 + s0, g)
                         _blocks_substep(G, OR, OB, m, XW, BLK, MU, bstates, buf, rw, pk, flags,
                                         n, L)  # fmt: skip
-                    if nosc > 0:
+                    if fast_riders and events_here == 0:
+                        # no event after all: a whole sub-step of one branch, as on the fast
+                        # path (the functions' end values formed here)
+                        for f in range(nout + 1):
+                            z0[f] = _value(G[m, f], x, aa)
+                            z1[f] = _value(G[m, f], y, ab)
+                        _riders_fast(m, GT, OR, OB, OW, x, oax, aa, slope, h, K, z0, z1,
+                                     osc_out, osc_w, osc_xi, osc_rho, osc_S, osc_P, D, PH, RC,
+                                     oZ, oU, oS0, oFL, co, CS, d, dv, da, ow,
+                                     osc_stats)  # fmt: skip
+                    elif nosc > 0:
                         _oscillators(OR[m], OB[m], x, a_s, slope, L, K, osc_out, osc_w, osc_xi,
                                      osc_rho, osc_S, osc_P, D, co, CS, d, dv, da, ow)  # fmt: skip
                     if n2 > 0:
