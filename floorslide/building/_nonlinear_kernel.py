@@ -177,6 +177,22 @@ def _blocks_substep(G, OR, OB, m, XW, BLK, MU, bstates, buf, rw, pk, flags, n, h
         i0 = i1
 
 
+@njit(cache=True, inline="always")
+def _rider_series(cs, K, D, z2w, w2, q, v, d, dv):
+    """Taylor series of a rider on a part from its state ``(q, q')`` there, driven by the floor
+    polynomial ``cs`` (degree ``K``, shifted to the part's start): ``d_0 = q, d_1 = q'``,
+    ``d_{k+2} = −(c_k + 2ξω(k+1) d_{k+1} + ω² d_k)/((k+1)(k+2))`` up to degree ``D``, and its
+    derivative's coefficients ``dv`` (degree ``D − 1``)."""
+    d[0] = q
+    d[1] = v
+    for k in range(D - 1):
+        ck = cs[k] if k <= K else 0.0
+        d[k + 2] = -(ck + z2w * (k + 1) * d[k + 1] + w2 * d[k]) / ((k + 1) * (k + 2))
+    for j in range(D):
+        dv[j] = (j + 1) * d[j + 1]
+    dv[D] = 0.0
+
+
 @njit(cache=True)
 def _oscillators(OR, OB, x, a_s, slope, L, K, osc_out, osc_w, osc_xi, osc_rho, S, P, D, c,
                  CS, d, dv, da, work):  # fmt: skip
@@ -186,11 +202,14 @@ def _oscillators(OR, OB, x, a_s, slope, L, K, osc_out, osc_w, osc_xi, osc_rho, S
     ``MAX_PHASE/osc_rho[i]`` (its own ``ρ·h ≤ 0.5``; the building keeps its own sub-steps):
     on a part starting at ``τ_b`` the floor polynomial is shifted there (``CS``, one shift per
     floor and part grid: oscillators come sorted by floor, then by ``osc_rho``) and ``q`` is
-    the series ``Σ d_j s^j`` with ``d_0 = q, d_1 = q'`` and
-    ``d_{k+2} = −(c_k + 2ξω(k+1) d_{k+1} + ω² d_k)/((k+1)(k+2))`` (exact to rounding at degree
-    ``D``). ``S[i] = (q, q')`` in/out; ``P[i]`` the peaks of ``|q|``, ``|q'|`` and of the
+    the series ``Σ d_j s^j`` of :func:`_rider_series` (exact to rounding at degree ``D``).
+    ``S[:, i] = (q, q')`` in/out; ``P[:, i]`` the peaks of ``|q|``, ``|q'|`` and of the
     absolute acceleration ``|ω² q + 2ξω q'|``, searched inside a part only when the bound
-    ``Σ|d_j| h^j`` exceeds the peak so far."""
+    ``Σ|d_j| h^j`` exceeds the peak so far.
+
+    This is the series path: segments of a sub-step with an event of the building, and every
+    sub-step when :func:`nonlinear_run` is told so (``osc_fast`` false); full sub-steps
+    otherwise take :func:`_riders_fast`."""
     last = -1
     last_parts = -1
     for i in range(osc_w.size):
@@ -209,31 +228,315 @@ def _oscillators(OR, OB, x, a_s, slope, L, K, osc_out, osc_w, osc_xi, osc_rho, S
         z2w = 2.0 * osc_xi[i] * w
         w2 = w * w
         for sp in range(parts):
-            cs = CS[sp]
-            d[0] = S[i, 0]
-            d[1] = S[i, 1]
-            for k in range(D - 1):
-                ck = cs[k] if k <= K else 0.0
-                d[k + 2] = -(ck + z2w * (k + 1) * d[k + 1] + w2 * d[k]) / ((k + 1) * (k + 2))
-            for j in range(D):
-                dv[j] = (j + 1) * d[j + 1]
-            dv[D] = 0.0
+            _rider_series(CS[sp], K, D, z2w, w2, S[0, i], S[1, i], d, dv)
             for j in range(D + 1):
                 da[j] = -(w2 * d[j] + z2w * dv[j])
-            if _bound_on(d, D, hp) > P[i, 0]:
-                v, _ = max_abs_on(d, D, hp, P[i, 0], work)
-                if v > P[i, 0]:
-                    P[i, 0] = v
-            if _bound_on(dv, D - 1, hp) > P[i, 1]:
-                v, _ = max_abs_on(dv, D - 1, hp, P[i, 1], work)
-                if v > P[i, 1]:
-                    P[i, 1] = v
-            if _bound_on(da, D, hp) > P[i, 2]:
-                v, _ = max_abs_on(da, D, hp, P[i, 2], work)
-                if v > P[i, 2]:
-                    P[i, 2] = v
-            S[i, 0] = poly_val(d, D, hp)
-            S[i, 1] = poly_val(dv, D - 1, hp)
+            if _bound_on(d, D, hp) > P[0, i]:
+                v, _ = max_abs_on(d, D, hp, P[0, i], work)
+                if v > P[0, i]:
+                    P[0, i] = v
+            if _bound_on(dv, D - 1, hp) > P[1, i]:
+                v, _ = max_abs_on(dv, D - 1, hp, P[1, i], work)
+                if v > P[1, i]:
+                    P[1, i] = v
+            if _bound_on(da, D, hp) > P[2, i]:
+                v, _ = max_abs_on(da, D, hp, P[2, i], work)
+                if v > P[2, i]:
+                    P[2, i] = v
+            S[0, i] = poly_val(d, D, hp)
+            S[1, i] = poly_val(dv, D - 1, hp)
+
+
+# rows of the riders' constants (see _rider_weights): ω, ω², 2ξω, 1/ω², 2ξ/ω³, ξω, 1/ω_d,
+# bounds of ∫_0^h |g| for g the impulse responses of q, q' and ω²q + 2ξωq', and 1 where the
+# filter of _rider_flags applies (ξ < 1), else 0
+R_W, R_W2, R_C2, R_IW2, R_AS, R_XIW, R_IWD, R_IH0, R_IH1, R_IH2, R_OK = range(11)
+NRC = 11
+MARGIN = 1.0 + 1e-6
+"""Relative margin of the bounds of :func:`_rider_flags` (for the rounding of the values they
+are formed from)."""
+
+
+@njit(cache=True)
+def _rider_weights(OR, OB, h, osc_out, osc_w, osc_xi, osc_rho, D):
+    """The riders' exact update over a full sub-step of length ``h`` on each branch, and the
+    constants of their peak filter (:func:`_rider_flags`).
+
+    On a sub-step without events the floor acceleration is linear in the building's start
+    state ``x``, the ground value ``a`` at the start and the ground's slope ``s``, and so is a
+    rider's response: ``(q, q')(h) = Φ·(q, q')(0) + W_m·[x; a; s]``. ``PH[:, i]`` holds
+    ``Φ`` (``Φ00, Φ01, Φ10, Φ11``) and ``OW[m, :, :, i]`` the ``2 × (N + 2)`` weights
+    ``W_m`` of branch ``m``, made by superposition: the series update of :func:`_oscillators`
+    (linear in its inputs) run on unit inputs, in the same parts. ``RC[:, i]``: the
+    constants (rows ``R_*``)."""
+    nb, N = OR.shape[0], OR.shape[3]
+    K = OR.shape[2] - 1
+    nosc = osc_w.size
+    PH = np.zeros((4, nosc))
+    OW = np.zeros((nb, 2, N + 2, nosc))
+    RC = np.zeros((NRC, nosc))
+    c = np.zeros(K + 1)
+    cs = np.zeros(K + 1)
+    d = np.zeros(D + 2)
+    dv = np.zeros(D + 2)
+    e = np.zeros(N)
+    for i in range(nosc):
+        w = osc_w[i]
+        xi = osc_xi[i]
+        z2w = 2.0 * xi * w
+        w2 = w * w
+        parts = max(1, int(np.ceil(h * osc_rho[i] / 0.5 - 1e-12)))
+        hp = h / parts
+        # Φ: the free response to a unit q, then a unit q'
+        for col in range(2):
+            q = 1.0 if col == 0 else 0.0
+            v = 1.0 - q
+            for j in range(K + 1):
+                cs[j] = 0.0
+            for _ in range(parts):
+                _rider_series(cs, K, D, z2w, w2, q, v, d, dv)
+                q = poly_val(d, D, hp)
+                v = poly_val(dv, D - 1, hp)
+            PH[col, i] = q
+            PH[2 + col, i] = v
+        # W_m: the response from rest to a unit x_j, a, s
+        o = osc_out[i]
+        for m in range(nb):
+            for col in range(N + 2):
+                for j in range(N):
+                    e[j] = 0.0
+                a = 0.0
+                s = 0.0
+                if col < N:
+                    e[col] = 1.0
+                elif col == N:
+                    a = 1.0
+                else:
+                    s = 1.0
+                taylor_coefficients(OR[m, o], OB[m, o], e, a, s, c)
+                q = 0.0
+                v = 0.0
+                for sp in range(parts):
+                    _shift(c, K, sp * hp, cs)
+                    _rider_series(cs, K, D, z2w, w2, q, v, d, dv)
+                    q = poly_val(d, D, hp)
+                    v = poly_val(dv, D - 1, hp)
+                OW[m, 0, col, i] = q
+                OW[m, 1, col, i] = v
+        RC[R_W, i] = w
+        RC[R_W2, i] = w2
+        RC[R_C2, i] = z2w
+        RC[R_IW2, i] = 1.0 / w2
+        RC[R_AS, i] = 2.0 * xi / (w2 * w)
+        RC[R_XIW, i] = xi * w
+        if xi < 1.0:
+            wd = w * np.sqrt(1.0 - xi * xi)
+            RC[R_IWD, i] = 1.0 / wd
+            RC[R_IH0, i] = h * min(0.5 * h, 1.0 / wd)
+            RC[R_IH1, i] = h * w / wd
+            RC[R_IH2, i] = h * w2 / wd
+            RC[R_OK, i] = 1.0
+    return PH, OW, RC
+
+
+@njit(cache=True, _nrt=False)
+def _rider_flags(i0, i1, S, P, PH, U, RC, S0, FL, f0, f1, fdev, h):
+    """The update and peak filter of :func:`_riders_fast` for the riders ``i0 … i1 − 1`` of
+    one floor on a full sub-step of length ``h``: ``S[:, i] ← Φ_i S[:, i] + U[:, i]``
+    (``U = W_m·[x; a; s]``; the start state is kept in ``S0``), the peaks raised to the end
+    values, and ``FL[i]`` the quantities whose peak may still grow inside the sub-step (bit 0:
+    ``|q|``, bit 1: ``|q'|``, bit 2: ``|A|``, ``A = ω² q + 2ξω q'``); returns the number of
+    flags set.
+
+    The floor acceleration is ``f0, f1`` at the ends and deviates from the chord between them
+    by ``δ(τ)``, ``|δ| ≤ fdev = h²/8·M_f`` (``M_f ≥ max|a_f''|``, the building's bound), so
+    ``|a_f| ≤ max(|f0|, |f1|) + fdev``, ``|δ''| ≤ M_f`` and ``|δ'| ≤ h·M_f`` (``δ`` vanishes
+    at both ends, so ``δ'`` vanishes in between). Inside the sub-step
+    ``q = α + βτ + e(τ) + q_δ(τ)``: the particular solution for the chord (``β = −ṡ/ω²``,
+    ``α = 2ξṡ/ω³ − f0/ω²``, ``ṡ`` its slope; no second derivative), a damped free vibration
+    ``e = Re(C e^{λτ})`` (``|λ| = ω``) with ``|e^(k)| ≤ |C| ω^k`` and
+    ``|(ω² e + 2ξω e')^(k)| ≤ |C|·|ω² + 2ξωλ|·ω^k = |C| ω^(k+2)``, and the response from rest
+    to the deviation, ``|q_δ| ≤ fdev·∫_0^h|g_0|``, ``|q_δ'| ≤ fdev·∫_0^h|g_1|``,
+    ``|A_δ| ≤ fdev·∫_0^h|g_A|`` (impulse responses bounded by ``|g_0| ≤ min(t, 1/ω_d)``,
+    ``|g_1| ≤ ω/ω_d``, ``|g_A| = |ω² g_0 + 2ξω g_1| ≤ ω²/ω_d``), and from its equation
+    ``q_δ'' = −δ − A_δ``, ``q_δ''' = −δ' − ω² q_δ' − 2ξω q_δ''``,
+    ``q_δ⁗ = −δ'' − ω² q_δ'' − 2ξω q_δ'''``: bounds ``D_2, D_3, D_4``. A quantity is flagged
+    only when all three tests fail:
+
+    - its bound (``max|α + βτ| + |C| + |q_δ|^``, ``|β| + ω|C| + |q_δ'|^``,
+      ``max(|f0|, |f1|) + ω²|C| + |A_δ|^``) exceeds its peak;
+    - its end values plus its chord deviation ``h²/8·max|f''|`` exceed the peak
+      (``|q''| ≤ ω²|C| + D_2``, ``|q'''| ≤ ω³|C| + D_3``,
+      ``|A''| ≤ ω⁴|C| + ω² D_2 + 2ξω D_3``);
+    - its derivative may vanish inside: it changes sign between the ends, or an end value is
+      within the derivative's own chord deviation of zero (``h²/8`` times ``|q'''|^``,
+      ``|q⁗| ≤ ω⁴|C| + D_4``, ``|A'''| ≤ ω⁵|C| + ω² D_3 + 2ξω D_4``). A derivative of one
+      sign at both ends farther from zero than its chord deviation cannot vanish: the
+      quantity is monotone and its ends, already in the peak, are its extremes.
+
+    Riders with ``ξ ≥ 1`` are always flagged (row ``R_OK``). The bounds carry the relative
+    margin :data:`MARGIN`. Three loops (update, peaks at the ends, filter) so that each
+    writes few arrays and the compiler vectorises the filter. Compiled without reference
+    counting."""
+    k8 = 0.125 * h * h * MARGIN
+    fsl = (f1 - f0) / h
+    amax = max(abs(f0), abs(f1))
+    mf = 8.0 * fdev / (h * h)  # the bound of |a_f''|
+    Sq, Sv, S0q, S0v = S[0], S[1], S0[0], S0[1]
+    Pd, Pv, Pa = P[0], P[1], P[2]
+    for i in range(i0, i1):
+        q0 = Sq[i]
+        v0 = Sv[i]
+        S0q[i] = q0
+        S0v[i] = v0
+        Sq[i] = PH[0, i] * q0 + PH[1, i] * v0 + U[0, i]
+        Sv[i] = PH[2, i] * q0 + PH[3, i] * v0 + U[1, i]
+    for i in range(i0, i1):
+        Pd[i] = max(Pd[i], abs(Sq[i]))
+        Pv[i] = max(Pv[i], abs(Sv[i]))
+        Pa[i] = max(Pa[i], abs(RC[R_W2, i] * Sq[i] + RC[R_C2, i] * Sv[i]))
+    nf = 0
+    for i in range(i0, i1):
+        q0 = S0q[i]
+        v0 = S0v[i]
+        q1 = Sq[i]
+        v1 = Sv[i]
+        w = RC[R_W, i]
+        w2 = RC[R_W2, i]
+        c2 = RC[R_C2, i]
+        A0 = w2 * q0 + c2 * v0
+        A1 = w2 * q1 + c2 * v1
+        iw2 = RC[R_IW2, i]
+        bet = -fsl * iw2
+        alp = fsl * RC[R_AS, i] - f0 * iw2
+        e0 = q0 - alp
+        ci = (v0 - bet + RC[R_XIW, i] * e0) * RC[R_IWD, i]
+        cm = np.sqrt(e0 * e0 + ci * ci) * MARGIN
+        # the response to the deviation and its derivatives
+        dq = fdev * RC[R_IH0, i]
+        dv = fdev * RC[R_IH1, i]
+        da = fdev * RC[R_IH2, i]
+        d2 = fdev + da
+        d3 = h * mf + w2 * dv + c2 * d2
+        d4 = mf + w2 * d2 + c2 * d3
+        w3 = w2 * w
+        w4 = w2 * w2
+        bd = (max(abs(alp), abs(alp + bet * h)) + cm + dq) * MARGIN
+        bv = (abs(bet) + w * cm + dv) * MARGIN
+        ba = (amax + w2 * cm + da) * MARGIN
+        m2 = w2 * cm + d2
+        m3 = w3 * cm + d3
+        m4 = w4 * cm + d4
+        m2a = w4 * cm + w2 * d2 + c2 * d3
+        m3a = w4 * w * cm + w2 * d3 + c2 * d4
+        d0 = -(f0 + A0)
+        d1 = -(f1 + A1)
+        ad0 = w2 * v0 + c2 * d0
+        ad1 = w2 * v1 + c2 * d1
+        zd = (v0 * v1 <= 0.0) | (min(abs(v0), abs(v1)) <= k8 * m3)
+        zv = (d0 * d1 <= 0.0) | (min(abs(d0), abs(d1)) <= k8 * m4)
+        za = (ad0 * ad1 <= 0.0) | (min(abs(ad0), abs(ad1)) <= k8 * m3a)
+        pd = Pd[i]
+        pv = Pv[i]
+        pa = Pa[i]
+        ld = max(abs(q0), abs(q1)) + k8 * m2 > pd
+        lv = max(abs(v0), abs(v1)) + k8 * m3 > pv
+        la = max(abs(A0), abs(A1)) + k8 * m2a > pa
+        no = RC[R_OK, i] == 0.0
+        fd = ((bd > pd) & ld & zd) | no
+        fv = ((bv > pv) & lv & zv) | no
+        fa = ((ba > pa) & la & za) | no
+        f = fd + 2 * fv + 4 * fa
+        FL[i] = f
+        nf += f
+    return nf
+
+
+@njit(cache=True, _nrt=False)
+def _riders_fast(m, GT, OR, OB, OW, x, ax, aa, slope, h, K, z0, z1, osc_out, osc_w, osc_xi,
+                 osc_rho, S, P, D, PH, RC, Z, U, S0, FL, c, CS, d, dv, da, work,
+                 stats):  # fmt: skip
+    """Advance the riders through a full sub-step without events (the common case) by their
+    exact linear update, and search inside it only the quantities whose peak a rigorous
+    filter cannot rule out (:func:`_rider_flags`), floor by floor.
+
+    ``OW[m]``: the weights ``W_m`` of branch ``m`` (:func:`_rider_weights`), applied to
+    ``Z = [x; a; s]``; ``z0[o + 1]``, ``z1[o + 1]``: the floor acceleration (output row ``o``)
+    at the sub-step's ends (:func:`_fast_substep`); its chord deviation is the building's
+    tight bound (:func:`_tight_deviation`; ``GT[m]`` the branch's chord rows). A flagged
+    quantity is searched as in :func:`_oscillators` (the series from the start state ``S0``,
+    in the same parts, a part only when its bound ``Σ|d_j| h^j`` exceeds the peak); the end
+    state stays the update's. ``stats`` counts sub-steps, rider·sub-steps, flagged
+    rider·sub-steps and polynomial searches. Compiled without reference counting (it runs on
+    every sub-step; the branch's blocks are taken here, where views cost nothing)."""
+    GTm, ORm, OBm, OWm = GT[m], OR[m], OB[m], OW[m]
+    N = x.size
+    nosc = osc_w.size
+    for j in range(N):
+        Z[j] = x[j]
+        ax[j] = abs(x[j])
+    Z[N] = aa
+    Z[N + 1] = slope
+    stats[0] += 1
+    stats[1] += nosc
+    i0 = 0
+    while i0 < nosc:
+        o = osc_out[i0]
+        i1 = i0
+        while i1 < nosc and osc_out[i1] == o:
+            i1 += 1
+        for r in range(2):
+            for i in range(i0, i1):
+                U[r, i] = 0.0
+            for j in range(N + 2):
+                zj = Z[j]
+                for i in range(i0, i1):
+                    U[r, i] += OWm[r, j, i] * zj
+        fdev = _tight_deviation(GTm, o + 1, x, ax, aa, slope, h)
+        nf = _rider_flags(i0, i1, S, P, PH, U, RC, S0, FL, z0[o + 1], z1[o + 1], fdev, h)
+        if nf > 0:
+            taylor_coefficients(ORm[o], OBm[o], x, aa, slope, c)
+            last_parts = -1
+            for i in range(i0, i1):
+                fl = FL[i]
+                if fl == 0:
+                    continue
+                stats[2] += 1
+                parts = max(1, int(np.ceil(h * osc_rho[i] / 0.5 - 1e-12)))
+                hp = h / parts
+                if parts != last_parts:
+                    for sp in range(parts):
+                        _shift(c, K, sp * hp, CS[sp])
+                    last_parts = parts
+                w = osc_w[i]
+                z2w = 2.0 * osc_xi[i] * w
+                w2 = w * w
+                q = S0[0, i]
+                v = S0[1, i]
+                for sp in range(parts):
+                    _rider_series(CS[sp], K, D, z2w, w2, q, v, d, dv)
+                    if fl & 1 and _bound_on(d, D, hp) > P[0, i]:
+                        stats[3] += 1
+                        val, _ = max_abs_on(d, D, hp, P[0, i], work)
+                        if val > P[0, i]:
+                            P[0, i] = val
+                    if fl & 2 and _bound_on(dv, D - 1, hp) > P[1, i]:
+                        stats[3] += 1
+                        val, _ = max_abs_on(dv, D - 1, hp, P[1, i], work)
+                        if val > P[1, i]:
+                            P[1, i] = val
+                    if fl & 4:
+                        for j in range(D + 1):
+                            da[j] = -(w2 * d[j] + z2w * dv[j])
+                        if _bound_on(da, D, hp) > P[2, i]:
+                            stats[3] += 1
+                            val, _ = max_abs_on(da, D, hp, P[2, i], work)
+                            if val > P[2, i]:
+                                P[2, i] = val
+                    if sp + 1 < parts:
+                        q = poly_val(d, D, hp)
+                        v = poly_val(dv, D - 1, hp)
+        i0 = i1
 
 
 @njit(cache=True)
@@ -524,11 +827,14 @@ def _fast_step(m, branch, PHT, PP, QQ, G, GT, x, y, ax, aa, ab, slope, h, iF, kk
 
 @njit(cache=True, _nrt=False)
 def _fast_run(k, r, substeps, mat_of, PHT, PP, QQ, G, GT, acc, h, x, y, ax, branch, iF, kk, dy,
-              musW, peak, t_peak, z0, z1, need, dl, z_valid, X, BR, Yo, want_outputs,
-              out):  # fmt: skip
-    """The sub-steps of a building with nothing riding along, from sub-step ``r`` of record
-    step ``k`` on, in one compiled loop while :func:`_fast_substep` clears them (no event,
-    no output search); the samples ``X``, ``BR``, ``Yo`` are written as it goes. It stops
+              musW, peak, t_peak, z0, z1, need, dl, z_valid, X, BR, Yo, want_outputs, out,
+              riders, OR, OB, K, osc_out, osc_w, osc_xi, osc_rho, osc_S, osc_P, D, PH, OW, RC,
+              oZ, oU, oS0, oFL, oax, co, CS, d, dv, da, ow, osc_stats):  # fmt: skip
+    """The sub-steps of a building with nothing riding along but linear oscillators (when
+    `riders`; advanced by :func:`_riders_fast`, the arguments from ``OR`` on), from sub-step
+    ``r`` of record step ``k`` on, in one compiled loop while :func:`_fast_substep` clears
+    them (no event, no output search); the samples ``X``, ``BR``, ``Yo`` are written as it
+    goes. It stops
     before a sub-step the bound cannot clear (``out = [k, r, -1]``, the state untouched) or
     after one whose outputs need a search (``out = [k, r, count]``: ``x`` the start state,
     ``y`` the end, ``z1`` the functions' end values; the caller finishes that sub-step);
@@ -563,6 +869,10 @@ def _fast_run(k, r, substeps, mat_of, PHT, PP, QQ, G, GT, acc, h, x, y, ax, bran
             if ns != 0:
                 out[0], out[1], out[2] = k, r, ns
                 return
+            if riders:
+                _riders_fast(m, GT, OR, OB, OW, x, oax, aa, slope, h, K, z0, z1, osc_out,
+                             osc_w, osc_xi, osc_rho, osc_S, osc_P, D, PH, RC, oZ, oU, oS0,
+                             oFL, co, CS, d, dv, da, ow, osc_stats)  # fmt: skip
             for i in range(N):
                 x[i] = y[i]
             for f in range(nout + 1):
@@ -636,6 +946,8 @@ def nonlinear_run(
     rk_nonlinear,
     rk_phase,
     rk_hist,
+    osc_fast,
+    osc_stats,
 ):
     """Integrate the building over the record.
 
@@ -661,7 +973,12 @@ def nonlinear_run(
     receives the outputs' values at record sample ``k``; ``H2[o, k]`` (when it has a column per
     sample) the 2-DOF oscillators' histories (:func:`_flexible_sample`).
     Linear oscillators ride along the same way (none when ``osc_w`` is empty; see
-    :func:`_oscillators`): the floor response spectra of the floors of rows ``osc_out``.
+    :func:`_oscillators`): the floor response spectra of the floors of rows ``osc_out``,
+    states ``osc_S[:, i] = (q, q')`` and peaks ``osc_P[:, i]`` (``|q|, |q'|``, the absolute
+    acceleration). With ``osc_fast`` a sub-step without events advances them by their exact
+    linear update and searches only where a rigorous filter cannot rule out a new peak
+    (:func:`_riders_fast`); without it every segment takes the series path. ``osc_stats``
+    receives :func:`_riders_fast`'s counters.
     2-DOF sliding oscillators too (none when ``muk2`` is empty): ``flex = [row, ω, ξ, r,
     part length, degree]``, friction ``mub2``/``muk2``, states ``S2`` (the columns of
     :mod:`floorslide.contents._oscillator_kernel`).
@@ -713,6 +1030,16 @@ def nonlinear_run(
     dv = np.empty(D + 2)
     da = np.empty(D + 2)
     ow = scratch(D + 1)
+    fast_riders = nosc > 0 and osc_fast
+    if fast_riders:
+        PH, OW, RC = _rider_weights(OR, OB, h, osc_out, osc_w, osc_xi, osc_rho, D)
+    else:
+        PH, OW, RC = np.zeros((4, 0)), np.zeros((0, 2, N + 2, 0)), np.zeros((NRC, 0))
+    oZ = np.zeros(N + 2)
+    oU = np.zeros((2, nosc))
+    oS0 = np.zeros((2, nosc))
+    oFL = np.zeros(nosc, dtype=np.int64)
+    oax = np.zeros(N)
     n2 = muk2.size
     o2 = int(flex[0])
     K2 = int(flex[5])
@@ -754,19 +1081,23 @@ def nonlinear_run(
     nrk = rk_out.size
     sw = scratch(max(K, rk_D) + 2)  # the rockers' scratch rows, then their root-isolation work
     RB = np.zeros((8 + sw.shape[0], max(sw.shape[1], max(K, rk_D) + 3)))
-    alone = nblk == 0 and nosc == 0 and n2 == 0 and nrk == 0
+    # nothing rides along but (with fast_riders) linear oscillators
+    alone = nblk == 0 and (nosc == 0 or fast_riders) and n2 == 0 and nrk == 0
     fo = np.zeros(3, dtype=np.int64)
     k = 0
     r = 0
     while k < npts - 1:
-        # a building alone takes its common sub-steps in one compiled loop (_fast_run), which
+        # a building alone (or carrying linear oscillators only) takes its common sub-steps in
+        # one compiled loop (_fast_run), which
         # stops before a sub-step its bound cannot clear (then ``pre = -1``) or after one whose
         # outputs need a search (``pre = 1``; ``x`` still the start state, ``y`` the end)
         pre = 0
         if alone and not fresh:
             _fast_run(k, r, substeps, mat_of, PHT, PP, QQ, G, GT, acc, h, x, y, ax, branch, iF,
                       kk, dy, musW, peak, t_peak, z0, z1, need, dl, z_valid, X, BR, Yo,
-                      want_outputs, fo)  # fmt: skip
+                      want_outputs, fo, fast_riders, OR, OB, K, osc_out, osc_w, osc_xi,
+                      osc_rho, osc_S, osc_P, D, PH, OW, RC, oZ, oU, oS0, oFL, oax, co, CS, d,
+                      dv, da, ow, osc_stats)  # fmt: skip
             z_valid = True
             if fo[2] == -2:
                 break
@@ -802,7 +1133,11 @@ def nonlinear_run(
                     _pack_segment(XW, pk, x, y, aa, ab, slope, h, t0, g)
                     _blocks_substep(G, OR, OB, m, XW, BLK, MU, bstates, buf, rw, pk, flags,
                                     n, h)  # fmt: skip
-                if nosc > 0:
+                if fast_riders:
+                    _riders_fast(m, GT, OR, OB, OW, x, oax, aa, slope, h, K, z0, z1, osc_out,
+                                 osc_w, osc_xi, osc_rho, osc_S, osc_P, D, PH, RC, oZ, oU, oS0,
+                                 oFL, co, CS, d, dv, da, ow, osc_stats)  # fmt: skip
+                elif nosc > 0:
                     _oscillators(OR[m], OB[m], x, aa, slope, h, K, osc_out, osc_w, osc_xi,
                                  osc_rho, osc_S, osc_P, D, co, CS, d, dv, da, ow)  # fmt: skip
                 if n2 > 0:
@@ -844,7 +1179,17 @@ def nonlinear_run(
                         _pack_segment(XW, pk, x, y, a_s, a_end, slope, L, t0 + s0, g)
                         _blocks_substep(G, OR, OB, m, XW, BLK, MU, bstates, buf, rw, pk, flags,
                                         n, L)  # fmt: skip
-                    if nosc > 0:
+                    if fast_riders and events_here == 0:
+                        # no event after all: a whole sub-step of one branch, as on the fast
+                        # path (the functions' end values formed here)
+                        for f in range(nout + 1):
+                            z0[f] = _value(G[m, f], x, aa)
+                            z1[f] = _value(G[m, f], y, ab)
+                        _riders_fast(m, GT, OR, OB, OW, x, oax, aa, slope, h, K, z0, z1,
+                                     osc_out, osc_w, osc_xi, osc_rho, osc_S, osc_P, D, PH, RC,
+                                     oZ, oU, oS0, oFL, co, CS, d, dv, da, ow,
+                                     osc_stats)  # fmt: skip
+                    elif nosc > 0:
                         _oscillators(OR[m], OB[m], x, a_s, slope, L, K, osc_out, osc_w, osc_xi,
                                      osc_rho, osc_S, osc_P, D, co, CS, d, dv, da, ow)  # fmt: skip
                     if n2 > 0:

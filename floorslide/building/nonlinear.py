@@ -316,6 +316,14 @@ def _initial(building: NonlinearIsolatedBuilding, x0: np.ndarray, a0: float) -> 
     return SLIP_POS if F > 0 else SLIP_NEG
 
 
+_OSCILLATORS_BY_SERIES = False
+"""Private switch: advance the riders of ``oscillators=`` by the series on every sub-step (the
+reference path of the tests) instead of their exact linear update on sub-steps without events
+(:func:`floorslide.building._nonlinear_kernel._riders_fast`)."""
+_LAST_RIDER_STATS = np.zeros(4, dtype=np.int64)
+"""Counters of the last call with riders (sub-steps on the fast path, rider·sub-steps there,
+flagged rider·sub-steps, polynomial searches): for profiling and tests."""
+
 _CACHE_SIZE = 32
 """Most buildings (with their floors, time step …) whose matrices are kept per cache."""
 _PREPARED_CACHE: dict = {}
@@ -429,10 +437,14 @@ def isolator_response(
         ``max|q|, max|q'|, max|ω²q + 2ξωq'|`` (SD, SV, SA) are then ``pfa`` instead of the
         floors' (the augmented form; a reference for the next).
     oscillators
-        ``[(floor, ω, ξ), …]``: linear oscillators riding along (they do not act back), each
-        advanced through every segment by the Taylor series of its exact response to the
-        floor's in-step polynomial; their peaks ``(SD, SV, SA)`` are in
-        ``oscillator_peaks`` (:func:`floor_spectrum_on_isolation` wraps this).
+        ``[(floor, ω, ξ), …]``: linear oscillators riding along (they do not act back); their
+        peaks ``(SD, SV, SA)`` are in ``oscillator_peaks`` (:func:`floor_spectrum_on_isolation`
+        wraps this). On a sub-step without isolator events (the common case) each is advanced
+        by its exact linear update ``(q, q')(h) = Φ·(q, q')(0) + W_branch·[x; a_g; slope]``
+        and searched inside the sub-step only where a rigorous filter cannot rule out a new
+        peak; through a segment between events by the Taylor series of its exact response to
+        the floor's in-step polynomial (``_OSCILLATORS_BY_SERIES`` forces the series
+        everywhere: the reference of the tests).
     flexible
         ``(floor, f, ξ, r, mu_b, mu_k)``: 2-DOF sliding oscillators (frequency ``f`` Hz, damping
         ξ, mass ratio ``r``; breakaway and kinetic friction arrays) riding along, advanced by
@@ -581,8 +593,9 @@ def isolator_response(
         bstates = np.zeros((len(blocks), NCOL))
         bstates[:, LIMIT_AT] = -1.0
         hist_u = np.zeros((len(blocks), acc.size) if block_histories else (0, 0))
-        osc_S = np.zeros((len(oscillators), 2))
-        osc_P = np.zeros((len(oscillators), 3))
+        osc_S = np.zeros((2, len(oscillators)))
+        osc_P = np.zeros((3, len(oscillators)))
+        osc_stats = np.zeros(4, dtype=np.int64)
         S2 = np.zeros((muk2.size, O_NCOL))
         S2[:, O_LIMIT_AT] = -1.0
         rk_states = np.array(rk_states0, dtype=float, copy=True)
@@ -594,6 +607,7 @@ def isolator_response(
             bstates, n,
             hist_u, osc_out, osc_w, osc_xi, osc_rho, osc_S, osc_P, D, flex, mub2, muk2, S2,
             Yo, H2, rk_out, rk_par, rk_states, rk_D, bool(rk_nonlinear), rk_phase, rk_hist,
+            not _OSCILLATORS_BY_SERIES, osc_stats,
         )  # fmt: skip
         if len(blocks) and (bstates[:, LIMIT_AT] >= 0).any():
             t = float(bstates[bstates[:, LIMIT_AT] >= 0, LIMIT_AT].min())
@@ -612,6 +626,8 @@ def isolator_response(
         if n_ev <= cap:
             break
         cap = n_ev
+    if oscillators:
+        _LAST_RIDER_STATS[:] = osc_stats
     h = dt / m
     samples = X
     br = BR
@@ -657,7 +673,7 @@ def isolator_response(
         notes=notes,
         block_states=bstates[np.argsort(order, kind="stable")] if len(blocks) else None,
         block_slides=hist_u[np.argsort(order, kind="stable")] if block_histories else None,
-        oscillator_peaks=osc_P[np.argsort(osc_order, kind="stable")] if oscillators else None,
+        oscillator_peaks=osc_P.T[np.argsort(osc_order, kind="stable")] if oscillators else None,
         flexible_states=S2 if flexible is not None else None,
         flexible_histories=H2 if flexible is not None and flexible_histories else None,
         rocker_states=rk_states if rockers is not None else None,
@@ -738,10 +754,12 @@ def floor_spectrum_on_isolation(
     """Floor response spectra of a building on nonlinear isolation, exact end to end.
 
     Every oscillator ``(T, ξ)`` rides along one integration of the building (it does not act
-    back): through each segment between the layer's events it is advanced by the Taylor series
-    of its exact response to the floor's in-step polynomial, and its peaks are found inside
-    steps (:func:`isolator_response` with ``oscillators=``). The building keeps its own
-    sub-steps; each oscillator goes through them in parts short for it (``ω h ≤ 0.5``).
+    back), and its peaks are found inside steps (:func:`isolator_response` with
+    ``oscillators=``): on a sub-step without isolator events by its exact linear update
+    (precomputed per branch) and a rigorous filter that leaves few sub-steps to search; through
+    a segment between events by the Taylor series of its exact response to the floor's
+    in-step polynomial. The building keeps its own sub-steps; each oscillator's series goes
+    through them in parts short for it (``ω h ≤ 0.5``).
 
     Returns
     -------
