@@ -144,6 +144,13 @@ def rocking_results(content, modes, rocker) -> dict:
     return out
 
 
+def _frictions(content) -> tuple[np.ndarray, np.ndarray]:
+    """A content's kinetic and static friction coefficients, one per object (the static ones
+    default to the kinetic)."""
+    mu = np.asarray(content.mu, dtype=float)
+    return mu, np.asarray(content.mu_s if content.mu_s else content.mu, dtype=float)
+
+
 def _slide_arrays(n: int, pfa: float, modes) -> tuple[np.ndarray, ...]:
     """A content's sliding arrays on a floor before anything is integrated: no slide and the
     floor's PFA (the exact answer of an object that does not slide), NaN (−1 slip phases)
@@ -201,8 +208,7 @@ def run_task(task: Task, force: bool = False) -> TaskResult:
     result = TaskResult(task.task_id, _meta(task), floors, np.asarray(pfa, dtype=float))
     hist_slides, hist_mu, hist_deform, hist_top, hist_rock = {}, {}, {}, {}, {}
     for content, floor in task.contents:
-        mu = np.asarray(content.mu, dtype=float)
-        mu_s = np.asarray(content.mu_s if content.mu_s else content.mu, dtype=float)
+        mu, mu_s = _frictions(content)
         modes, integrate, reasons = decide(content, pfa_of[floor], force)
         n = mu.size
         arrays = _slide_arrays(n, pfa_of[floor], modes)
@@ -332,8 +338,7 @@ def _run_nonlinear(task: Task, model, force: bool, t0: float) -> TaskResult:
     blocks = []
     flex_results = {}
     for content, floor in task.contents:
-        mu = np.asarray(content.mu, dtype=float)
-        mu_s = np.asarray(content.mu_s if content.mu_s else content.mu, dtype=float)
+        mu, mu_s = _frictions(content)
         modes, integrate, reasons = decide(content, pfa_of[floor], force)
         idx = np.nonzero(integrate)[0]
         if content.model == "oscillator":
@@ -495,8 +500,7 @@ def _run_pair(task: Task, force: bool, t0: float) -> TaskResult:
     result.pfa_components = per_dir
     hist_slides, hist_mu, hist_plane, hist_rock = {}, {}, {}, {}
     for content, floor in task.contents:
-        mu = np.asarray(content.mu, dtype=float)
-        mu_s = np.asarray(content.mu_s if content.mu_s else content.mu, dtype=float)
+        mu, mu_s = _frictions(content)
         modes, integrate, reasons = decide(content, pfa_of[floor], force)
         n = mu.size
         arrays = _slide_arrays(n, pfa_of[floor], modes)
