@@ -1,4 +1,4 @@
-"""Design practice around the exact results (docs/design.md §14): target spectra and the scaling
+"""Design practice around the exact results (docs/design.md §10e): target spectra and the scaling
 of records to them, the code's floor amplification (ASCE 7-22 §13.3.1), and exceedance and
 fragility of contents. Pure numerical functions; the scene, tables and report use them."""
 

@@ -1,4 +1,4 @@
-"""Exceedance of allowable displacements and lognormal fragility curves (docs/design.md §14).
+"""Exceedance of allowable displacements and lognormal fragility curves (docs/design.md §10e).
 
 Per building, floor and object: the fraction of records whose peak slide exceeds an allowable
 displacement (a gap to a wall), and — over stripes of records scaled to increasing intensity

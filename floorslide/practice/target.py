@@ -1,4 +1,4 @@
-"""Target spectra and amplitude scaling of records to them (docs/design.md §14).
+"""Target spectra and amplitude scaling of records to them (docs/design.md §10e).
 
 A target is the two-point design spectrum of ASCE 7-22 §11.4.6 from ``S_DS``, ``S_D1`` and
 ``T_L``, or a table of ``(T, S_a)``. A record's spectrum is scaled by one factor: the one that

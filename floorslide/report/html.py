@@ -1,4 +1,4 @@
-"""One self-contained HTML report of a result file (docs/design.md §14, issue 18).
+"""One self-contained HTML report of a result file (docs/design.md §10e, issue 18).
 
 The report holds, in one file that needs nothing else to open and prints on A4: a title with
 the INCOMPLETE banner when the run is not finished, the notes every table carries, each design

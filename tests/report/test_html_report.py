@@ -112,3 +112,17 @@ def test_report_renders_in_a_headless_browser(study, tmp_path):
     assert gray.shape[0] >= 1000 and gray.shape[1] >= 1000
     inked = np.mean(gray < 0.9)  # dark pixels: text, tables, figure lines
     assert inked > 0.01, f"the rendered report looks blank ({inked:.4f} of pixels inked)"
+
+
+def test_cli_report_command(monkeypatch, capsys, study, partial_study, tmp_path):
+    from tests.report.test_cli_report import invoke
+
+    target = tmp_path / "r.html"
+    code, out, _ = invoke(monkeypatch, capsys, "report", study.path, "-o", target, "--workers", 1)
+    assert code == 0 and out.strip() == str(target) and target.read_text().startswith("<!DOCTYPE")
+    code, _, err = invoke(monkeypatch, capsys, "report", partial_study.path, "-o", target)
+    assert code == 4 and "INCOMPLETE" in err
+    code, _, err = invoke(
+        monkeypatch, capsys, "report", partial_study.path, "-o", target, "--allow-incomplete"
+    )
+    assert code == 0 and 'id="incomplete"' in target.read_text()
