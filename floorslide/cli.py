@@ -1581,6 +1581,43 @@ def _demo_may_replace(h5, scene_text: str) -> bool:
     )
 
 
+@cli.command(epilog=REPORT_EXIT_CODES)
+@click.argument("result", metavar="OUT.h5")
+@click.option(
+    "-o",
+    "--out",
+    metavar="FILE",
+    help="The report (default: OUT-report.html beside OUT.h5).",
+)
+@_ALLOW_INCOMPLETE
+@click.option(
+    "--workers",
+    type=click.IntRange(min=1),
+    metavar="N",
+    help="Draw the figures in N processes (default: all cores).",
+)
+def report(result, out, allow_incomplete, workers):
+    """One self-contained HTML report of a result file OUT.h5: the design tables, every figure
+    (embedded), the records with their provenance and quality flags, the scene as run and the
+    software versions, INCOMPLETE in a banner when the run is not finished; it prints on A4.
+    Prints the file written."""
+    from pathlib import Path
+
+    from floorslide.report.html import write_report
+
+    study = _load_for_report(result, allow_incomplete)
+    path = Path(out) if out else Path(result).with_name(f"{Path(result).stem}-report.html")
+    written = _report_call(
+        click.get_current_context(),
+        write_report,
+        study,
+        path,
+        allow_incomplete=True,
+        workers=workers or os.cpu_count() or 1,
+    )
+    click.echo(str(written))
+
+
 @cli.command()
 @click.option(
     "-o",

@@ -1,0 +1,149 @@
+"""One self-contained HTML report of a result file (docs/design.md §10e, issue 18).
+
+The report holds, in one file that needs nothing else to open and prints on A4: a title with
+the INCOMPLETE banner when the run is not finished, the notes every table carries, each design
+table, every figure (PNG embedded as base64), the records with their provenance and quality
+flags, the scene as run, and the software versions. It is made from what ``table`` and
+``plot`` make; it computes nothing of its own.
+"""
+
+from __future__ import annotations
+
+import base64
+import html
+import platform
+import tempfile
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+
+from floorslide.errors import FloorslideError
+from floorslide.report.columns import TABLE_NAMES, DesignTables
+from floorslide.report.formats import _md_cell, _md_heading, markdown_columns
+from floorslide.report.study import Study, load_study
+from floorslide.report.tables import design_tables
+
+CSS = """
+body { font-family: system-ui, -apple-system, "Segoe UI", sans-serif; margin: 2em auto;
+       max-width: 70em; color: #111; line-height: 1.4; padding: 0 1em; }
+h1 { font-size: 1.6em; } h2 { border-bottom: 1px solid #ccc; margin-top: 2em; }
+table { border-collapse: collapse; margin: 0.5em 0 1.5em; font-size: 0.85em; }
+th, td { border: 1px solid #bbb; padding: 0.2em 0.5em; text-align: right; }
+th { background: #eee; } td:first-child, th:first-child { text-align: left; }
+.banner { background: #b00; color: #fff; padding: 0.6em 1em; font-weight: bold; }
+figure { margin: 1em 0 2em; page-break-inside: avoid; }
+figure img { max-width: 100%; border: 1px solid #ddd; }
+pre { background: #f6f6f6; padding: 0.8em; overflow-x: auto; font-size: 0.8em; }
+@media print { body { max-width: none; margin: 0; } h2 { page-break-before: auto; }
+               table, figure { page-break-inside: avoid; } }
+"""
+
+
+def _e(text: object) -> str:
+    return html.escape(str(text), quote=True)
+
+
+def _table(name: str, rows: Sequence[Mapping]) -> str:
+    if not rows:
+        return "<p><em>empty</em></p>"
+    cols = markdown_columns(name, rows)
+    head = "".join(f"<th>{_e(_md_heading(c))}</th>" for c in cols)
+    body = "".join(
+        "<tr>" + "".join(f"<td>{_e(_md_cell(row[c.name], c, row))}</td>" for c in cols) + "</tr>"
+        for row in rows
+    )
+    return (
+        f'<table id="table-{_e(name)}"><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>'
+    )
+
+
+def _versions() -> list[tuple[str, str]]:
+    from importlib.metadata import PackageNotFoundError, version
+
+    out = [("Python", platform.python_version())]
+    for pkg in ("floorslide", "numpy", "scipy", "numba", "obspy", "control", "h5py", "matplotlib"):
+        try:
+            out.append((pkg, version(pkg)))
+        except PackageNotFoundError:
+            out.append((pkg, "not installed"))
+    return out
+
+
+def report_html(
+    result: str | Path | Study,
+    *,
+    tables: DesignTables | None = None,
+    figures: Sequence[Path] | None = None,
+    scene_text: str | None = None,
+    workers: int = 1,
+    allow_incomplete: bool = False,
+) -> str:
+    """The HTML text of the report of `result` (a path, or a :class:`Study` read once).
+
+    `tables` and `figures` made already (the demo) are used as given; otherwise they are made
+    here, the figures in a temporary folder with `workers` processes.
+    """
+    from floorslide.report.plots import plot_figures
+    from floorslide.run.store import ResultFile
+
+    study = load_study(result)
+    study.require_complete(allow_incomplete)
+    if tables is None:
+        tables = design_tables(study, allow_incomplete=True)
+    if scene_text is None:
+        scene_text = ResultFile(study.source).scene_text
+    title = tables.scene_name or Path(study.source).name
+    parts = [
+        "<!DOCTYPE html>",
+        '<html lang="en"><head><meta charset="utf-8">',
+        f"<title>floorslide report: {_e(title)}</title>",
+        f"<style>{CSS}</style></head><body>",
+        f"<h1>floorslide report: {_e(title)}</h1>",
+    ]
+    if study.status:
+        parts.append(f'<p class="banner" id="incomplete">{_e(study.status)}</p>')
+    parts.append(f"<p>From <code>{_e(study.source)}</code>: {study.tasks_done} tasks.</p>")
+    if tables.notes:
+        parts.append("<h2>Notes</h2><ul>")
+        parts += [f"<li>{_e(n)}</li>" for n in tables.notes]
+        parts.append("</ul>")
+    parts.append("<h2>Design tables</h2>")
+    for name in TABLE_NAMES:
+        if name == "records":
+            continue
+        parts.append(f"<h3>{_e(name)}</h3>")
+        parts.append(_table(name, tables[name]))
+    with tempfile.TemporaryDirectory() as tmp:
+        paths = (
+            list(figures)
+            if figures is not None
+            else plot_figures(study, tmp, allow_incomplete=True, workers=workers)
+        )
+        parts.append("<h2>Figures</h2>")
+        for p in paths:
+            data = base64.b64encode(Path(p).read_bytes()).decode("ascii")
+            parts.append(
+                f'<figure><img alt="{_e(Path(p).stem)}" src="data:image/png;base64,{data}">'
+                f"<figcaption>{_e(Path(p).name)}</figcaption></figure>"
+            )
+    parts.append("<h2>Records, provenance and quality checks</h2>")
+    parts.append(_table("records", tables["records"]))
+    parts.append("<h2>Scene</h2>")
+    parts.append(f'<pre id="scene">{_e(scene_text)}</pre>')
+    parts.append("<h2>Software</h2><table><tbody>")
+    parts += [f"<tr><td>{_e(k)}</td><td>{_e(v)}</td></tr>" for k, v in _versions()]
+    parts.append("</tbody></table></body></html>")
+    return "\n".join(parts)
+
+
+def write_report(result: str | Path | Study, path: str | Path, **kwargs) -> Path:
+    """Write :func:`report_html` of `result` to `path`; returns it."""
+    text = report_html(result, **kwargs)
+    path = Path(path)
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(text, encoding="utf-8")
+    except OSError as exc:
+        raise FloorslideError(
+            f"cannot write the report: {exc.strerror or exc}", str(path)
+        ) from None
+    return path
