@@ -1207,6 +1207,11 @@ REPORT_TABLES = (
     "isolators",
     "rocking",
     "plane",
+    "scaling",
+    "suite",
+    "code",
+    "exceedance",
+    "fragility",
 )
 """The design tables, in output order (floorslide.report.tables.TABLE_NAMES)."""
 

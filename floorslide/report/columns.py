@@ -46,6 +46,11 @@ TABLE_NAMES = (
     "isolators",
     "rocking",
     "plane",
+    "scaling",
+    "suite",
+    "code",
+    "exceedance",
+    "fragility",
 )
 """The tables, in output order."""
 
@@ -357,9 +362,125 @@ COLUMNS: dict[str, tuple[Column, ...]] = {
 }
 """Columns of every table, in order."""
 
+_OBJECT = [
+    _FLOOR,
+    Column("content", "", "content (equipment) id"),
+    Column("mu_k", "1", "kinetic friction coefficient"),
+    Column("mu_s", "1", "static friction coefficient"),
+    Column(
+        "state",
+        "",
+        "slide > a m (the peak slide exceeds the allowable displacement a) or overturn",
+    ),
+    Column("allowable", "m", "allowable displacement a (NaN for overturn)"),
+]
+
+COLUMNS.update(
+    {
+        "scaling": (
+            Column("record_set", "", "scaled set (stripes: set@1.5x, set@0.3g)"),
+            Column("family", "", "the scene's record set"),
+            Column("method", "", "range (log least squares), period (match at T*) or pga"),
+            Column("level", "1", "multiple of the target (or PGA in g for pga)"),
+            Column("record", "", "record id"),
+            Column("factor", "1", "amplitude factor applied (fit factor × level)"),
+            Column("fit_factor", "1", "factor fitting the record to the target (level 1)"),
+            Column(
+                "misfit",
+                "1",
+                "RMS of ln(scaled S_a / target S_a) over the range (0 for method period)",
+            ),
+            Column("outside_limits", "", "factor outside the scene's limits (a warning)"),
+        ),
+        "suite": (
+            Column("record_set", "", "scaled set"),
+            Column("target", "", "the target spectrum (two-point S_DS, S_D1, T_L, or its CSV)"),
+            Column("method", "", "range (log least squares) or period (match at T*)"),
+            Column("period", "s", "T* of method period (NaN for range)"),
+            Column("period_lo", "s", "lower end of the period range"),
+            Column("period_hi", "s", "upper end of the period range"),
+            Column("damping", "1", "damping ratio of the spectra"),
+            Column("level", "1", "multiple of the target of this stripe"),
+            _N_RECORDS,
+            Column("factor_min", "1", "smallest factor"),
+            Column("factor_max", "1", "largest factor"),
+            Column("n_outside_limits", "1", "factors outside the scene's limits"),
+            Column(
+                "mean_over_target_min",
+                "1",
+                "lowest ratio of the suite's mean spectrum to the (level × ) target in the range",
+            ),
+            Column("at_period", "s", "period of that lowest ratio"),
+            Column("passes", "", "ASCE 7-22 §16.2.3: the mean is ≥ 90 % of the target"),
+        ),
+        "code": (
+            *_BUILDING,
+            _FLOOR,
+            Column("z_over_h", "1", "relative height floor/stories (equal storey heights)"),
+            Column(
+                "period_a",
+                "s",
+                "T_a: the fixed-base model's fundamental period (NaN for isolated)",
+            ),
+            Column(
+                "h_f",
+                "1",
+                "ASCE 7-22 Eq. 13.3-4: 1 + a1·z/h + a2·(z/h)^10, a1 = min(1/T_a, 2.5), "
+                "a2 = max(0, 1 − (0.4/T_a)²) (NaN for isolated)",
+            ),
+            _N_RECORDS,
+            _FEW,
+            Column("pfa_pga_median", "1", "median over records of PFA/PGA"),
+            Column("pfa_pga_p84", "1", "84th percentile over records of PFA/PGA"),
+            Column("median_over_h_f", "1", "median PFA/PGA over H_f (> 1: above the code)"),
+            Column("p84_over_h_f", "1", "84th-percentile PFA/PGA over H_f"),
+            Column("note", "", "how the code treats the building"),
+        ),
+        "exceedance": (
+            *_BUILDING,
+            *_OBJECT,
+            _N_RECORDS,
+            Column(
+                "n_rock",
+                "1",
+                "records under which the object rocks: no slide, left out of the slide "
+                "fraction (never counted as not exceeding)",
+            ),
+            Column("n_exceed", "1", "records exceeding (slide > a, or overturning)"),
+            Column(
+                "fraction",
+                "1",
+                "n_exceed / (n_records − n_rock) for a slide; n_exceed / n_records to overturn",
+            ),
+            _FEW,
+        ),
+        "fragility": (
+            Column("record_set", "", "set family whose scalings are the stripes"),
+            Column("building", "", "building variant id"),
+            Column("building_kind", "", "fixed or isolated"),
+            Column("isolation_period", "s", "isolation period T_i (NaN for fixed-base)"),
+            *_OBJECT,
+            Column("im", "", "intensity measure of the stripes"),
+            Column("levels", "", "each stripe's intensity"),
+            Column("n_records", "1", "records per stripe (rocking ones left out of a slide)"),
+            Column("n_exceed", "1", "exceedances per stripe"),
+            Column("median", "", "fitted median θ, in the im's units (NaN: see note)"),
+            Column("beta", "1", "fitted logarithmic standard deviation β (NaN: see note)"),
+            Column("note", "", "why θ and β are NaN (no fit exists), else empty"),
+        ),
+    }
+)
+
 EMPTY_NOTES = {
     "isolators": "no building on nonlinear isolation in this study",
     "plane": "no set of record pairs (two horizontal components) in this study",
+    "scaling": "no record set is scaled (scale or scale_pga): records ran as recorded",
+    "suite": "no record set is scaled to a target spectrum ([[records]] scale)",
+    "exceedance": (
+        "no content gives allowable displacements (allowable) or has a width and height (the "
+        "overturning fraction)"
+    ),
+    "fragility": ("no set has stripes (scale.levels or a list of scale_pga): no fragility fit"),
     "rocking": (
         "no content with a width and height whose static friction holds its corner "
         "(mu_s ≥ B/H) has rocking results in this file"
@@ -383,6 +504,13 @@ TITLES = {
     "isolators": "Nonlinear isolators: peak and residual displacement, peak force / W",
     "rocking": "Rocking contents: rocking, overturning, peak rotation θ/α, impacts",
     "plane": "Sliding in the plane (record pairs): 2-D slide against each component's 1-D",
+    "scaling": "Scaling of records to the target spectrum: factor and log misfit per record",
+    "suite": "Suite check (ASCE 7-22 §16.2.3): mean scaled spectrum against 90 % of the target",
+    "code": "Code comparison (ASCE 7-22 §13.3.1): PFA/PGA beside H_f",
+    "exceedance": "Exceedance: fraction of records whose peak slide exceeds each allowable "
+    "displacement, or that overturn",
+    "fragility": "Fragility over stripes: lognormal median and β by maximum likelihood "
+    "(Baker 2015)",
 }
 
 

@@ -74,6 +74,8 @@ def _rocks(column: str, row: Mapping) -> bool:
 
 
 def _md_cell(value, column: Column, row: Mapping) -> str:
+    if isinstance(value, tuple | list):
+        return "; ".join(f"{v:g}" if isinstance(v, float) else str(v) for v in value)
     if isinstance(value, bool | np.bool_):
         return "yes" if value else ""
     if isinstance(value, float):
@@ -153,6 +155,8 @@ def format_markdown(tables: DesignTables, names: Sequence[str] = TABLE_NAMES) ->
 
 
 def _csv_cell(value) -> str:
+    if isinstance(value, tuple | list):
+        return "; ".join(_csv_cell(v) for v in value)
     if isinstance(value, float):
         if math.isnan(value):
             return ""

@@ -56,6 +56,10 @@ class Study:
     quality: dict = field(default_factory=dict)
     """The plan's record quality checks: ``action``, ``flagged`` and ``rejected`` records with
     their flags (empty for files written before floorslide checked records)."""
+    scaling: list[dict] = field(default_factory=list)
+    """The plan's scaled sets (``scale`` to a target or ``scale_pga``): family, level, method,
+    per record factor and misfit, the suite check (docs/design.md §10e); empty when the records
+    ran as recorded or the file predates it."""
 
     def set_tasks(self, record_set: str) -> list[TaskResult]:
         """The tasks of one record set."""
@@ -230,6 +234,9 @@ def load_study(result: str | Path | ResultFile | Study) -> Study:
         tasks_planned=rf.planned_tasks,
         scene_path=rf.scene_path,
         quality=_quality(rf.plan),
+        scaling=[e for e in (rf.plan.get("scaling") or []) if isinstance(e, dict)]
+        if isinstance(rf.plan, dict)
+        else [],
     )
 
 

@@ -118,6 +118,14 @@ from floorslide.report.formats import (
     to_json,
     write_csv,
 )
+from floorslide.report.practice import (
+    code_table,
+    exceedance_table,
+    fragility_table,
+    practice_notes,
+    scaling_table,
+    suite_table,
+)
 from floorslide.report.records import record_rows
 from floorslide.report.statistics import (
     interpolate_spectrum,
@@ -911,6 +919,7 @@ def table_notes(study: Study, damping: float | None) -> list[str]:
             "residual_disp statistics are of |u0(end)|; the force ratio is the layer's force "
             f"on the base mat over the total weight W (base shear V/W); {IMPACT_NOT_MODELLED}"
         )
+    notes += practice_notes(study)
     if damping is not None:
         b = stored_broadening(study)
         wide = (
@@ -1013,7 +1022,12 @@ def design_tables(
         "isolators": isolator_table(study),
         "rocking": rocking_table(study),
         "plane": plane_table(study),
+        "scaling": scaling_table(study),
+        "suite": suite_table(study),
+        "code": code_table(study),
     }
+    tables["exceedance"] = exceedance_table(study)
+    tables["fragility"] = fragility_table(study, tables["exceedance"])
     notes = table_notes(study, z) + period_notes + study.notes
     notes += [f"{name}: {note}" for name, note in EMPTY_NOTES.items() if not tables[name]]
     return DesignTables(

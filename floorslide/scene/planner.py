@@ -96,6 +96,9 @@ class Plan:
     runs: Counter = field(default_factory=Counter)
     rejected: list[dict] = field(default_factory=list)
     """Records left out by ``[scene] qa = "reject"``: set, record, label and flags."""
+    scaling: list[dict] = field(default_factory=list)
+    """Per scaled set (``scale`` or ``scale_pga``): its family, level, method, each record's
+    factor (and misfit) and, for a target, the suite check (docs/design.md §10e)."""
 
     def quality(self) -> dict:
         """The quality checks of the study (JSON-ready, stored in the plan): ``action`` (the
@@ -121,7 +124,34 @@ class Plan:
             runs=dict(self.runs),
             skipped=dict(self.skipped),
             quality=self.quality(),
+            scaling=self.scaling,
         )
+
+    def _scaling_lines(self, rs: RecordSetSpec) -> list[str]:
+        """How a set's records were scaled to its target, and its suite check."""
+        if rs.scale is None:
+            return []
+        sc = rs.scale
+        how = (
+            f"matched at T = {sc.period:g} s"
+            if sc.period is not None
+            else f"least squares in ln S_a over {sc.period_range[0]:g}–{sc.period_range[1]:g} s"
+        )
+        lines = [f"    scaled to {sc.target_source} ({how}, damping {sc.damping:g})"]
+        for e in self.scaling:
+            if e["family"] != rs.set or "suite" not in e:
+                continue
+            f = [r["factor"] for r in e["records"]]
+            wide = sum(r["outside_limits"] for r in e["records"])
+            s = e["suite"]
+            verdict = "passes" if s["passes"] else "FAILS"
+            lines.append(
+                f"    set {e['set']!r}: factors {min(f):.3g}–{max(f):.3g}"
+                + (f" ({wide} outside {sc.limits[0]:g}–{sc.limits[1]:g})" if wide else "")
+                + f"; suite mean ≥ 90 % of the target over the range: {verdict} (lowest "
+                f"{100 * s['min_ratio']:.0f} % at {s['at']:.3g} s)"
+            )
+        return lines
 
     def describe(self) -> str:
         """Human-readable plan: what runs, what is skipped and why, with counts."""
@@ -130,7 +160,11 @@ class Plan:
             f"{len(self.scene.buildings)} buildings = {len(self.tasks)} tasks"
         ]
         for rs in self.scene.records:
-            n = sum(1 for r in self.records if r.set.split("@")[0] == rs.set)
+            mine = [r for r in self.records if r.set.split("@")[0] == rs.set]
+            stripes = len({r.set for r in mine})
+            n = str(len({r.record for r in mine}))
+            if stripes > 1:
+                n += f" × {stripes} scalings = {len(mine)}"
             if rs.pairs:
                 lines.append(
                     f"  record set {rs.set!r}: {n} record pairs (two horizontal components: "
@@ -138,6 +172,7 @@ class Plan:
                 )
             else:
                 lines.append(f"  record set {rs.set!r}: {n} records")
+            lines += self._scaling_lines(rs)
         for b in self.scene.buildings:
             extra = (
                 f", on isolation T_i = {b.period:g} s, ξ_i = {b.damping:g}"
@@ -267,13 +302,147 @@ def _rejected(rs, record_id, label, flags, failures, rejected) -> None:
     failures.append(f"{label}: rejected by the quality checks ({codes}{REJECTED_SUFFIX}")
 
 
-def _scalings(rs: RecordSetSpec, pga: float):
-    """``(set name, factor)`` per scaling of a set (``scale_pga``: PGA to that many g; a list
-    makes one set per value, ``set@0.3g``)."""
+def _scalings(rs: RecordSetSpec, pga: float, spectrum=None):
+    """``(set name, factor, info)`` per scaling of a set.
+
+    ``scale_pga``: PGA to that many g (a list makes one set per value, ``set@0.3g``).
+    ``scale``: the factor fitting the record's spectrum to the target (docs/design.md §10e,
+    :func:`floorslide.practice.target.scale_factor`) times each level (a list makes one set per
+    level, ``set@1.5x``); `spectrum` is a callable giving the record's PSA (g) on the scale's
+    period grid. ``info`` is what the result file keeps of the scaling (None without one).
+    """
+    if rs.scale is not None:
+        from floorslide.practice.target import scale_factor
+
+        sc = rs.scale
+        psa = spectrum()
+        fit = scale_factor(
+            sc.grid(),
+            psa,
+            sc.target,
+            period_range=None if sc.period is not None else sc.period_range,
+            period=sc.period,
+            limits=sc.limits,
+        )
+        levels = sc.levels or (1.0,)
+        for level in levels:
+            factor = level * fit.factor
+            name = rs.set if len(levels) == 1 and not sc.levels else f"{rs.set}@{level:g}x"
+            yield (
+                name,
+                factor,
+                dict(
+                    level=level,
+                    fit_factor=fit.factor,
+                    misfit=fit.misfit,
+                    outside_limits=not (sc.limits[0] <= factor <= sc.limits[1]),
+                    psa=psa,
+                ),
+            )
+        return
     scales = rs.scale_pga or (None,)
     for sc in scales:
         factor = 1.0 if sc is None else (sc * G / pga if pga > 0 else 1.0)
-        yield (rs.set if sc is None or len(scales) == 1 else f"{rs.set}@{sc:g}g"), factor
+        info = None if sc is None else dict(level=sc)
+        yield (rs.set if sc is None or len(scales) == 1 else f"{rs.set}@{sc:g}g"), factor, info
+
+
+def _record_spectrum(rs: RecordSetSpec, acc, dt: float, acc2=None):
+    """A callable: the record's spectrum on `rs.scale`'s grid, g — PSA of one component, the
+    maximum-direction spectrum RotD100 of a pair (ASCE 7-22 §16.2.3.2)."""
+
+    def psa() -> np.ndarray:
+        sc = rs.scale
+        if acc2 is None:
+            from floorslide.spectra.core import response_spectrum
+
+            return response_spectrum(acc, dt, sc.grid(), sc.damping).psa[0] / G
+        from floorslide.spectra.rotd import rotd_spectrum
+
+        got = rotd_spectrum((acc, acc2), dt, sc.grid(), sc.damping, directions=False)
+        return np.asarray(got.rotd100)[0] / G
+
+    return psa
+
+
+class _Scaling:
+    """What the planner keeps of each scaled set, for the result file (docs/design.md §10e)."""
+
+    def __init__(self) -> None:
+        self.sets: dict[str, dict] = {}
+        self.spectra: dict[str, list[np.ndarray]] = {}
+
+    def add(self, rs: RecordSetSpec, set_name: str, record_id: str, factor: float, info):
+        if info is None:
+            return
+        entry = self.sets.get(set_name)
+        if entry is None:
+            entry = dict(set=set_name, family=rs.set, level=info["level"], records=[])
+            if rs.scale is not None:
+                sc = rs.scale
+                entry.update(
+                    method="period" if sc.period is not None else "range",
+                    im="multiple of the target spectrum",
+                    target=sc.target.name,
+                    target_source=sc.target_source,
+                    period_range=list(sc.period_range),
+                    period=sc.period,
+                    damping=sc.damping,
+                    limits=list(sc.limits),
+                    levels=list(sc.levels),
+                )
+            else:
+                entry.update(method="pga", im="PGA (g)", levels=list(rs.scale_pga))
+            self.sets[set_name] = entry
+            self.spectra[set_name] = []
+        rec = dict(record=record_id, factor=float(factor))
+        if "misfit" in info:
+            rec.update(
+                fit_factor=float(info["fit_factor"]),
+                misfit=float(info["misfit"]),
+                outside_limits=bool(info["outside_limits"]),
+            )
+            self.spectra[set_name].append(np.asarray(info["psa"]) * factor)
+        entry["records"].append(rec)
+
+    def finish(self, scene: Scene) -> list[dict]:
+        """The entries with each target-scaled set's suite check (ASCE 7-22 §16.2.3: mean
+        spectrum ≥ 90 % of the target over the range), warning of factors outside the
+        limits."""
+        import warnings
+
+        from floorslide.errors import FloorslideWarning
+        from floorslide.practice.target import suite_check
+
+        specs = {rs.set: rs for rs in scene.records}
+        out = []
+        for name, entry in self.sets.items():
+            rs = specs[entry["family"]]
+            psa = self.spectra[name]
+            if rs.scale is not None and psa:
+                sc = rs.scale
+                grid = sc.grid()
+                mean = np.mean(psa, axis=0) / entry["level"]
+                target = sc.target(grid)
+                passes, ratio, at = suite_check(grid, mean, sc.target, sc.period_range)
+                entry.update(
+                    suite=dict(passes=passes, min_ratio=ratio, at=at),
+                    periods=grid.tolist(),
+                    mean_psa=(mean * entry["level"]).tolist(),
+                    target_psa=(target * entry["level"]).tolist(),
+                )
+                wide = [r for r in entry["records"] if r["outside_limits"]]
+                if wide:
+                    lo, hi = sc.limits
+                    shown = ", ".join(f"{r['record']} ({r['factor']:.3g})" for r in wide[:3])
+                    warnings.warn(
+                        f"set {name!r}: {len(wide)} of {len(entry['records'])} scale factors "
+                        f"lie outside {lo:g}–{hi:g}: {shown}{', …' if len(wide) > 3 else ''}",
+                        FloorslideWarning,
+                        stacklevel=2,
+                    )
+            out.append(entry)
+        return out
 
 
 def _load_set(
@@ -283,6 +452,7 @@ def _load_set(
     periods: tuple[float, ...] = (),
     qa: str = "warn",
     rejected: list[dict] | None = None,
+    scaling: _Scaling | None = None,
 ) -> list[LoadedRecord]:
     """The records of a set, read, processed, checked (:mod:`floorslide.records.quality`,
     against the scene's spectra `periods`) and scaled; with ``qa = "reject"`` a flagged record
@@ -292,7 +462,7 @@ def _load_set(
     from floorslide.records.read import read_record
 
     if rs.pairs:
-        return _load_pairs(rs, processing, failures, periods, qa, rejected)
+        return _load_pairs(rs, processing, failures, periods, qa, rejected, scaling)
     sources = []
     if rs.catalog:
         try:
@@ -343,7 +513,14 @@ def _load_set(
         acc = np.asarray(tr.data, dtype=float)
         pga = float(np.abs(acc).max())
         catalog_meta = dict(getattr(tr.stats, "catalog", {}) or {})
-        for set_name, factor in _scalings(rs, pga):
+        try:
+            scalings = list(_scalings(rs, pga, _record_spectrum(rs, acc, float(tr.stats.delta))))
+        except FloorslideError as exc:
+            failures.append(f"{label}: {exc}")
+            continue
+        for set_name, factor, info in scalings:
+            if scaling is not None:
+                scaling.add(rs, set_name, record_id, factor, info)
             out.append(
                 LoadedRecord(
                     set=set_name,
@@ -367,6 +544,7 @@ def _load_pairs(
     periods: tuple[float, ...],
     qa: str,
     rejected: list[dict] | None,
+    scaling: _Scaling | None = None,
 ) -> list[LoadedRecord]:
     """The pairs of a catalog of components (:func:`floorslide.records.pairs.pair_rows`): each
     component read, processed and checked as a record of its own, the shorter padded with
@@ -425,7 +603,14 @@ def _load_pairs(
         meta["files"] = f"{row['h1'].path.name} + {row['h2'].path.name}"
         if pair.notes:
             meta["pair_notes"] = "; ".join(pair.notes)
-        for set_name, factor in _scalings(rs, pga):
+        try:
+            scalings = list(_scalings(rs, pga, _record_spectrum(rs, pair.h1, pair.dt, pair.h2)))
+        except FloorslideError as exc:
+            failures.append(f"{label}: {exc}")
+            continue
+        for set_name, factor, info in scalings:
+            if scaling is not None:
+                scaling.add(rs, set_name, record_id, factor, info)
             out.append(
                 LoadedRecord(
                     set=set_name,
@@ -479,14 +664,15 @@ def plan(scene: Scene, *, force: bool = False, evaluate: bool = True) -> Plan:
     records: list[LoadedRecord] = []
     rejected: list[dict] = []
     periods = tuple(scene.spectra.periods) if scene.spectra is not None else ()
+    scaling = _Scaling()
     for rs in scene.records:
-        records += _load_set(rs, scene.processing, failures, periods, scene.qa, rejected)
+        records += _load_set(rs, scene.processing, failures, periods, scene.qa, rejected, scaling)
     _check_short_periods(scene, records)
     history = scene.report.get("history_record")
     if history is None and records:
         history = records[0].record
     tasks: list[Task] = []
-    p = Plan(scene, tasks, records, failures, rejected=rejected)
+    p = Plan(scene, tasks, records, failures, rejected=rejected, scaling=scaling.finish(scene))
     if rejected:
         p.skipped["records rejected by the quality checks ([scene] qa = 'reject')"] += len(rejected)
     needs_vertical = [c.id for c in scene.contents if c.vertical]

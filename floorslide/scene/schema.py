@@ -30,6 +30,7 @@ RECORD_KEYS = {
     "catalog",
     "where",
     "scale_pga",
+    "scale",
     "format",
     "units",
     "dt",
@@ -103,13 +104,49 @@ CONTENT_KEYS = {
     "direction",
     "restitution",
     "rocking",
+    "allowable",
 }
+SCALE_KEYS = {"target", "periods", "period", "damping", "limits", "levels", "points"}
+"""Keys of a record set's ``scale`` table (target-spectrum scaling, docs/design.md §10e)."""
+TARGET_KEYS = {"sds", "sd1", "tl"}
 SPECTRA_KEYS = {"floors", "damping", "periods", "broadening"}
 REPORT_KEYS = {"periods", "damping", "compare", "history_record"}
 QA_ACTIONS = ("warn", "reject")
 """Values of ``[scene] qa`` (:mod:`floorslide.records.quality`)."""
 MAX_STORIES = 200
 """Largest building a scene may declare (a 200-storey shear building has 400 states)."""
+
+
+@dataclass(frozen=True)
+class ScaleSpec:
+    """Amplitude scaling of a set's records to a target spectrum (docs/design.md §10e).
+
+    Each record is scaled by one factor: the one that minimises the mean squared misfit of the
+    logarithms of its spectrum and the target's over ``period_range`` (``period`` None), or the
+    one that matches the target at ``period``. ``levels`` (multiples of the target) make one set
+    per level, the stripes of a fragility analysis.
+    """
+
+    target: Any = field(repr=False, compare=False)
+    """The :class:`~floorslide.practice.target.TargetSpectrum`."""
+    target_source: str
+    """How the scene gave it: ``two-point S_DS = …`` or the CSV file's path."""
+    period_range: tuple[float, float]
+    """Range of the fit (no ``period``) and of the suite check, s."""
+    period: float | None = None
+    damping: float = 0.05
+    limits: tuple[float, float] = (0.25, 4.0)
+    levels: tuple[float, ...] = ()
+    points: int = 40
+
+    def grid(self) -> np.ndarray:
+        """The periods of the records' spectra: ``points`` log-spaced over the range, and
+        ``period`` itself."""
+        lo, hi = self.period_range
+        grid = np.geomspace(lo, hi, self.points)
+        if self.period is not None:
+            grid = np.unique(np.append(grid, self.period))
+        return grid
 
 
 @dataclass(frozen=True)
@@ -121,6 +158,8 @@ class RecordSetSpec:
     catalog: str | None = None
     where: dict = field(default_factory=dict)
     scale_pga: tuple[float, ...] = ()
+    scale: ScaleSpec | None = None
+    """Scaling to a target spectrum (``scale_pga`` and ``scale`` exclude each other)."""
     format: str | None = None
     units: str | None = None
     dt: float | None = None
@@ -263,6 +302,9 @@ class ContentSpec:
     direction: str = "both"
     restitution: float | None = None  # rocking: None = Housner's 1 − 1.5 sin²α
     rocking: str = "exact"  # rocking method: "exact" (linearised) or "nonlinear"
+    allowable: tuple[float, ...] = ()
+    """Allowable displacements (m, increasing; e.g. the gap to a wall): the tables give the
+    fraction of records whose peak slide exceeds each (docs/design.md §10e)."""
 
     def floors_of(self, stories: int) -> tuple[int, ...]:
         """The floors of a building with `stories` storeys this content stands on."""
@@ -649,6 +691,19 @@ def _records(value, ck: _Checker, base: Path) -> tuple[tuple[RecordSetSpec, ...]
             if "scale_pga" in r
             else ()
         )
+        target_scale = _scale(r["scale"], f"{w}.scale", ck, base) if "scale" in r else None
+        if "scale" in r and "scale_pga" in r:
+            ck.add(f"{w}.scale", "give scale (to a target spectrum) or scale_pga, not both")
+        if target_scale is not None and len(target_scale.levels) > 1:
+            n_known = None if catalog else len(files)
+            if catalog and got is not None:
+                n_known = len(got)
+            if n_known is not None and n_known < 2:
+                ck.add(
+                    f"{w}.scale.levels",
+                    f"stripes need at least 2 records each (a fragility fit); the set has "
+                    f"{n_known}",
+                )
         dt = ck.number(r["dt"], f"{w}.dt", lo=0, lo_open=True) if "dt" in r else None
         opts = {}
         for key in ("format", "units", "component", "vertical_component"):
@@ -669,12 +724,174 @@ def _records(value, ck: _Checker, base: Path) -> tuple[tuple[RecordSetSpec, ...]
                 catalog=catalog,
                 where=dict(where),
                 scale_pga=scale,
+                scale=target_scale,
                 dt=dt,
                 pairs=pairs,
                 **opts,
             )
         )
     return tuple(out), ids
+
+
+def _target_csv(path: Path, where: str, ck: _Checker):
+    """A target spectrum from a CSV of ``T, S_a`` rows (s, g; a header line and ``#``
+    comments allowed): the :class:`~floorslide.practice.target.TargetSpectrum`, or None with the
+    problem added (its line number named)."""
+    from floorslide.errors import ModelError
+    from floorslide.practice.target import TargetSpectrum
+
+    try:
+        text = path.read_text(encoding="utf-8-sig")
+    except OSError as exc:
+        ck.add(where, f"cannot read the target file {path} ({exc.strerror or exc})")
+        return None
+    T: list[float] = []
+    S: list[float] = []
+    lines: list[int] = []
+    for k, line in enumerate(text.splitlines(), start=1):
+        body = line.split("#", 1)[0].strip()
+        if not body:
+            continue
+        cells = [c.strip() for c in body.replace(";", ",").replace("\t", ",").split(",")]
+        cells = [c for c in cells if c] if "," in body else body.split()
+        try:
+            t, sa = float(cells[0]), float(cells[1])
+        except (ValueError, IndexError):
+            if not T:  # a header line
+                continue
+            ck.add(
+                where, f"{path.name} line {k}: expected two numbers T (s), S_a (g), got {line!r}"
+            )
+            return None
+        if not (math.isfinite(t) and math.isfinite(sa)):
+            ck.add(where, f"{path.name} line {k}: T and S_a must be finite numbers")
+            return None
+        if sa < 0:
+            ck.add(where, f"{path.name} line {k}: S_a must be > 0 g, got {sa:g} (negative)")
+            return None
+        if T and t <= T[-1]:
+            ck.add(
+                where,
+                f"{path.name} line {k}: periods must increase, got T = {t:g} s after {T[-1]:g} s",
+            )
+            return None
+        T.append(t)
+        S.append(sa)
+        lines.append(k)
+    try:
+        return TargetSpectrum.from_table(T, S, name=path.name)
+    except ModelError as exc:
+        ck.add(where, f"{path.name}: {exc.message}")
+        return None
+
+
+def _scale(value, w: str, ck: _Checker, base: Path) -> ScaleSpec | None:
+    """A record set's ``scale`` table (docs/design.md §10e), or None with the problems added."""
+    from floorslide.errors import ModelError
+    from floorslide.practice.target import FACTOR_LIMITS, TargetSpectrum
+
+    if not isinstance(value, dict):
+        ck.add(w, "must be a table: { target = ..., periods = [T_lo, T_hi] or period = T }")
+        return None
+    ck.keys(value, SCALE_KEYS, w)
+    n0 = len(ck.problems)
+    target = None
+    source = ""
+    t = value.get("target")
+    if t is None:
+        ck.add(f"{w}.target", "missing: { sds = , sd1 = , tl = } (g, g, s) or a CSV of T, S_a")
+    elif isinstance(t, dict):
+        ck.keys(t, TARGET_KEYS, f"{w}.target")
+        got = {}
+        for key in ("sds", "sd1", "tl"):
+            if key not in t:
+                ck.add(f"{w}.target.{key}", "missing")
+            else:
+                got[key] = ck.number(t[key], f"{w}.target.{key}", lo=0, lo_open=True)
+        if len(got) == 3 and None not in got.values():
+            try:
+                target = TargetSpectrum.two_point(got["sds"], got["sd1"], got["tl"])
+                source = f"two-point: S_DS = {got['sds']:g} g, S_D1 = {got['sd1']:g} g, " + (
+                    f"T_L = {got['tl']:g} s"
+                )
+            except ModelError as exc:
+                ck.add(f"{w}.target.{exc.where or 'tl'}", exc.message)
+    elif isinstance(t, str) and t:
+        path = Path(t) if Path(t).is_absolute() else base / t
+        if not path.is_file():
+            ck.add(f"{w}.target", f"no such target file ({path})")
+        else:
+            target = _target_csv(path, f"{w}.target", ck)
+            source = str(path)
+    else:
+        ck.add(f"{w}.target", f"must be {{ sds, sd1, tl }} or a CSV path, got {t!r}")
+    period = None
+    if "period" in value:
+        period = ck.number(value["period"], f"{w}.period", lo=0, lo_open=True)
+    rng = None
+    if "periods" in value:
+        p = value["periods"]
+        if not (isinstance(p, list) and len(p) == 2):
+            ck.add(f"{w}.periods", f"must be a range [T_lo, T_hi] (s), got {p!r}")
+        else:
+            lo = ck.number(p[0], f"{w}.periods[0]", lo=0, lo_open=True)
+            hi = ck.number(p[1], f"{w}.periods[1]", lo=0, lo_open=True)
+            if lo is not None and hi is not None:
+                if hi <= lo:
+                    ck.add(f"{w}.periods", f"must increase: [{lo:g}, {hi:g}]")
+                else:
+                    rng = (lo, hi)
+    elif period is not None:
+        rng = (0.2 * period, 2.0 * period)  # ASCE 7-22 §16.2.1's range about the period
+    elif "period" not in value:
+        ck.add(w, "give periods = [T_lo, T_hi] (fit over a range) or period = T (match at T)")
+    if rng is not None and period is not None and not (rng[0] <= period <= rng[1]):
+        ck.add(f"{w}.period", f"{period:g} s lies outside periods [{rng[0]:g}, {rng[1]:g}]")
+    if target is not None and rng is not None and not target.params:
+        lo_t, hi_t = float(target.periods[0]), float(target.periods[-1])
+        if rng[0] < lo_t or rng[1] > hi_t:
+            key = f"{w}.periods" if "periods" in value else f"{w}.period"
+            ck.add(
+                key,
+                f"the range {rng[0]:g}–{rng[1]:g} s reaches outside the target's "
+                f"{lo_t:g}–{hi_t:g} s ({Path(source).name})",
+            )
+    damping = 0.05
+    if "damping" in value:
+        damping = ck.number(value["damping"], f"{w}.damping", lo=0, hi=1, hi_open=True)
+    limits = FACTOR_LIMITS
+    if "limits" in value:
+        lim = value["limits"]
+        if not (isinstance(lim, list) and len(lim) == 2):
+            ck.add(f"{w}.limits", f"must be [low, high] scale factors, got {lim!r}")
+        else:
+            a = ck.number(lim[0], f"{w}.limits[0]", lo=0, lo_open=True)
+            b = ck.number(lim[1], f"{w}.limits[1]", lo=0, lo_open=True)
+            if a is not None and b is not None:
+                if b <= a:
+                    ck.add(f"{w}.limits", f"must increase: [{a:g}, {b:g}]")
+                limits = (a, b)
+    levels: tuple[float, ...] = ()
+    if "levels" in value:
+        levels = ck.numbers(value["levels"], f"{w}.levels", lo=0, lo_open=True)
+        if levels and len(set(levels)) != len(levels):
+            ck.add(f"{w}.levels", "must not repeat a level")
+        levels = tuple(sorted(levels))
+    points = 40
+    if "points" in value:
+        points = ck.number(value["points"], f"{w}.points", lo=2, hi=1000, integer=True)
+    if len(ck.problems) > n0 or target is None or rng is None:
+        return None
+    return ScaleSpec(
+        target=target,
+        target_source=source,
+        period_range=rng,
+        period=period,
+        damping=float(damping),
+        limits=(float(limits[0]), float(limits[1])),
+        levels=levels,
+        points=int(points),
+    )
 
 
 def _processing(value, ck: _Checker) -> dict:
@@ -1090,6 +1307,12 @@ def _contents(value, ck: _Checker, stories: set[int]) -> tuple[ContentSpec, ...]
                 "missing: Housner's 1 − 1.5 sin²α is negative for width/height > 1.414 "
                 "(a squat block); give restitution in [0, 1]",
             )
+        allowable: tuple[float, ...] = ()
+        if "allowable" in c:
+            allowable = ck.numbers(c["allowable"], f"{w}.allowable", lo=0, lo_open=True)
+            if allowable and len(set(allowable)) != len(allowable):
+                ck.add(f"{w}.allowable", "must not repeat a displacement")
+            allowable = tuple(sorted(allowable))
         rocking = c.get("rocking", "exact")
         if rocking not in ("exact", "nonlinear"):
             ck.add(f"{w}.rocking", f"must be 'exact' or 'nonlinear', got {rocking!r}")
@@ -1133,6 +1356,7 @@ def _contents(value, ck: _Checker, stories: set[int]) -> tuple[ContentSpec, ...]
                 str(direction),
                 restitution,
                 str(rocking),
+                allowable,
             )
         )
     return tuple(out)

@@ -1,0 +1,221 @@
+"""Target-spectrum scaling from the scene (docs/design.md §10e): the scene keys, their bad-input
+errors with key paths, and the planner's factors checked against spectra of the scaled records
+computed afresh (exact, and an independent approximate method)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from floorslide.constants import G
+from floorslide.errors import SceneError
+from floorslide.practice.target import SUITE_FRACTION, TargetSpectrum
+from floorslide.scene.planner import plan
+from floorslide.scene.schema import parse_scene
+from floorslide.spectra import response_spectrum
+from tests.conftest import ROOT
+
+CATALOG = (ROOT / "data" / "records" / "slammer" / "index.csv").as_posix()
+RECORDS = (ROOT / "data" / "records" / "slammer").as_posix()
+
+
+def _scene(scale: str, *, where: str = '["ELC-180", "TAF-021", "EMO-270"]', extra: str = "") -> str:
+    return f"""
+[scene]
+name = "scaling"
+
+[[records]]
+set = "s"
+catalog = "{CATALOG}"
+where = {{ station_id = {where} }}
+scale = {scale}
+
+[[buildings]]
+id = "fixed"
+kind = "fixed"
+stories = 1
+period = 0.2
+damping = 0.02
+
+[[contents]]
+id = "cab"
+mu = [0.2]
+{extra}
+"""
+
+
+TWO_POINT = "{ sds = 1.0, sd1 = 0.6, tl = 8.0 }"
+
+
+def _problems(text: str, tmp_path) -> str:
+    with pytest.raises(SceneError) as err:
+        parse_scene(text, tmp_path / "scene.toml")
+    return str(err.value)
+
+
+def test_range_scaling_fits_the_target_in_the_log_mean(tmp_path):
+    sc = parse_scene(_scene(f"{{ target = {TWO_POINT}, periods = [0.1, 2.0] }}"), tmp_path / "a")
+    p = plan(sc, evaluate=False)
+    spec = sc.records[0].scale
+    grid = spec.grid()
+    assert len(p.records) == 3
+    entry = p.scaling[0]
+    assert entry["method"] == "range" and entry["set"] == "s"
+    target = TargetSpectrum.two_point(1.0, 0.6, 8.0)(grid)
+    for r in p.records:
+        # the scaled record's spectrum, computed afresh, fits the target in the mean of logs
+        psa = response_spectrum(r.acc, r.dt, grid, 0.05).psa[0] / G
+        resid = np.log(psa / target)
+        assert abs(resid.mean()) < 1e-12
+        stored = next(x for x in entry["records"] if x["record"] == r.record)
+        assert stored["factor"] == pytest.approx(r.scale, rel=1e-15)
+        assert stored["misfit"] == pytest.approx(np.sqrt(np.mean(resid**2)), rel=1e-10)
+        # an independent method (Newmark average acceleration on the samples) agrees to its
+        # own accuracy: the factor is right, not just self-consistent
+        approx = response_spectrum(r.acc / r.scale, r.dt, grid, 0.05, method="newmark").psa[0]
+        f_ref = math.exp(np.mean(np.log(target * G / approx)))
+        assert r.scale == pytest.approx(f_ref, rel=2e-2)
+    # the suite check, recomputed from the scaled records
+    mean = np.mean(
+        [response_spectrum(r.acc, r.dt, grid, 0.05).psa[0] / G for r in p.records], axis=0
+    )
+    ratio = mean / target
+    assert entry["suite"]["min_ratio"] == pytest.approx(ratio.min(), rel=1e-12)
+    assert entry["suite"]["at"] == pytest.approx(grid[np.argmin(ratio)])
+    assert entry["suite"]["passes"] == bool(ratio.min() >= SUITE_FRACTION)
+
+
+def test_period_scaling_matches_the_target_at_the_period(tmp_path):
+    sc = parse_scene(_scene(f"{{ target = {TWO_POINT}, period = 1.0 }}"), tmp_path / "a")
+    assert sc.records[0].scale.period_range == pytest.approx((0.2, 2.0))
+    p = plan(sc, evaluate=False)
+    for r in p.records:
+        psa = response_spectrum(r.acc, r.dt, [1.0], 0.05).psa[0, 0] / G
+        assert psa == pytest.approx(0.6, rel=1e-12)  # S_D1 / T at T = 1 s
+
+
+def test_levels_make_stripes_named_and_scaled(tmp_path):
+    sc = parse_scene(
+        _scene(f"{{ target = {TWO_POINT}, periods = [0.1, 2.0], levels = [2.0, 0.5] }}"),
+        tmp_path / "a",
+    )
+    p = plan(sc, evaluate=False)
+    sets = sorted({r.set for r in p.records})
+    assert sets == ["s@0.5x", "s@2x"]
+    by = {(r.set, r.record): r.scale for r in p.records}
+    for rec in {r.record for r in p.records}:
+        assert by[("s@2x", rec)] == pytest.approx(4 * by[("s@0.5x", rec)], rel=1e-15)
+    assert {e["level"] for e in p.scaling} == {0.5, 2.0}
+    assert "3 × 2 scalings = 6 records" in p.describe()
+
+
+def test_factors_outside_the_limits_warn(tmp_path):
+    sc = parse_scene(
+        _scene(f"{{ target = {TWO_POINT}, periods = [0.1, 2.0], limits = [0.9, 1.1] }}"),
+        tmp_path / "a",
+    )
+    with pytest.warns(UserWarning, match=r"set 's': \d of 3 scale factors lie outside 0.9–1.1"):
+        p = plan(sc, evaluate=False)
+    flags = [r["outside_limits"] for r in p.scaling[0]["records"]]
+    assert flags == [not (0.9 <= r["factor"] <= 1.1) for r in p.scaling[0]["records"]]
+
+
+def test_csv_target(tmp_path):
+    csv = tmp_path / "target.csv"
+    csv.write_text("T_s,Sa_g\n0.05,0.5\n0.2,1.0\n1.0,0.6\n4.0,0.15\n", encoding="utf-8")
+    sc = parse_scene(
+        _scene('{ target = "target.csv", periods = [0.1, 3.0] }'), tmp_path / "scene.toml"
+    )
+    t = sc.records[0].scale.target
+    assert t(np.array([0.2, 1.0])) == pytest.approx([1.0, 0.6])
+    # log-log interpolation: S_a(0.5) = 1.0·(0.5/0.2)^(ln 0.6/ln 5)
+    assert float(t(np.array([0.5]))[0]) == pytest.approx(2.5 ** (math.log(0.6) / math.log(5)))
+
+
+@pytest.mark.parametrize(
+    ("csv", "scale", "expect"),
+    [
+        (
+            "0.1,0.5\n0.3,1.0\n0.2,0.8\n",
+            '{ target = "t.csv", periods = [0.1, 0.2] }',
+            "records[0].scale.target: t.csv line 3: periods must increase, "
+            "got T = 0.2 s after 0.3 s",
+        ),
+        (
+            "0.1,0.5\n0.3,-1.0\n",
+            '{ target = "t.csv", periods = [0.1, 0.2] }',
+            "records[0].scale.target: t.csv line 2: S_a must be > 0 g, got -1 (negative)",
+        ),
+        (
+            "0.1,0.5\n0.3,1.0\n1.0,0.5\n",
+            '{ target = "t.csv", periods = [0.05, 2.0] }',
+            "records[0].scale.periods: the range 0.05–2 s reaches outside the target's 0.1–1 s",
+        ),
+    ],
+)
+def test_bad_target_csv(tmp_path, csv, scale, expect):
+    (tmp_path / "t.csv").write_text(csv, encoding="utf-8")
+    text = _problems(_scene(scale), tmp_path)
+    assert expect in text
+
+
+@pytest.mark.parametrize(
+    ("scale", "extra", "expect"),
+    [
+        (
+            f"{{ target = {TWO_POINT}, periods = [0.1, 2.0], levels = [0.5, 1.0] }}",
+            "",
+            "records[0].scale.levels: stripes need at least 2 records each (a fragility fit); "
+            "the set has 1",
+        ),
+        (
+            f"{{ target = {TWO_POINT}, periods = [0.1, 2.0] }}",
+            "allowable = [0.05, 0.0]",
+            "contents[0].allowable[1]: must be > 0, got 0.0",
+        ),
+        (
+            f"{{ target = {TWO_POINT}, periods = [0.1, 2.0] }}",
+            "allowable = -0.1",
+            "contents[0].allowable: must be > 0, got -0.1",
+        ),
+        (f"{{ target = {TWO_POINT} }}", "", "records[0].scale: give periods = [T_lo, T_hi]"),
+        (
+            f"{{ target = {TWO_POINT}, periods = [2.0, 0.1] }}",
+            "",
+            "records[0].scale.periods: must increase: [2, 0.1]",
+        ),
+        (
+            "{ target = { sds = 1.0, sd1 = 0.6 }, period = 1.0 }",
+            "",
+            "records[0].scale.target.tl: missing",
+        ),
+        (
+            f"{{ target = {TWO_POINT}, period = 1.0, periods = [0.1, 0.5] }}",
+            "",
+            "records[0].scale.period: 1 s lies outside periods [0.1, 0.5]",
+        ),
+        ('{ target = "none.csv", period = 1.0 }', "", "records[0].scale.target: no such target"),
+    ],
+)
+def test_bad_scale_and_allowable(tmp_path, scale, extra, expect):
+    text = _problems(_scene(scale, where='["ELC-180"]', extra=extra), tmp_path)
+    assert expect in text
+
+
+def test_scale_and_scale_pga_exclude_each_other(tmp_path):
+    text = _scene(f"{{ target = {TWO_POINT}, period = 1.0 }}").replace(
+        "scale = {", "scale_pga = 0.3\nscale = {"
+    )
+    assert "records[0].scale: give scale (to a target spectrum) or scale_pga, not both" in (
+        _problems(text, tmp_path)
+    )
+
+
+def test_allowable_is_sorted(tmp_path):
+    sc = parse_scene(
+        _scene(f"{{ target = {TWO_POINT}, period = 1.0 }}", extra="allowable = [0.3, 0.05, 0.1]"),
+        tmp_path / "a",
+    )
+    assert sc.contents[0].allowable == (0.05, 0.1, 0.3)
