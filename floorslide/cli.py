@@ -1558,14 +1558,30 @@ def _quality_summary(rows: list[dict]) -> list[str]:
     return out
 
 
+def _older_demo(h5, scene_text: str) -> bool:
+    """Whether `h5` is a demo result written by an earlier floorslide (its demo scene had other
+    text under the same ``[scene] name``)."""
+    import tomllib
+
+    from floorslide.errors import FloorslideError
+    from floorslide.run.store import ResultFile
+
+    name = tomllib.loads(scene_text).get("scene", {}).get("name")
+    try:
+        return bool(name) and ResultFile(h5).scene_name == name
+    except FloorslideError:
+        return False
+
+
 def _demo_may_replace(h5, scene_text: str) -> bool:
     """Whether the demo may replace `h5` (and the journal beside it): only its own output.
 
     Returns
     -------
     bool
-        True when `h5` is a result of the demo scene (finished or not), or is absent with an
-        old journal beside it; False when there is nothing to replace.
+        True when `h5` is a result of the demo scene (finished or not; also one written by an
+        earlier floorslide's demo), or is absent with an old journal beside it; False when
+        there is nothing to replace.
 
     Raises
     ------
@@ -1577,7 +1593,7 @@ def _demo_may_replace(h5, scene_text: str) -> bool:
 
     if not (h5.exists() or h5.is_symlink()):
         return bool(journal_entries(h5))
-    if written_for(h5, scene_text):
+    if written_for(h5, scene_text) or _older_demo(h5, scene_text):
         return True
     raise OutputExistsError(
         "exists and is not a floorslide result of the demo scene; not replaced (choose "
@@ -1643,8 +1659,9 @@ def demo(out_dir, workers):
     """Run the bundled demo: a broad-band and a pulse-like set of recorded earthquakes, a
     1-storey fixed-base building (T = 0.2 s, 2 %), the same on linear isolation swept over
     T_i = 1.5…4 s (ξ_i = 10 %) and on friction-pendulum bearings (mu = 0.06, T = 3 s),
-    equipment with mu = 0.05…0.5 on the roof, floor response spectra per floor. Writes
-    DIR/results.h5, DIR/tables (CSV and Markdown) and DIR/figures.
+    equipment with mu = 0.05…0.5 on the roof and gaps of 5, 10 and 30 cm to a wall, floor
+    response spectra per floor. Writes DIR/results.h5, DIR/tables (CSV and Markdown),
+    DIR/figures and DIR/report.html (everything in one self-contained file).
 
     Run again, it replaces DIR/results.h5 only if that file is a floorslide result of the demo
     scene (a previous demo, finished or not); any other file there is left alone and the demo
@@ -1654,6 +1671,7 @@ def demo(out_dir, workers):
     from pathlib import Path
 
     from floorslide.report import design_tables, format_markdown, plot_figures, write_csv
+    from floorslide.report.html import write_report
     from floorslide.report.study import load_study
     from floorslide.run.execute import execute
     from floorslide.scene.planner import plan as make_plan
@@ -1677,12 +1695,14 @@ def demo(out_dir, workers):
     md = out / "tables" / "tables.md"
     md.write_text(format_markdown(tables), encoding="utf-8")
     figures = plot_figures(study, out / "figures", workers=workers or os.cpu_count() or 1)
+    html = write_report(study, out / "report.html", tables=tables, figures=figures)
     click.echo("")
     click.echo(demo_summary(tables))
     click.echo(f"{summary.tasks} tasks in {summary.seconds:.1f} s")
     click.echo(f"results: {h5}")
     click.echo(f"tables:  {md} and {len(csvs)} CSV files in {out / 'tables'}")
     click.echo(f"figures: {len(figures)} PNG files in {out / 'figures'}")
+    click.echo(f"report:  {html.resolve().as_uri()} (one self-contained HTML file)")
     if summary.failures:
         for failure in summary.failures:
             click.echo(f"floorslide: error: {failure}", err=True)

@@ -383,7 +383,7 @@ COLUMNS.update(
             Column("method", "", "range (log least squares), period (match at T*) or pga"),
             Column("level", "1", "multiple of the target (or PGA in g for pga)"),
             Column("record", "", "record id"),
-            Column("factor", "1", "amplitude factor applied (fit factor × level)"),
+            Column("factor", "1", "amplitude factor applied (fit factor × level × suite factor)"),
             Column("fit_factor", "1", "factor fitting the record to the target (level 1)"),
             Column(
                 "misfit",
@@ -405,6 +405,12 @@ COLUMNS.update(
             Column("factor_min", "1", "smallest factor"),
             Column("factor_max", "1", "largest factor"),
             Column("n_outside_limits", "1", "factors outside the scene's limits"),
+            Column(
+                "suite_factor",
+                "1",
+                "common factor raising the suite to 90 % of the target (match_suite; else 1), "
+                "included in the factors",
+            ),
             Column(
                 "mean_over_target_min",
                 "1",

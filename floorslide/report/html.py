@@ -17,7 +17,7 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 from floorslide.errors import FloorslideError
-from floorslide.report.columns import TABLE_NAMES, DesignTables
+from floorslide.report.columns import EMPTY_NOTES, TABLE_NAMES, TITLES, DesignTables
 from floorslide.report.formats import _md_cell, _md_heading, markdown_columns
 from floorslide.report.study import Study, load_study
 from floorslide.report.tables import design_tables
@@ -28,18 +28,29 @@ body { font-family: system-ui, -apple-system, "Segoe UI", sans-serif; margin: 2e
 h1 { font-size: 1.6em; } h2 { border-bottom: 1px solid #ccc; margin-top: 2em; }
 table { border-collapse: collapse; margin: 0.5em 0 1.5em; font-size: 0.85em; }
 th, td { border: 1px solid #bbb; padding: 0.2em 0.5em; text-align: right; }
-th { background: #eee; } td:first-child, th:first-child { text-align: left; }
+th { background: #eee; } td:first-child, th:first-child, td.t { text-align: left; }
+.wide { overflow-x: auto; max-width: 100%; } small { font-weight: normal; color: #555; }
 .banner { background: #b00; color: #fff; padding: 0.6em 1em; font-weight: bold; }
 figure { margin: 1em 0 2em; page-break-inside: avoid; }
 figure img { max-width: 100%; border: 1px solid #ddd; }
 pre { background: #f6f6f6; padding: 0.8em; overflow-x: auto; font-size: 0.8em; }
-@media print { body { max-width: none; margin: 0; } h2 { page-break-before: auto; }
-               table, figure { page-break-inside: avoid; } }
+@media print { @page { size: A4; margin: 12mm; }
+               body { max-width: none; margin: 0; font-size: 9pt; } h2 { page-break-before: auto; }
+               .wide { overflow: visible; } table { font-size: 6.5pt; }
+               td, th { padding: 0.1em 0.25em; } figure { page-break-inside: avoid; }
+               tr { page-break-inside: avoid; } }
 """
 
 
 def _e(text: object) -> str:
     return html.escape(str(text), quote=True)
+
+
+def _td(value, column, row: Mapping) -> str:
+    """A cell: labels (no unit) left-aligned, numbers right-aligned."""
+    label = column.units == "" and not isinstance(value, bool)
+    cls = ' class="t"' if label else ""
+    return f"<td{cls}>{_e(_md_cell(value, column, row))}</td>"
 
 
 def _table(name: str, rows: Sequence[Mapping]) -> str:
@@ -48,11 +59,11 @@ def _table(name: str, rows: Sequence[Mapping]) -> str:
     cols = markdown_columns(name, rows)
     head = "".join(f"<th>{_e(_md_heading(c))}</th>" for c in cols)
     body = "".join(
-        "<tr>" + "".join(f"<td>{_e(_md_cell(row[c.name], c, row))}</td>" for c in cols) + "</tr>"
-        for row in rows
+        "<tr>" + "".join(_td(row[c.name], c, row) for c in cols) + "</tr>" for row in rows
     )
     return (
-        f'<table id="table-{_e(name)}"><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>'
+        f'<div class="wide"><table id="table-{_e(name)}"><thead><tr>{head}</tr></thead>'
+        f"<tbody>{body}</tbody></table></div>"
     )
 
 
@@ -106,12 +117,21 @@ def report_html(
         parts.append("<h2>Notes</h2><ul>")
         parts += [f"<li>{_e(n)}</li>" for n in tables.notes]
         parts.append("</ul>")
-    parts.append("<h2>Design tables</h2>")
-    for name in TABLE_NAMES:
-        if name == "records":
-            continue
-        parts.append(f"<h3>{_e(name)}</h3>")
-        parts.append(_table(name, tables[name]))
+    practice = ("scaling", "suite", "code", "exceedance", "fragility")
+    for anchor, heading, names in (
+        ("tables", "Design tables", [n for n in TABLE_NAMES if n not in (*practice, "records")]),
+        ("practice", "Design practice: scaling, code comparison, exceedance, fragility", practice),
+    ):
+        parts.append(f'<h2 id="{anchor}">{_e(heading)}</h2>')
+        for name in names:
+            parts.append(
+                f'<h3>{_e(TITLES.get(name, name))} <small>(table "{_e(name)}")</small></h3>'
+            )
+            if tables[name]:
+                parts.append(_table(name, tables[name]))
+            else:
+                note = EMPTY_NOTES.get(name, "no rows")
+                parts.append(f'<p class="empty" id="empty-{_e(name)}"><em>{_e(note)}</em></p>')
     with tempfile.TemporaryDirectory() as tmp:
         paths = (
             list(figures)

@@ -119,6 +119,7 @@ def suite_table(study: Study) -> list[dict]:
                 factor_min=min(f) if f else math.nan,
                 factor_max=max(f) if f else math.nan,
                 n_outside_limits=sum(bool(r.get("outside_limits")) for r in e.get("records", [])),
+                suite_factor=_float(e.get("suite_factor"), 1.0),
                 mean_over_target_min=_float(s.get("min_ratio")),
                 at_period=_float(s.get("at")),
                 passes=bool(s.get("passes")),
@@ -317,6 +318,9 @@ def fragility_table(study: Study, exceedance: list[dict]) -> list[dict]:
                 note = fit.note
                 if len(usable) < len(levels) and not note:
                     note = "fitted over the stripes with a slide only"
+                if math.isfinite(fit.median) and not x[0] <= fit.median <= x[-1]:
+                    side = "above the largest" if fit.median > x[-1] else "below the smallest"
+                    note = "; ".join(filter(None, (note, f"θ lies {side} stripe: extrapolated")))
                 row.update(median=fit.median, beta=fit.beta)
             row["note"] = "; ".join(filter(None, (note, caveat)))
             rows.append(row)

@@ -106,7 +106,16 @@ CONTENT_KEYS = {
     "rocking",
     "allowable",
 }
-SCALE_KEYS = {"target", "periods", "period", "damping", "limits", "levels", "points"}
+SCALE_KEYS = {
+    "target",
+    "periods",
+    "period",
+    "damping",
+    "limits",
+    "levels",
+    "points",
+    "match_suite",
+}
 """Keys of a record set's ``scale`` table (target-spectrum scaling, docs/design.md §10e)."""
 TARGET_KEYS = {"sds", "sd1", "tl"}
 SPECTRA_KEYS = {"floors", "damping", "periods", "broadening"}
@@ -138,6 +147,8 @@ class ScaleSpec:
     limits: tuple[float, float] = (0.25, 4.0)
     levels: tuple[float, ...] = ()
     points: int = 40
+    match_suite: bool = False
+    """Raise the whole suite by one factor where its mean falls below 90 % of the target."""
 
     def grid(self) -> np.ndarray:
         """The periods of the records' spectra: ``points`` log-spaced over the range, and
@@ -880,6 +891,9 @@ def _scale(value, w: str, ck: _Checker, base: Path) -> ScaleSpec | None:
     points = 40
     if "points" in value:
         points = ck.number(value["points"], f"{w}.points", lo=2, hi=1000, integer=True)
+    match = value.get("match_suite", False)
+    if not isinstance(match, bool):
+        ck.add(f"{w}.match_suite", f"must be true or false, got {match!r}")
     if len(ck.problems) > n0 or target is None or rng is None:
         return None
     return ScaleSpec(
@@ -891,6 +905,7 @@ def _scale(value, w: str, ck: _Checker, base: Path) -> ScaleSpec | None:
         limits=(float(limits[0]), float(limits[1])),
         levels=levels,
         points=int(points),
+        match_suite=bool(match),
     )
 
 

@@ -162,3 +162,23 @@ def test_outputs_carry_the_new_tables(tables):
         assert title in md
     csv = format_csv("fragility", tables["fragility"])
     assert "0.5; 1.0; 2.0" in csv  # the stripes' levels in one cell
+
+
+def test_report_holds_the_practice_section(study, tmp_path):
+    from floorslide.report.html import write_report
+
+    text = write_report(study, tmp_path / "r.html", tables=design_tables(study), figures=[])
+    text = text.read_text(encoding="utf-8")
+    assert "Design practice: scaling, code comparison, exceedance, fragility" in text
+    for name in ("scaling", "suite", "code", "exceedance", "fragility"):
+        assert f'id="table-{name}"' in text
+    assert 'id="empty-plane"' in text  # an empty table says why
+
+
+def test_bundled_design_scene_plans_its_stripes():
+    sc = load_scene(ROOT / "data" / "scenes" / "design.toml")
+    with pytest.warns(UserWarning, match="lie outside 0.25–4"):
+        p = plan(sc, evaluate=False)
+    assert [e["set"] for e in p.scaling] == [f"design@{x:g}x" for x in (0.25, 0.5, 1.0, 1.5)]
+    assert all(e["suite"]["passes"] for e in p.scaling)  # match_suite
+    assert len(p.tasks) == 18 * 4 * 2

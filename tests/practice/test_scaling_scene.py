@@ -219,3 +219,26 @@ def test_allowable_is_sorted(tmp_path):
         tmp_path / "a",
     )
     assert sc.contents[0].allowable == (0.05, 0.1, 0.3)
+
+
+def test_match_suite_raises_the_suite_to_ninety_percent(tmp_path):
+    scale = f"{{ target = {TWO_POINT}, periods = [0.2, 3.0], match_suite = true }}"
+    sc = parse_scene(_scene(scale), tmp_path / "a")
+    before = plan(
+        parse_scene(_scene(scale.replace("true", "false")), tmp_path / "b"), evaluate=False
+    )
+    p = plan(sc, evaluate=False)
+    ratio0 = before.scaling[0]["suite"]["min_ratio"]
+    assert ratio0 < SUITE_FRACTION  # these three records fall short over 0.2–3 s
+    c = p.scaling[0]["suite_factor"]
+    assert c == pytest.approx(SUITE_FRACTION / ratio0, rel=1e-14)
+    grid = sc.records[0].scale.grid()
+    target = TargetSpectrum.two_point(1.0, 0.6, 8.0)(grid)
+    mean = np.mean(
+        [response_spectrum(r.acc, r.dt, grid, 0.05).psa[0] / G for r in p.records], axis=0
+    )
+    assert (mean / target).min() == pytest.approx(SUITE_FRACTION, rel=1e-12)
+    assert p.scaling[0]["suite"]["passes"]
+    for r0, r in zip(before.records, p.records, strict=True):
+        assert r.scale == pytest.approx(c * r0.scale, rel=1e-15)
+    assert "after raising every record by" in p.describe()
