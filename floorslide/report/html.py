@@ -67,6 +67,34 @@ def _table(name: str, rows: Sequence[Mapping]) -> str:
     )
 
 
+PROVENANCE_FIRST = ("set", "record", "file", "event", "magnitude", "station", "station_id",
+                    "owner", "site_class", "distance_km", "dt", "units")  # fmt: skip
+"""Columns of the provenance table that come first when the catalog has them."""
+
+
+def _provenance(rows: Sequence[Mapping]) -> str:
+    """Each record's file and catalog metadata, as the catalog gives them."""
+    if not rows:
+        return (
+            '<p class="empty" id="empty-provenance"><em>no record metadata stored (records '
+            "from files without a catalog, or a file written before floorslide kept it)</em></p>"
+        )
+    keys = list(dict.fromkeys(k for r in rows for k in r))
+    cols = [k for k in PROVENANCE_FIRST if k in keys] + [
+        k for k in keys if k not in PROVENANCE_FIRST
+    ]
+    head = "".join(f"<th>{_e(k)}</th>" for k in cols)
+    body = "".join(
+        "<tr>" + "".join(f'<td class="t">{_e(r.get(k, ""))}</td>' for k in cols) + "</tr>"
+        for r in rows
+    )
+    return (
+        '<h3>Provenance <small>(as the catalog gives it)</small></h3><div class="wide">'
+        f'<table id="table-provenance"><thead><tr>{head}</tr></thead><tbody>{body}</tbody>'
+        "</table></div>"
+    )
+
+
 def _versions() -> list[tuple[str, str]]:
     from importlib.metadata import PackageNotFoundError, version
 
@@ -147,6 +175,7 @@ def report_html(
             )
     parts.append("<h2>Records, provenance and quality checks</h2>")
     parts.append(_table("records", tables["records"]))
+    parts.append(_provenance(study.provenance))
     parts.append("<h2>Scene</h2>")
     parts.append(f'<pre id="scene">{_e(scene_text)}</pre>')
     parts.append("<h2>Software</h2><table><tbody>")

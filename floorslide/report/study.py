@@ -56,6 +56,9 @@ class Study:
     quality: dict = field(default_factory=dict)
     """The plan's record quality checks: ``action``, ``flagged`` and ``rejected`` records with
     their flags (empty for files written before floorslide checked records)."""
+    provenance: list[dict] = field(default_factory=list)
+    """Per record of each set: ``set``, ``record``, ``file`` and the catalog's metadata (empty
+    for files written before floorslide stored it)."""
     scaling: list[dict] = field(default_factory=list)
     """The plan's scaled sets (``scale`` to a target or ``scale_pga``): family, level, method,
     per record factor and misfit, the suite check (docs/design.md §10e); empty when the records
@@ -234,10 +237,15 @@ def load_study(result: str | Path | ResultFile | Study) -> Study:
         tasks_planned=rf.planned_tasks,
         scene_path=rf.scene_path,
         quality=_quality(rf.plan),
-        scaling=[e for e in (rf.plan.get("scaling") or []) if isinstance(e, dict)]
-        if isinstance(rf.plan, dict)
-        else [],
+        scaling=_dicts(rf.plan, "scaling"),
+        provenance=_dicts(rf.plan, "provenance"),
     )
+
+
+def _dicts(plan, key: str) -> list[dict]:
+    """The list of tables `key` of a stored plan (empty when absent or malformed)."""
+    items = plan.get(key) if isinstance(plan, dict) else None
+    return [e for e in items if isinstance(e, dict)] if isinstance(items, list) else []
 
 
 def _quality(plan: dict) -> dict:

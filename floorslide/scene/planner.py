@@ -125,7 +125,22 @@ class Plan:
             skipped=dict(self.skipped),
             quality=self.quality(),
             scaling=self.scaling,
+            provenance=self.provenance(),
         )
+
+    def provenance(self) -> list[dict]:
+        """Per record of each scene set (once, whatever its scalings): its file and the
+        catalog's metadata (event, station, owner, … as the catalog gives them), for reports."""
+        seen: set[tuple[str, str]] = set()
+        out = []
+        for r in self.records:
+            key = (r.set.split("@")[0], r.record)
+            if key in seen:
+                continue
+            seen.add(key)
+            meta = {k: v for k, v in r.meta.items() if k not in ("set", "record", "file")}
+            out.append(dict(set=key[0], record=r.record, file=r.label, **meta))
+        return out
 
     def _scaling_lines(self, rs: RecordSetSpec) -> list[str]:
         """How a set's records were scaled to its target, and its suite check."""

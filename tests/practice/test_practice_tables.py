@@ -173,6 +173,15 @@ def test_report_holds_the_practice_section(study, tmp_path):
     for name in ("scaling", "suite", "code", "exceedance", "fragility"):
         assert f'id="table-{name}"' in text
     assert 'id="empty-plane"' in text  # an empty table says why
+    # provenance: every record with its catalog metadata
+    assert 'id="table-provenance"' in text
+    assert {(r["record"], r["station_id"]) for r in study.provenance} == {
+        ("ImperialValley_1940_ELC-180", "ELC-180"),
+        ("KernCounty_1952_TAF-021", "TAF-021"),
+        ("ImperialValley_1979_EMO-270", "EMO-270"),
+        ("ImperialValley_1979_EDA-270", "EDA-270"),
+    }
+    assert "Imperial Valley 1940" in text
 
 
 def test_bundled_design_scene_plans_its_stripes():
