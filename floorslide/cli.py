@@ -1329,7 +1329,11 @@ def table(result, fmt, as_json, compare, periods, damping, only, per_record, all
     nonlinear isolation the isolator's peak and residual displacement, peak force / W and the
     records that exceed its capacity (table isolators); per content with a width and height
     whose friction holds its corner (mu_s >= B/H) how many records made it rock and overturn,
-    its peak rotation theta/alpha (median, p84) and impacts (table rocking).
+    its peak rotation theta/alpha (median, p84) and impacts (table rocking). Design practice
+    (docs/design.md §10e): each record's scale factor and log misfit to the target spectrum
+    (scaling), the suite check against 90 % of the target (suite), ASCE 7-22 H_f beside the
+    median and p84 PFA/PGA per floor (code), the fraction of records exceeding each allowable
+    displacement or overturning (exceedance) and lognormal fragility over stripes (fragility).
 
     Rocking objects are simulated as rocking blocks, not as sliders, and never count as 0
     slide: each is its own outcome, ranked above every slide, and a statistic that falls on

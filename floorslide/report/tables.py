@@ -46,6 +46,9 @@ Tables (one row per …, statistics over the records of a set; units in :data:`C
     impacts (Housner's block, :func:`floorslide.rock`). Empty, with a note, without such a
     content (or in a file written before rocking was simulated).
 
+``scaling``, ``suite``, ``code``, ``exceedance``, ``fragility``
+    the design-practice tables (docs/design.md §10e): :mod:`floorslide.report.practice`.
+
 Conventions
 -----------
 - **Percentiles** are empirical: ``numpy.percentile(x, 84)`` with NumPy's default ``"linear"``
@@ -981,7 +984,8 @@ def design_tables(
     -------
     DesignTables
         ``tables`` maps ``slides``, ``pfa``, ``frs``, ``slide_ratios``, ``pfa_ratios``,
-        ``records``, ``isolators``, ``rocking`` to
+        ``records``, ``isolators``, ``rocking``, ``plane``, ``scaling``, ``suite``, ``code``,
+        ``exceedance``, ``fragility`` to
         rows (dicts, SI values; columns and units in :data:`COLUMNS`), in a fixed order:
         record sets and buildings as in the scene (isolated variants by period), floors up,
         contents as in the scene, friction ascending.
