@@ -51,6 +51,10 @@ A figure whose data the file does not hold (no nonlinear isolation, no 2-DOF equ
 rocking results — contents without width and height, or a file written before rocking was
 simulated) is not drawn, and :func:`plot_figures` does not list it.
 
+A single design reads as one: with one friction coefficient (one isolation period) the x axis
+of the friction (ratio) figures is centred on it with a single tick, the buildings side by side
+at it, and a statistic of 0 is drawn whole on the axis.
+
 Every figure states its statistic and number of records; a result file whose run is not
 finished is refused unless ``allow_incomplete``, and then every figure's title starts with
 INCOMPLETE (in red).
@@ -606,7 +610,7 @@ def _rocking_panel(ax, t: TaskResult, curves: list) -> None:
     if any(np.isfinite(v["overturn_time"]) for *_, v in curves):
         handles.append(Line2D([], [], color="red", marker="X", mec="black", ls="none", ms=8))
         labels.append("overturning (θ/α reaches ±1)")
-    ax.legend(handles, labels, fontsize="small", loc="lower left")
+    ax.legend(handles, labels, fontsize="small", loc="best")  # not over an overturning mark
 
 
 def figure_rocking(study: Study, record_set: str) -> Figure | None:
@@ -825,11 +829,12 @@ def _panel_keys(rows: Sequence[dict], study: Study) -> list[tuple[int, str]]:
 
 
 def _statistic_panel(
-    ax, rows: list[dict], quantity: str, color, scale: float = 1.0
+    ax, rows: list[dict], quantity: str, color, scale: float = 1.0, dx: float = 0.0
 ) -> list[tuple[np.ndarray, str, object]]:
     """Median (line, dots) and 84th percentile (open triangles) of `quantity` versus mu_k on
-    `ax`, leaving out statistics that fall on rocking records (never drawn at 0). Returns
-    those as ``(mu_k values, "median" | "p84", color)`` for :func:`_rock_strip`."""
+    `ax` (shifted by `dx` to set buildings side by side at a single mu), leaving out statistics
+    that fall on rocking records (never drawn at 0). Returns those as ``(mu_k values, "median" |
+    "p84", color)`` for :func:`_rock_strip`."""
     series: dict[float | None, list[dict]] = defaultdict(list)
     mu_k = [r["mu_k"] for r in rows]
     split = len(set(mu_k)) < len(mu_k)
@@ -838,12 +843,13 @@ def _statistic_panel(
     rocks = []
     for _, srows in series.items():
         srows = sorted(srows, key=lambda r: r["mu_k"])
-        x = np.array([r["mu_k"] for r in srows])
+        x = np.array([r["mu_k"] for r in srows]) + dx
         for stat, style in (("median", "-o"), ("p84", "^")):
             y = np.array([r[f"{quantity}_{stat}"] for r in srows], dtype=float) * scale
             rock = np.array([r[f"{stat}_outcome"] == ROCK for r in srows])
             y = np.where(rock, np.nan, y)
-            kw = dict(color=color, ms=4 if stat == "median" else 6)
+            # clip_on=False: a statistic of 0 shows whole on the axis, not half cut by it
+            kw = dict(color=color, ms=4 if stat == "median" else 6, clip_on=False)
             if stat == "p84":
                 kw["mfc"] = "none"
             else:
@@ -852,6 +858,23 @@ def _statistic_panel(
             if rock.any():
                 rocks.append((x[rock], stat, color))
     return rocks
+
+
+def _one_position(ax, x: float) -> None:
+    """An x axis around a single value (one friction coefficient or isolation period: a
+    single design) — ±50 % of it and one tick — instead of matplotlib's ±0.05 with ticks at
+    every 0.005, which reads as a sweep that is not there."""
+    half = 0.5 * abs(x) if x else 0.5
+    ax.set_xlim(x - half, x + half)
+    ax.set_xticks([x], [f"{x:g}"])
+
+
+def _dodge(x: float, k: int, n: int) -> float:
+    """The shift of the `k`-th of `n` buildings drawn side by side at a single x value."""
+    if n <= 1:
+        return 0.0
+    step = min(0.08, 0.6 / (n - 1)) * (abs(x) if x else 1.0)
+    return (k - (n - 1) / 2) * step
 
 
 ROCK_STRIP = 0.14
@@ -913,21 +936,26 @@ def figure_slide_vs_mu(study: Study, tables: DesignTables, record_set: str) -> F
     )
     used: list[str] = []
     any_rock = False
+    mus = sorted({r["mu_k"] for r in rows})
     for ax, (floor, content) in zip(axes, panels, strict=True):
         rocks = []
-        for bid in study.buildings:
+        here = {r["building"] for r in rows if r["floor"] == floor and r["content"] == content}
+        present = [b for b in study.buildings if b in here]
+        for k, bid in enumerate(present):
             sel = [
                 r
                 for r in rows
                 if r["building"] == bid and r["floor"] == floor and r["content"] == content
             ]
-            if not sel:
-                continue
             if bid not in used:
                 used.append(bid)
-            rocks += _statistic_panel(ax, sel, "peak_slide", colors[bid])
+            dx = _dodge(mus[0], k, len(present)) if len(mus) == 1 else 0.0
+            rocks += _statistic_panel(ax, sel, "peak_slide", colors[bid], dx=dx)
+        if len(mus) == 1:
+            _one_position(ax, mus[0])
         ax.set_yscale("symlog", linthresh=SLIDE_LINTHRESH)
-        ax.set_ylim(bottom=0)
+        top = ax.get_ylim()[1]  # room above the top marker, not cut by the frame
+        ax.set_ylim(0, 1.6 * top if top > SLIDE_LINTHRESH else top)
         ax.set_xlabel("kinetic friction coefficient mu_k (–)")
         ax.set_ylabel("peak slide (m; linear below 1 mm)")
         if rocks:
@@ -981,20 +1009,24 @@ def figure_oscillators(study: Study, tables: DesignTables, record_set: str) -> F
     )
     used: list[str] = []
     any_rock = False
+    mus = sorted({r["mu_k"] for r in rows})
     for ax, ((floor, content), quantity) in zip(axes, panels, strict=True):
         scale = 1000.0 if quantity == "peak_deformation" else 1.0
         rocks = []
-        for bid in study.buildings:
+        here = {r["building"] for r in rows if r["floor"] == floor and r["content"] == content}
+        present = [b for b in study.buildings if b in here]
+        for k, bid in enumerate(present):
             sel = [
                 r
                 for r in rows
                 if r["building"] == bid and r["floor"] == floor and r["content"] == content
             ]
-            if not sel:
-                continue
             if bid not in used:
                 used.append(bid)
-            rocks += _statistic_panel(ax, sel, quantity, colors[bid], scale)
+            dx = _dodge(mus[0], k, len(present)) if len(mus) == 1 else 0.0
+            rocks += _statistic_panel(ax, sel, quantity, colors[bid], scale, dx=dx)
+        if len(mus) == 1:
+            _one_position(ax, mus[0])
         ax.set_ylim(bottom=0)
         ax.set_xlabel("kinetic friction coefficient mu_k (–)")
         if quantity == "peak_deformation":
@@ -1097,6 +1129,7 @@ def figure_slide_ratio(
     cmap = colormaps["plasma"]
     mu_color = {m: cmap(0.05 + 0.8 * i / max(len(mus) - 1, 1)) for i, m in enumerate(mus)}
     series = sorted({series_of(r) for r in rows})
+    positions = sorted({x_of(r) for r in rows})
     styles = ["-", "--", ":", "-."]
     gaps = rocks = False
     for ax, (floor, content) in zip(axes, panels, strict=True):
@@ -1126,13 +1159,16 @@ def figure_slide_ratio(
                 gaps = gaps or not np.isfinite(y[~rock]).all()
                 y = np.where(np.isfinite(y), y, np.nan)
                 style = styles[si % len(styles)] if not ticks else "none"
-                ax.plot(x, y, style, marker="o", ms=4, color=mu_color[mu])
+                # clip_on=False: a ratio of 0 shows whole on the axis, not half cut by it
+                ax.plot(x, y, style, marker="o", ms=4, color=mu_color[mu], clip_on=False)
                 if rock.any():
                     panel_rocks.append((x[rock], "median", mu_color[mu]))
         ax.set_ylim(bottom=0)
         if ticks:
             ax.set_xticks(range(len(ticks)), ticks, rotation=30, ha="right", fontsize="small")
             ax.set_xlim(-0.5, len(ticks) - 0.5)
+        elif len(positions) == 1:
+            _one_position(ax, positions[0])
         ax.set_xlabel(xlabel)
         ax.set_ylabel(f"median peak slide {a_name} / {b_name} (–)")
         title_ax = _rock_strip(ax, panel_rocks) if panel_rocks else ax

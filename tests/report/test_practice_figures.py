@@ -27,6 +27,8 @@ from floorslide.report.plots import (
     figure_fragility,
     figure_pfa_profile,
     figure_slide_ecdf,
+    figure_slide_ratio,
+    figure_slide_vs_mu,
     plot_figures,
 )
 from floorslide.report.records import record_rows
@@ -329,3 +331,19 @@ def test_single_design_figures(single, read, tmp_path, monkeypatch):
         _png(figure_pfa_profile(study, tables, "s"))
         == (tmp_path / "pfa_profile_s.png").read_bytes()
     )
+
+
+def test_one_friction_value_or_period_does_not_collapse_the_axis(read):
+    """A single design: the x axis spans ±50 % of its one value with one tick (not ±0.05 with
+    ticks every 0.005), and the buildings stand side by side at it, not on top of each other."""
+    study, tables = read
+    fig = figure_slide_vs_mu(study, tables, "s")
+    ax = fig.axes[0]  # cabinet on floor 1
+    assert ax.get_xlim() == pytest.approx((0.15, 0.45))
+    assert list(ax.get_xticks()) == [0.3]
+    medians = [ln for ln in ax.get_lines() if ln.get_marker() == "o"]
+    x = sorted(float(ln.get_xdata()[0]) for ln in medians)
+    assert len(x) == 2 and x[0] < 0.3 < x[1]
+    fig = figure_slide_ratio(study, tables, "s", "iso:fixed")
+    assert fig.axes[0].get_xlim() == pytest.approx((1.25, 3.75))
+    assert list(fig.axes[0].get_xticks()) == [2.5]
