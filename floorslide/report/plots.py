@@ -32,11 +32,28 @@ One figure per kind and record set, with one panel per floor or per content on a
 ``slide_ratio_<set>_<A>-over-<B>.png``
     median peak-slide ratio A / B versus the isolation period of A (or of B when A is
     fixed-base; building pairs side by side when neither is isolated), one curve per friction
-    coefficient, per comparison (as in the design tables).
+    coefficient, per comparison (as in the design tables);
+``pfa_profile_<set>.png``
+    PFA/PGA up the height (floor on the y axis), median and 84th percentile per building, one
+    panel per building kind, beside the ASCE 7-22 §13.3.1 floor amplification ``H_f`` (Eq.
+    13.3-4) of each fixed-base building (none for isolated buildings: ASCE 7-22 §17);
+``slide_ecdf_<set>.png``
+    the empirical distribution of the peak slide over the records, one step curve per
+    building, one panel per content and floor at the content's median friction value;
+    records where the object rocks are never drawn as a slide of 0 (the curve ends at the
+    fraction of records that slide or rest); allowable displacements marked;
+``fragility_<family>.png``
+    per set family with a ``fragility`` table (stripes of scaled records): the fraction of
+    each stripe's records exceeding each damage state and the fitted lognormal fragility
+    (Baker 2015), one panel per building, floor, content and friction value.
 
 A figure whose data the file does not hold (no nonlinear isolation, no 2-DOF equipment, no
 rocking results — contents without width and height, or a file written before rocking was
 simulated) is not drawn, and :func:`plot_figures` does not list it.
+
+A single design reads as one: with one friction coefficient (one isolation period) the x axis
+of the friction (ratio) figures is centred on it with a single tick, the buildings side by side
+at it, and a statistic of 0 is drawn whole on the axis.
 
 Every figure states its statistic and number of records; a result file whose run is not
 finished is refused unless ``allow_incomplete``, and then every figure's title starts with
@@ -63,8 +80,8 @@ from matplotlib.lines import Line2D
 from floorslide.constants import G
 from floorslide.errors import FloorslideError, ModelError
 from floorslide.report.columns import MIN_RECORDS, ROCK, DesignTables
-from floorslide.report.statistics import interpolate_spectrum
-from floorslide.report.study import Study, load_study
+from floorslide.report.statistics import interpolate_spectrum, summarize
+from floorslide.report.study import Study, _natural, _rank, load_study
 from floorslide.report.tables import design_tables, resolve_damping
 from floorslide.run.results import TaskResult
 from floorslide.run.store import ResultFile
@@ -593,7 +610,7 @@ def _rocking_panel(ax, t: TaskResult, curves: list) -> None:
     if any(np.isfinite(v["overturn_time"]) for *_, v in curves):
         handles.append(Line2D([], [], color="red", marker="X", mec="black", ls="none", ms=8))
         labels.append("overturning (θ/α reaches ±1)")
-    ax.legend(handles, labels, fontsize="small", loc="lower left")
+    ax.legend(handles, labels, fontsize="small", loc="best")  # not over an overturning mark
 
 
 def figure_rocking(study: Study, record_set: str) -> Figure | None:
@@ -812,11 +829,12 @@ def _panel_keys(rows: Sequence[dict], study: Study) -> list[tuple[int, str]]:
 
 
 def _statistic_panel(
-    ax, rows: list[dict], quantity: str, color, scale: float = 1.0
+    ax, rows: list[dict], quantity: str, color, scale: float = 1.0, dx: float = 0.0
 ) -> list[tuple[np.ndarray, str, object]]:
     """Median (line, dots) and 84th percentile (open triangles) of `quantity` versus mu_k on
-    `ax`, leaving out statistics that fall on rocking records (never drawn at 0). Returns
-    those as ``(mu_k values, "median" | "p84", color)`` for :func:`_rock_strip`."""
+    `ax` (shifted by `dx` to set buildings side by side at a single mu), leaving out statistics
+    that fall on rocking records (never drawn at 0). Returns those as ``(mu_k values, "median" |
+    "p84", color)`` for :func:`_rock_strip`."""
     series: dict[float | None, list[dict]] = defaultdict(list)
     mu_k = [r["mu_k"] for r in rows]
     split = len(set(mu_k)) < len(mu_k)
@@ -825,12 +843,13 @@ def _statistic_panel(
     rocks = []
     for _, srows in series.items():
         srows = sorted(srows, key=lambda r: r["mu_k"])
-        x = np.array([r["mu_k"] for r in srows])
+        x = np.array([r["mu_k"] for r in srows]) + dx
         for stat, style in (("median", "-o"), ("p84", "^")):
             y = np.array([r[f"{quantity}_{stat}"] for r in srows], dtype=float) * scale
             rock = np.array([r[f"{stat}_outcome"] == ROCK for r in srows])
             y = np.where(rock, np.nan, y)
-            kw = dict(color=color, ms=4 if stat == "median" else 6)
+            # clip_on=False: a statistic of 0 shows whole on the axis, not half cut by it
+            kw = dict(color=color, ms=4 if stat == "median" else 6, clip_on=False)
             if stat == "p84":
                 kw["mfc"] = "none"
             else:
@@ -839,6 +858,23 @@ def _statistic_panel(
             if rock.any():
                 rocks.append((x[rock], stat, color))
     return rocks
+
+
+def _one_position(ax, x: float) -> None:
+    """An x axis around a single value (one friction coefficient or isolation period: a
+    single design) — ±50 % of it and one tick — instead of matplotlib's ±0.05 with ticks at
+    every 0.005, which reads as a sweep that is not there."""
+    half = 0.5 * abs(x) if x else 0.5
+    ax.set_xlim(x - half, x + half)
+    ax.set_xticks([x], [f"{x:g}"])
+
+
+def _dodge(x: float, k: int, n: int) -> float:
+    """The shift of the `k`-th of `n` buildings drawn side by side at a single x value."""
+    if n <= 1:
+        return 0.0
+    step = min(0.08, 0.6 / (n - 1)) * (abs(x) if x else 1.0)
+    return (k - (n - 1) / 2) * step
 
 
 ROCK_STRIP = 0.14
@@ -900,21 +936,26 @@ def figure_slide_vs_mu(study: Study, tables: DesignTables, record_set: str) -> F
     )
     used: list[str] = []
     any_rock = False
+    mus = sorted({r["mu_k"] for r in rows})
     for ax, (floor, content) in zip(axes, panels, strict=True):
         rocks = []
-        for bid in study.buildings:
+        here = {r["building"] for r in rows if r["floor"] == floor and r["content"] == content}
+        present = [b for b in study.buildings if b in here]
+        for k, bid in enumerate(present):
             sel = [
                 r
                 for r in rows
                 if r["building"] == bid and r["floor"] == floor and r["content"] == content
             ]
-            if not sel:
-                continue
             if bid not in used:
                 used.append(bid)
-            rocks += _statistic_panel(ax, sel, "peak_slide", colors[bid])
+            dx = _dodge(mus[0], k, len(present)) if len(mus) == 1 else 0.0
+            rocks += _statistic_panel(ax, sel, "peak_slide", colors[bid], dx=dx)
+        if len(mus) == 1:
+            _one_position(ax, mus[0])
         ax.set_yscale("symlog", linthresh=SLIDE_LINTHRESH)
-        ax.set_ylim(bottom=0)
+        top = ax.get_ylim()[1]  # room above the top marker, not cut by the frame
+        ax.set_ylim(0, 1.6 * top if top > SLIDE_LINTHRESH else top)
         ax.set_xlabel("kinetic friction coefficient mu_k (–)")
         ax.set_ylabel("peak slide (m; linear below 1 mm)")
         if rocks:
@@ -968,20 +1009,24 @@ def figure_oscillators(study: Study, tables: DesignTables, record_set: str) -> F
     )
     used: list[str] = []
     any_rock = False
+    mus = sorted({r["mu_k"] for r in rows})
     for ax, ((floor, content), quantity) in zip(axes, panels, strict=True):
         scale = 1000.0 if quantity == "peak_deformation" else 1.0
         rocks = []
-        for bid in study.buildings:
+        here = {r["building"] for r in rows if r["floor"] == floor and r["content"] == content}
+        present = [b for b in study.buildings if b in here]
+        for k, bid in enumerate(present):
             sel = [
                 r
                 for r in rows
                 if r["building"] == bid and r["floor"] == floor and r["content"] == content
             ]
-            if not sel:
-                continue
             if bid not in used:
                 used.append(bid)
-            rocks += _statistic_panel(ax, sel, quantity, colors[bid], scale)
+            dx = _dodge(mus[0], k, len(present)) if len(mus) == 1 else 0.0
+            rocks += _statistic_panel(ax, sel, quantity, colors[bid], scale, dx=dx)
+        if len(mus) == 1:
+            _one_position(ax, mus[0])
         ax.set_ylim(bottom=0)
         ax.set_xlabel("kinetic friction coefficient mu_k (–)")
         if quantity == "peak_deformation":
@@ -1084,6 +1129,7 @@ def figure_slide_ratio(
     cmap = colormaps["plasma"]
     mu_color = {m: cmap(0.05 + 0.8 * i / max(len(mus) - 1, 1)) for i, m in enumerate(mus)}
     series = sorted({series_of(r) for r in rows})
+    positions = sorted({x_of(r) for r in rows})
     styles = ["-", "--", ":", "-."]
     gaps = rocks = False
     for ax, (floor, content) in zip(axes, panels, strict=True):
@@ -1113,13 +1159,16 @@ def figure_slide_ratio(
                 gaps = gaps or not np.isfinite(y[~rock]).all()
                 y = np.where(np.isfinite(y), y, np.nan)
                 style = styles[si % len(styles)] if not ticks else "none"
-                ax.plot(x, y, style, marker="o", ms=4, color=mu_color[mu])
+                # clip_on=False: a ratio of 0 shows whole on the axis, not half cut by it
+                ax.plot(x, y, style, marker="o", ms=4, color=mu_color[mu], clip_on=False)
                 if rock.any():
                     panel_rocks.append((x[rock], "median", mu_color[mu]))
         ax.set_ylim(bottom=0)
         if ticks:
             ax.set_xticks(range(len(ticks)), ticks, rotation=30, ha="right", fontsize="small")
             ax.set_xlim(-0.5, len(ticks) - 0.5)
+        elif len(positions) == 1:
+            _one_position(ax, positions[0])
         ax.set_xlabel(xlabel)
         ax.set_ylabel(f"median peak slide {a_name} / {b_name} (–)")
         title_ax = _rock_strip(ax, panel_rocks) if panel_rocks else ax
@@ -1147,6 +1196,514 @@ def figure_slide_ratio(
         title="friction",
         fontsize="small",
     )
+    return fig
+
+
+# --------------------------------------------------------------------------------------------
+# design practice (docs/design.md §10e): PFA profile against the code, slide ECDF, fragility
+
+
+def _percentiles(values: Sequence[float]) -> tuple[float, float]:
+    """Median and 84th percentile of the finite values (as in the design tables)."""
+    _, median, p84 = summarize(values)
+    return median, p84
+
+
+def _pfa_profiles(study: Study, record_set: str) -> dict[str, dict[int, list[tuple[str, float]]]]:
+    """Per building (in the tables' order) and floor: ``(record, PFA/PGA)`` of every record
+    of the set, records in natural order; records without a positive PGA are left out."""
+    out: dict[str, dict[int, list[tuple[str, float]]]] = {}
+    for t in study.set_tasks(record_set):
+        pga = float(t.meta.get("pga", math.nan))
+        if not (math.isfinite(pga) and pga > 0):
+            continue
+        by_floor = out.setdefault(str(t.meta["building"]), {})
+        for floor, pfa in zip(np.asarray(t.floors).tolist(), np.asarray(t.pfa), strict=True):
+            by_floor.setdefault(int(floor), []).append((str(t.meta["record"]), float(pfa) / pga))
+    order = list(study.buildings)
+    return {
+        b: {f: sorted(v, key=lambda o: _natural(o[0])) for f, v in sorted(out[b].items())}
+        for b in sorted(out, key=lambda b: order.index(b) if b in order else len(order))
+    }
+
+
+def _fixed_period(study: Study, record_set: str, bid: str) -> float:
+    """The fixed-base fundamental period stored with the building's tasks (NaN if not)."""
+    for t in study.set_tasks(record_set):
+        if str(t.meta["building"]) == bid:
+            try:
+                value = float(t.meta.get("fixed_period", math.nan))
+            except (TypeError, ValueError):
+                return math.nan
+            return value if math.isfinite(value) and value > 0 else math.nan
+    return math.nan
+
+
+def figure_pfa_profile(study: Study, tables: DesignTables, record_set: str) -> Figure | None:
+    """Peak floor acceleration over the peak ground acceleration up the height, against the
+    code's floor amplification; or None when the set has no tasks.
+
+    One panel per building kind (fixed-base, isolated), floor on the y axis (0 = ground, or
+    the base mat of an isolated building, up to the roof), PFA/PGA on the x axis: per building
+    the median over the set's records (line with markers) and the 84th percentile (dashed,
+    open triangles), each record's PFA/PGA from its task. For every fixed-base building the
+    ASCE 7-22 §13.3.1 floor amplification (Eq. 13.3-4)
+
+    ``H_f = 1 + a_1·(z/h) + a_2·(z/h)^10``, ``a_1 = 1/T_a ≤ 2.5``,
+    ``a_2 = max(0, 1 − (0.4/T_a)²)``
+
+    is drawn dotted in the building's colour over ``z/h`` in [0, 1] (equal storey heights,
+    ``z/h = floor/stories``), with markers at the floors, taking ``T_a`` as the model's
+    fixed-base fundamental period (stored with each task; the code's ``T_a`` is the approximate
+    period of §12.8.2.1, which estimates it). Isolated buildings get no ``H_f``: ASCE 7-22 §17
+    takes component demands from the response history analysis of the isolated structure.
+
+    Parameters
+    ----------
+    study
+        The result file, read.
+    tables
+        The design tables (unused; the figures share one signature).
+    record_set
+        The set whose records are summarised.
+
+    References
+    ----------
+    ASCE/SEI 7-22, *Minimum Design Loads and Associated Criteria for Buildings and Other
+    Structures*, §13.3.1, Eq. 13.3-4; §17.
+    """
+    from floorslide.practice.code import asce7_floor_amplification
+
+    profiles = _pfa_profiles(study, record_set)
+    if not profiles:
+        return None
+    kinds = ["isolated" if study.buildings[b].kind == "isolated" else "fixed" for b in profiles]
+    panels = [k for k in ("fixed", "isolated") if k in kinds]
+    top = max(max(floors) for floors in profiles.values())
+    fig, axes = _new_figure(len(panels), width=4.6, height=max(3.6, 2.6 + 0.4 * top))
+    colors = building_colors(study)
+    n = max(len(v) for floors in profiles.values() for v in floors.values())
+    isolated = "isolated" in panels
+    periods = {
+        b: _fixed_period(study, record_set, b)
+        for b, k in zip(profiles, kinds, strict=True)
+        if k == "fixed"
+    }
+    code = {b: t for b, t in periods.items() if math.isfinite(t) and study.buildings[b].stories}
+    missing_ta = [b for b in periods if b not in code]
+    _suptitle(
+        fig,
+        study,
+        f"Peak floor acceleration over PGA up the height — set {record_set}\nmedian (line) and "
+        f"84th percentile (dashed, open triangles) over {n} records{_few(n)}"
+        + ("; ASCE 7-22 §13.3.1 H_f (dotted) for fixed-base buildings" if code else ""),
+    )
+    for ax, kind in zip(axes, panels, strict=True):
+        bids = [b for b, k in zip(profiles, kinds, strict=True) if k == kind]
+        right = 1.0
+        for bid in bids:
+            color = colors[bid]
+            floors = sorted(profiles[bid])
+            stats = [_percentiles([v for _, v in profiles[bid][f]]) for f in floors]
+            median = np.array([s[0] for s in stats])
+            p84 = np.array([s[1] for s in stats])
+            n_b = max(len(profiles[bid][f]) for f in floors)
+            ax.plot(
+                median,
+                floors,
+                "-o",
+                color=color,
+                ms=5,
+                lw=1.5,
+                label=f"{bid}: median ({n_b} records)",
+            )
+            ax.plot(p84, floors, "--^", color=color, mfc="none", ms=6, lw=1.0)
+            right = max(right, float(np.nanmax(np.r_[median, p84])))
+            if kind != "fixed":
+                continue
+            if bid not in code:
+                continue
+            period, stories = code[bid], study.buildings[bid].stories
+            z = np.linspace(0.0, 1.0, 50)
+            hf = asce7_floor_amplification(z, period)
+            ax.plot(
+                hf,
+                z * stories,
+                ":",
+                color=color,
+                lw=1.6,
+                label=f"ASCE 7-22 H_f (T_a = {period:.3g} s)",
+            )
+            at = np.array([f for f in floors if 0 <= f <= stories], dtype=float)
+            ax.plot(
+                asce7_floor_amplification(at / stories, period),
+                at,
+                "s",
+                color=color,
+                mfc="white",
+                ms=5,
+                ls="none",
+            )
+            right = max(right, float(hf.max()))
+        ax.axvline(1.0, color="0.6", lw=0.8, ls="-", zorder=0)
+        ax.set_xlim(0.0, 1.12 * right)
+        ax.set_ylim(-0.35, top + 0.35)
+        ticks = list(range(top + 1))
+        labels = [str(f) for f in ticks]
+        labels[0] = "0 (base mat)" if kind == "isolated" else "0 (ground)"
+        roofs = {study.buildings[b].stories for b in bids}
+        if len(roofs) == 1 and (roof := roofs.pop()) in ticks and roof > 0:
+            labels[roof] = f"{roof} (roof)"
+        if top > 12:
+            step = math.ceil(top / 12)
+            keep = [i for i in ticks if i % step == 0 or i == top]
+            ticks, labels = keep, [labels[i] for i in keep]
+        ax.set_yticks(ticks, labels)
+        ax.set_ylabel("floor")
+        ax.set_xlabel("PFA / PGA (–)")
+        ax.set_title("fixed-base buildings" if kind == "fixed" else "isolated buildings")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize="x-small", loc="lower right" if kind == "fixed" else "upper right")
+    handles = [
+        Line2D([], [], color="0.3", marker="o", ms=5),
+        Line2D([], [], color="0.3", marker="^", mfc="none", ls="--", ms=6),
+        Line2D([], [], color="0.6", lw=0.8),
+    ]
+    labels = ["median over the records", "84th percentile", "PFA = PGA"]
+    if code:
+        handles.append(Line2D([], [], color="0.3", ls=":", marker="s", mfc="white", ms=5))
+        labels.append("ASCE 7-22 §13.3.1 H_f (Eq. 13.3-4), z/h = floor / stories")
+    if missing_ta:
+        handles.append(Line2D([], [], ls="none"))
+        labels.append(f"no H_f for {', '.join(missing_ta)}: the file does not store T_a")
+    if isolated:
+        handles.append(Line2D([], [], ls="none"))
+        labels.append(
+            "isolated buildings: ASCE 7-22 §17 takes component demands from\n"
+            "response-history analysis, no H_f"
+        )
+    fig.legend(
+        handles, labels, loc="outside lower center", ncols=min(2, len(handles)), fontsize="small"
+    )
+    return fig
+
+
+def _allowables(study: Study, content: str) -> tuple[float, ...]:
+    """The allowable displacements (m) of a content in the stored scene (``allowable``, a
+    number or a list of numbers), increasing; ``()`` when it has none."""
+    items = study.scene.get("contents", [])
+    for item in items if isinstance(items, list) else []:
+        if not isinstance(item, dict) or item.get("id") != content:
+            continue
+        value = item.get("allowable", ())
+        values = value if isinstance(value, list | tuple) else [value]
+        out = set()
+        for v in values:
+            try:
+                a = float(v)
+            except (TypeError, ValueError):
+                continue
+            if math.isfinite(a) and a > 0:
+                out.add(a)
+        return tuple(sorted(out))
+    return ()
+
+
+def _median_pair(rows: Sequence[dict]) -> tuple[float, float]:
+    """The stored friction pair ``(mu_k, mu_s)`` at the median of the content's mu_k values
+    (the lower of the two middle ones for an even count: a value that was simulated)."""
+    pairs = sorted({(float(r["mu_k"]), float(r["mu_s"])) for r in rows})
+    mus = sorted({k for k, _ in pairs})
+    mu_k = mus[(len(mus) - 1) // 2]
+    same = [p for p in pairs if p[0] == mu_k]
+    return same[(len(same) - 1) // 2]
+
+
+def _ecdf_points(rows: Sequence[dict]) -> tuple[np.ndarray, np.ndarray, int, int]:
+    """The empirical CDF of the peak slide over `rows` (one per record): the sorted slides of
+    the records where the object slides or rests, their fractions ``i/n`` of all ``n`` records
+    — a record where it rocks is never ≤ any slide —, ``n`` and the number that rock."""
+    n = len(rows)
+    slides = np.sort(
+        np.array(
+            [
+                r["peak_slide"]
+                for r in rows
+                if r["outcome"] != ROCK and math.isfinite(r["peak_slide"])
+            ],
+            dtype=float,
+        )
+    )
+    return slides, np.arange(1, slides.size + 1) / max(n, 1), n, n - slides.size
+
+
+def figure_slide_ecdf(study: Study, tables: DesignTables, record_set: str) -> Figure | None:
+    """The empirical distribution of the peak slide over the set's records, one panel per
+    content and floor, one step curve per building, for one friction value per panel (the
+    content's median stored mu_k); or None when the set has no slide results.
+
+    ``F(x)`` is the fraction of all ``n`` records whose peak slide is at most ``x``. A record
+    under which the object rocks (not simulated as a slider) has no slide: it is never ≤ any
+    ``x`` and never drawn as 0, so the curve ends at ``(n − n_rock)/n`` and the legend says how
+    many rock. Peak slide on a symmetric-log axis (linear below :data:`SLIDE_LINTHRESH`, so
+    that the records at rest, 0, show); the content's allowable displacements (scene
+    ``allowable``) as dotted grey lines. With one record per building a dot plot (a marker per
+    record, buildings on the y axis) replaces the one-step curve.
+    """
+    from floorslide.report.records import record_rows
+
+    rows = [r for r in record_rows(study) if r["record_set"] == record_set]
+    if not rows:
+        return None
+    panels, cut = _pick(_panel_keys(rows, study))
+    colors = building_colors(study)
+    n_all = len({r["record"] for r in rows})
+    fig, axes = _new_figure(len(panels))
+    _suptitle(
+        fig,
+        study,
+        f"Peak slide over the records (empirical CDF) — set {record_set}, {n_all} records\n"
+        "one friction value per panel (the content's median stored mu_k); records where the "
+        "object rocks are never ≤ any slide: a curve ends at the fraction that slides or rests"
+        + (" (some panels left out)" if cut else ""),
+    )
+    any_allowable = False
+    for ax, (floor, content) in zip(axes, panels, strict=True):
+        prow = [r for r in rows if r["floor"] == floor and r["content"] == content]
+        mu_k, mu_s = _median_pair(prow)
+        prow = [r for r in prow if r["mu_k"] == mu_k and r["mu_s"] == mu_s]
+        bids = [b for b in study.buildings if any(r["building"] == b for r in prow)]
+        curves = {b: _ecdf_points([r for r in prow if r["building"] == b]) for b in bids}
+        allowable = _allowables(study, content)
+        reach = max(
+            [float(c[0].max()) for c in curves.values() if c[0].size] + list(allowable) + [0.0]
+        )
+        right = max(1.5 * reach, 2 * SLIDE_LINTHRESH)
+        dots = max(c[2] for c in curves.values()) == 1
+        for i, bid in enumerate(bids):
+            slides, y, _, n_rock = curves[bid]
+            label = bid + (f" ({n_rock} rock)" if n_rock else "")
+            if dots:
+                if slides.size:
+                    ax.plot(
+                        slides, np.full(slides.size, i), "o", color=colors[bid], ms=7, label=label
+                    )
+                else:
+                    ax.plot([], [], "o", color=colors[bid], ms=7, label=label)
+                    ax.annotate(
+                        "rocks: not a slider",
+                        (0.0, i),
+                        xytext=(6, 0),
+                        textcoords="offset points",
+                        va="center",
+                        fontsize="small",
+                        color=colors[bid],
+                    )
+                continue
+            if slides.size == 0:
+                ax.plot([], [], "-", color=colors[bid], label=label + ": no slide drawn")
+                continue
+            x = np.r_[slides[0], slides, right]
+            yy = np.r_[0.0, y, y[-1]]
+            ax.step(x, yy, where="post", color=colors[bid], lw=1.5, label=label)
+            last = np.r_[slides[1:] != slides[:-1], True]  # ties: one marker, at the top
+            ax.plot(slides[last], y[last], "o", color=colors[bid], ms=3.5)
+        for a in allowable:
+            any_allowable = True
+            ax.axvline(a, color="0.5", ls=":", lw=1.3, zorder=0)
+            ax.annotate(
+                f"allowable {a:g} m",
+                (a, 1.0),
+                xycoords=("data", "axes fraction"),
+                xytext=(-2, -4),
+                textcoords="offset points",
+                rotation=90,
+                ha="right",
+                va="top",
+                fontsize="x-small",
+                color="0.35",
+            )
+        ax.set_xscale("symlog", linthresh=SLIDE_LINTHRESH)
+        ax.set_xlim(-0.3 * SLIDE_LINTHRESH, right)
+        ax.set_xlabel("peak slide (m; linear below 1 mm)")
+        if dots:
+            ax.set_yticks(range(len(bids)), bids, fontsize="small")
+            ax.set_ylim(-0.6, len(bids) - 0.4)
+            ax.set_ylabel("building (one record)")
+        else:
+            ax.set_ylim(-0.02, 1.05)
+            ax.set_ylabel(f"fraction of the records ≤ x (of {max(c[2] for c in curves.values())})")
+        same = abs(mu_k - mu_s) <= 1e-12
+        mu = f"mu_k = {mu_k:g}" + ("" if same else f", mu_s = {mu_s:g}")
+        ax.set_title(f"{content} on floor {floor}, {mu}")
+        ax.grid(alpha=0.3, which="both")
+        ax.legend(fontsize="x-small", loc="best", title="building", title_fontsize="x-small")
+    if any_allowable:
+        fig.legend(
+            [Line2D([], [], color="0.5", ls=":", lw=1.3)],
+            ["allowable displacement of the content (scene 'allowable')"],
+            loc="outside lower center",
+            fontsize="small",
+        )
+    return fig
+
+
+def _fragility_keys(rows: Sequence[dict], study: Study) -> list[tuple]:
+    """The panels of the fragility figure, ``(building, floor, content, mu_k, mu_s)``, in the
+    tables' order."""
+    keys = {
+        (r["building"], int(r["floor"]), r["content"], float(r["mu_k"]), float(r["mu_s"]))
+        for r in rows
+    }
+    return sorted(
+        keys,
+        key=lambda k: (
+            _rank(list(study.buildings), k[0]),
+            _natural(k[0]),
+            _rank(study.contents, k[2]),
+            k[2],
+            k[1],
+            k[3],
+            k[4],
+        ),
+    )
+
+
+def _fragility_key(r: dict) -> tuple:
+    return (r["building"], int(r["floor"]), r["content"], float(r["mu_k"]), float(r["mu_s"]))
+
+
+def figure_fragility(study: Study, tables: DesignTables, record_set: str) -> Figure | None:
+    """Fragility curves of the ``fragility`` table's rows of a set family (its stripes of
+    scaled records), or None when it has none.
+
+    One panel per building, floor, content and mu_k (at most :data:`MAX_PANELS`): per damage
+    state (``slide > a m``, ``overturn``) the fraction of each stripe's records that exceed
+    (markers, each stripe's number of records written small) and the lognormal fragility
+    fitted to them by maximum likelihood with a binomial likelihood per stripe,
+    ``P(exceed | IM = x) = Φ(ln(x/θ)/β)`` (Baker 2015, Eq. 11), over a log-spaced range of the
+    intensity measure covering the stripes; where the fit does not exist (θ and β NaN) the
+    legend gives the table's note instead.
+
+    References
+    ----------
+    Baker, J. W. (2015). Efficient analytical fragility function fitting using dynamic
+    structural analysis. *Earthquake Spectra* 31(1), 579–599.
+    """
+    import textwrap
+
+    from scipy.stats import norm
+
+    rows = [r for r in tables.tables.get("fragility", []) if r["record_set"] == record_set]
+    if not rows:
+        return None
+    keys, cut = _pick(_fragility_keys(rows, study))
+    states = list(dict.fromkeys(r["state"] for r in rows))
+    from matplotlib import colormaps
+
+    cmap = colormaps["tab10"]
+    color = {s: cmap(i % 10) for i, s in enumerate(states)}
+    ims = list(dict.fromkeys(str(r["im"]) for r in rows))
+    fig, axes = _new_figure(len(keys))
+    n_min = min(min(r["n_records"], default=0) for r in rows)
+    _suptitle(
+        fig,
+        study,
+        f"Fragility — set {record_set}: fraction of each stripe's records exceeding (markers; "
+        f"n per stripe written small) and the lognormal fit Φ(ln(x/θ)/β) by maximum likelihood "
+        "(Baker 2015)"
+        + (
+            f"; caution: stripes of only {n_min} records (< {MIN_RECORDS})"
+            if n_min < MIN_RECORDS
+            else ""
+        )
+        + (" (some panels left out)" if cut else ""),
+    )
+    for ax, key in zip(axes, keys, strict=True):
+        bid, floor, content, mu_k, mu_s = key
+        sel = [r for r in rows if _fragility_key(r) == key]
+        same = abs(mu_k - mu_s) <= 1e-12
+        mu = f"mu_k = {mu_k:g}" + ("" if same else f", mu_s = {mu_s:g}")
+        ax.set_title(f"{bid}: {content} on floor {floor}, {mu}", fontsize="medium")
+        sel.sort(key=lambda r: states.index(r["state"]))
+        levels_all = np.concatenate([np.asarray(r["levels"], dtype=float) for r in sel])
+        levels_all = levels_all[np.isfinite(levels_all) & (levels_all > 0)]
+        if levels_all.size == 0:
+            ax.text(0.5, 0.5, "no stripes", ha="center", transform=ax.transAxes)
+            continue
+        lo, hi = float(levels_all.min()), float(levels_all.max())
+        left, right = lo / 1.3, hi * 1.3
+        handles, labels = [], []
+        counts = {tuple(r["n_records"]) for r in sel}
+        shared = len(counts) == 1 and len({tuple(r["levels"]) for r in sel}) == 1
+        for j, r in enumerate(sel):
+            c = color[r["state"]]
+            x = np.asarray(r["levels"], dtype=float)
+            n = np.asarray(r["n_records"], dtype=float)
+            k = np.asarray(r["n_exceed"], dtype=float)
+            frac = np.divide(k, n, out=np.full_like(k, np.nan), where=n > 0)
+            median, beta = float(r["median"]), float(r["beta"])
+            if math.isfinite(median) and math.isfinite(beta) and median > 0 and beta > 0:
+                a, b = min(lo, median), max(hi, median)
+                if median < lo / 10 or median > hi * 10:
+                    a, b = lo, hi
+                xs = np.union1d(
+                    np.geomspace(a / 1.3, b * 1.3, 200), [median] if a <= median <= b else []
+                )
+                left, right = min(left, xs[0]), max(right, xs[-1])
+                ax.plot(xs, norm.cdf(np.log(xs / median) / beta), "-", color=c, lw=1.5)
+                handles.append(Line2D([], [], color=c, lw=1.5, marker="o", ms=5))
+                labels.append(f"{r['state']}: θ = {median:.3g}, β = {beta:.2f}")
+            else:
+                note = str(r.get("note", "")) or "no fit"
+                handles.append(Line2D([], [], color=c, ls="none", marker="o", ms=5))
+                labels.append(
+                    f"{r['state']}, no fit: " + textwrap.fill(note, 44, break_on_hyphens=False)
+                )
+            ax.plot(x, frac, "o", color=c, ms=6, mec="white", mew=0.5, zorder=3)
+            if not shared:
+                for xi, fi, ni in zip(x, frac, n, strict=True):
+                    ax.annotate(
+                        f"{int(ni)}",
+                        (xi, fi),
+                        xytext=(4, 4 + 8 * j),
+                        textcoords="offset points",
+                        fontsize="xx-small",
+                        color=c,
+                    )
+        if shared:
+            x0 = np.asarray(sel[0]["levels"], dtype=float)
+            for xi, ni in zip(x0, sel[0]["n_records"], strict=True):
+                ax.annotate(
+                    f"n={int(ni)}",
+                    (xi, 0.0),
+                    xycoords=("data", "axes fraction"),
+                    xytext=(0, 3),
+                    textcoords="offset points",
+                    ha="center",
+                    fontsize="xx-small",
+                    color="0.3",
+                )
+        ax.set_xscale("log")
+        ax.set_xlim(left, right)
+        ticks = np.unique(levels_all)
+        if ticks.size <= 8:
+            from matplotlib.ticker import NullFormatter
+
+            ax.set_xticks(ticks, [f"{t:g}" for t in ticks])
+            ax.xaxis.set_minor_formatter(NullFormatter())
+        ax.set_ylim(-0.08, 1.05)
+        ax.set_xlabel(" / ".join(ims))
+        ax.set_ylabel("P(exceed)")
+        ax.grid(alpha=0.3, which="both")
+        ax.legend(
+            handles,
+            labels,
+            fontsize="x-small",
+            loc="upper left",
+            title="state",
+            title_fontsize="x-small",
+        )
     return fig
 
 
@@ -1191,8 +1748,10 @@ def plot_figures(
         a building on nonlinear isolation stored its loop), rocking (if a content rocks under
         the history record), for a set of record pairs the slide path in the plane (history
         record) and the 2-D against 1-D slides (every record), FRS, peak slide versus mu,
-        oscillators (if any), overturning (if the file holds rocking results), then one
-        peak-slide ratio figure per comparison. A figure without data is not drawn and not
+        oscillators (if any), overturning (if the file holds rocking results), one
+        peak-slide ratio figure per comparison, the PFA/PGA profile against ASCE 7-22 H_f, the
+        empirical CDF of the peak slide; then, once per set family with rows in the
+        ``fragility`` table, the fragility curves. A figure without data is not drawn and not
         listed.
 
     Raises
@@ -1255,6 +1814,18 @@ def plot_figures(
                     functools.partial(figure_slide_ratio, study, tables, rs, comp.spec),
                 )
             )
+        jobs += [
+            (f"pfa_profile_{s}", functools.partial(figure_pfa_profile, study, tables, rs)),
+            (f"slide_ecdf_{s}", functools.partial(figure_slide_ecdf, study, tables, rs)),
+        ]
+    families = sorted({str(r["record_set"]) for r in tables.tables.get("fragility", [])})
+    for family in families:
+        jobs.append(
+            (
+                f"fragility_{_slug(family)}",
+                functools.partial(figure_fragility, study, tables, family),
+            )
+        )
     try:
         directory.mkdir(parents=True, exist_ok=True)
         for stem, png in zip(

@@ -151,10 +151,14 @@ def test_plot_writes_named_pngs(monkeypatch, capsys, study, tmp_path):
         "frs_pulse-like.png",
         "slide_vs_mu_pulse-like.png",
         "slide_ratio_pulse-like_isolated-over-fixed.png",
+        "pfa_profile_pulse-like.png",
+        "slide_ecdf_pulse-like.png",
         "histories_broad-band.png",
         "frs_broad-band.png",
         "slide_vs_mu_broad-band.png",
         "slide_ratio_broad-band_isolated-over-fixed.png",
+        "pfa_profile_broad-band.png",
+        "slide_ecdf_broad-band.png",
     ]
     for name in names:
         data = (tmp_path / "fig" / name).read_bytes()
