@@ -1605,7 +1605,11 @@ def figure_fragility(study: Study, tables: DesignTables, record_set: str) -> Fig
     color = {s: cmap(i % 10) for i, s in enumerate(states)}
     ims = list(dict.fromkeys(str(r["im"]) for r in rows))
     fig, axes = _new_figure(len(keys))
-    n_min = min(min(r["n_records"], default=0) for r in rows)
+    # stripes left empty (every record rocks: no slide) are said in the legend, not here
+    n_min = min(
+        (n for r in rows for n in r["n_records"] if n > 0),
+        default=MIN_RECORDS,
+    )
     _suptitle(
         fig,
         study,
@@ -1655,7 +1659,8 @@ def figure_fragility(study: Study, tables: DesignTables, record_set: str) -> Fig
                 handles.append(Line2D([], [], color=c, lw=1.5, marker="o", ms=5))
                 labels.append(f"{r['state']}: θ = {median:.3g}, β = {beta:.2f}")
             else:
-                note = str(r.get("note", "")) or "no fit"
+                # the note's first clause; the whole note is in the fragility table
+                note = str(r.get("note", "")).split(";")[0].split(":")[0] or "no fit"
                 handles.append(Line2D([], [], color=c, ls="none", marker="o", ms=5))
                 labels.append(
                     f"{r['state']}, no fit: " + textwrap.fill(note, 44, break_on_hyphens=False)
