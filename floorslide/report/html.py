@@ -29,6 +29,7 @@ h1 { font-size: 1.6em; } h2 { border-bottom: 1px solid #ccc; margin-top: 2em; }
 table { border-collapse: collapse; margin: 0.5em 0 1.5em; font-size: 0.85em; }
 th, td { border: 1px solid #bbb; padding: 0.2em 0.5em; text-align: right; }
 th { background: #eee; } td:first-child, th:first-child, td.t { text-align: left; }
+td.t { white-space: nowrap; } td.long { white-space: normal; min-width: 22em; }
 .wide { overflow-x: auto; max-width: 100%; } small { font-weight: normal; color: #555; }
 .banner { background: #b00; color: #fff; padding: 0.6em 1em; font-weight: bold; }
 figure { margin: 1em 0 2em; page-break-inside: avoid; }
@@ -46,10 +47,15 @@ def _e(text: object) -> str:
     return html.escape(str(text), quote=True)
 
 
+LONG_COLUMNS = frozenset({"note", "qa", "notes", "layer"})
+"""Text columns that wrap (the others keep one line)."""
+
+
 def _td(value, column, row: Mapping) -> str:
     """A cell: labels (no unit) left-aligned, numbers right-aligned."""
     label = column.units == "" and not isinstance(value, bool)
-    cls = ' class="t"' if label else ""
+    long = label and column.name in LONG_COLUMNS
+    cls = ' class="long"' if long else (' class="t"' if label else "")
     return f"<td{cls}>{_e(_md_cell(value, column, row))}</td>"
 
 

@@ -51,6 +51,9 @@ ISOLATED_NOTE = (
     "isolated: ASCE 7-22 §17 takes component demands from the response history analysis of "
     "the isolated structure, not from H_f"
 )
+"""How the code treats isolated buildings (the tables' notes)."""
+
+ISOLATED_ROW_NOTE = "no H_f: ASCE 7-22 §17 (response history)"
 """The ``note`` of a ``code`` row of an isolated building."""
 
 OVERTURN = "overturn"
@@ -176,7 +179,7 @@ def code_table(study: Study) -> list[dict]:
                 pfa_pga_p84=p84,
                 median_over_h_f=med / h_f if h_f == h_f else math.nan,
                 p84_over_h_f=p84 / h_f if h_f == h_f else math.nan,
-                note="" if fixed else ISOLATED_NOTE,
+                note="" if fixed else ISOLATED_ROW_NOTE,
             )
         )
     return rows
