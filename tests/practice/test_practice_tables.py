@@ -191,3 +191,14 @@ def test_bundled_design_scene_plans_its_stripes():
     assert [e["set"] for e in p.scaling] == [f"design@{x:g}x" for x in (0.25, 0.5, 1.0, 1.5)]
     assert all(e["suite"]["passes"] for e in p.scaling)  # match_suite
     assert len(p.tasks) == 18 * 4 * 2
+
+
+def test_a_real_report_with_figures_renders(study, tmp_path):
+    """The report of a real run (every figure embedded, ~MBs) renders in headless Chromium."""
+    from floorslide.report.html import write_report
+    from tests.report.test_html_report import rendered_ink
+
+    path = write_report(study, tmp_path / "report.html", workers=1)
+    assert path.stat().st_size > 200_000  # the figures are in it
+    inked = rendered_ink(path, tmp_path)
+    assert inked > 0.01, f"the rendered report looks blank ({inked:.4f} of pixels inked)"

@@ -92,13 +92,14 @@ def _browser() -> str | None:
     return None
 
 
-def test_report_renders_in_a_headless_browser(study, tmp_path):
+def rendered_ink(path, tmp_path) -> float:
+    """The fraction of dark pixels of `path` rendered by headless Chromium (skips, saying so,
+    without a browser)."""
     browser = _browser()
     if browser is None:
         pytest.skip(
             "no Chromium or Chrome installed: the rendering test needs one (.ci/run installs it)"
         )
-    path = write_report(study.path, tmp_path / "report.html")
     shot = tmp_path / "shot.png"
     subprocess.run(
         [browser, "--headless", "--no-sandbox", "--disable-gpu", "--hide-scrollbars",
@@ -110,7 +111,12 @@ def test_report_renders_in_a_headless_browser(study, tmp_path):
     img = imread(shot)
     gray = img[..., :3].mean(axis=2)
     assert gray.shape[0] >= 1000 and gray.shape[1] >= 1000
-    inked = np.mean(gray < 0.9)  # dark pixels: text, tables, figure lines
+    return float(np.mean(gray < 0.9))  # dark pixels: text, tables, figure lines
+
+
+def test_report_renders_in_a_headless_browser(study, tmp_path):
+    path = write_report(study.path, tmp_path / "report.html")
+    inked = rendered_ink(path, tmp_path)
     assert inked > 0.01, f"the rendered report looks blank ({inked:.4f} of pixels inked)"
 
 
