@@ -213,6 +213,22 @@ def _exceedance_groups(study: Study) -> dict[tuple, dict]:
     return groups
 
 
+def _object_cols(rs, b, floor, content, mu_k, mu_s, state, allowable) -> dict:
+    """The columns naming an object and its state in the exceedance and fragility tables."""
+    return dict(
+        record_set=rs,
+        building=b.id,
+        building_kind=b.kind,
+        isolation_period=b.isolation_period,
+        floor=floor,
+        content=content,
+        mu_k=mu_k,
+        mu_s=mu_s,
+        state=state,
+        allowable=allowable,
+    )
+
+
 def exceedance_table(study: Study) -> list[dict]:
     """The ``exceedance`` table (see the module docstring)."""
     rows = []
@@ -224,16 +240,7 @@ def exceedance_table(study: Study) -> list[dict]:
             k = g["exceed"][state]
             rows.append(
                 dict(
-                    record_set=rs,
-                    building=bid,
-                    building_kind=b.kind,
-                    isolation_period=b.isolation_period,
-                    floor=floor,
-                    content=content,
-                    mu_k=mu_k,
-                    mu_s=mu_s,
-                    state=state,
-                    allowable=a,
+                    **_object_cols(rs, b, floor, content, mu_k, mu_s, state, a),
                     n_records=g["n"],
                     n_rock=0 if over else g["n_rock"],
                     n_exceed=k,
@@ -285,16 +292,9 @@ def fragility_table(study: Study, exceedance: list[dict]) -> list[dict]:
             bid, floor, content, mu_k, mu_s, state = key
             b = study.buildings[bid]
             row = dict(
-                record_set=family,
-                building=bid,
-                building_kind=b.kind,
-                isolation_period=b.isolation_period,
-                floor=floor,
-                content=content,
-                mu_k=mu_k,
-                mu_s=mu_s,
-                state=state,
-                allowable=got[0][1]["allowable"] if got else math.nan,
+                **_object_cols(
+                    family, b, floor, content, mu_k, mu_s, state, got[0][1]["allowable"]
+                ),
                 im=im,
                 levels=levels,
                 n_records=known,

@@ -796,6 +796,21 @@ def _target_csv(path: Path, where: str, ck: _Checker):
         return None
 
 
+def _increasing_pair(value, where: str, ck: _Checker, what: str) -> tuple[float, float] | None:
+    """Two numbers > 0, the second above the first, or None with the problem added."""
+    if not (isinstance(value, list) and len(value) == 2):
+        ck.add(where, f"must be {what}, got {value!r}")
+        return None
+    lo = ck.number(value[0], f"{where}[0]", lo=0, lo_open=True)
+    hi = ck.number(value[1], f"{where}[1]", lo=0, lo_open=True)
+    if lo is None or hi is None:
+        return None
+    if hi <= lo:
+        ck.add(where, f"must increase: [{lo:g}, {hi:g}]")
+        return None
+    return lo, hi
+
+
 def _scale(value, w: str, ck: _Checker, base: Path) -> ScaleSpec | None:
     """A record set's ``scale`` table (docs/design.md §10e), or None with the problems added."""
     from floorslide.errors import ModelError
@@ -841,17 +856,7 @@ def _scale(value, w: str, ck: _Checker, base: Path) -> ScaleSpec | None:
         period = ck.number(value["period"], f"{w}.period", lo=0, lo_open=True)
     rng = None
     if "periods" in value:
-        p = value["periods"]
-        if not (isinstance(p, list) and len(p) == 2):
-            ck.add(f"{w}.periods", f"must be a range [T_lo, T_hi] (s), got {p!r}")
-        else:
-            lo = ck.number(p[0], f"{w}.periods[0]", lo=0, lo_open=True)
-            hi = ck.number(p[1], f"{w}.periods[1]", lo=0, lo_open=True)
-            if lo is not None and hi is not None:
-                if hi <= lo:
-                    ck.add(f"{w}.periods", f"must increase: [{lo:g}, {hi:g}]")
-                else:
-                    rng = (lo, hi)
+        rng = _increasing_pair(value["periods"], f"{w}.periods", ck, "a range [T_lo, T_hi] (s)")
     elif period is not None:
         rng = (0.2 * period, 2.0 * period)  # ASCE 7-22 §16.2.1's range about the period
     elif "period" not in value:
@@ -872,16 +877,10 @@ def _scale(value, w: str, ck: _Checker, base: Path) -> ScaleSpec | None:
         damping = ck.number(value["damping"], f"{w}.damping", lo=0, hi=1, hi_open=True)
     limits = FACTOR_LIMITS
     if "limits" in value:
-        lim = value["limits"]
-        if not (isinstance(lim, list) and len(lim) == 2):
-            ck.add(f"{w}.limits", f"must be [low, high] scale factors, got {lim!r}")
-        else:
-            a = ck.number(lim[0], f"{w}.limits[0]", lo=0, lo_open=True)
-            b = ck.number(lim[1], f"{w}.limits[1]", lo=0, lo_open=True)
-            if a is not None and b is not None:
-                if b <= a:
-                    ck.add(f"{w}.limits", f"must increase: [{a:g}, {b:g}]")
-                limits = (a, b)
+        limits = (
+            _increasing_pair(value["limits"], f"{w}.limits", ck, "[low, high] scale factors")
+            or limits
+        )
     levels: tuple[float, ...] = ()
     if "levels" in value:
         levels = ck.numbers(value["levels"], f"{w}.levels", lo=0, lo_open=True)
