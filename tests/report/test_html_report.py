@@ -103,6 +103,10 @@ def rendered_ink(path, tmp_path) -> float:
     shot = tmp_path / "shot.png"
     subprocess.run(
         [browser, "--headless", "--no-sandbox", "--disable-gpu", "--hide-scrollbars",
+         # no connections to the network (closed on CI), a fresh profile
+         "--disable-quic", "--no-first-run", "--disable-background-networking",
+         "--disable-component-update", "--disable-sync",
+         f"--user-data-dir={tmp_path / 'profile'}",
          f"--screenshot={shot}", "--window-size=1200,1600", path.resolve().as_uri()],
         check=True, capture_output=True, timeout=120,
     )  # fmt: skip
