@@ -55,6 +55,20 @@ def test_demo(tmp_path):
     assert again.returncode == 0, again.stderr
     assert again.stdout.split("tasks in")[0] == out.stdout.split("tasks in")[0]
     assert len(ResultFile(tmp_path / "d" / "results.h5").done_tasks()) == 36 * 8
+    # issue 18: the demo writes its HTML report and prints its link
+    report = tmp_path / "d" / "report.html"
+    assert report.stat().st_size > 500_000  # figures embedded
+    assert f"report:  {report.resolve().as_uri()}" in again.stdout
+    assert 'id="table-exceedance"' in report.read_text(encoding="utf-8")  # the cabinet's gaps
+    # a demo result written by an earlier floorslide (its demo scene had other text under the
+    # same name) is replaced too
+    with h5py.File(tmp_path / "d" / "results.h5", "r+") as f:
+        text, attrs = f["scene"][()], dict(f["scene"].attrs)
+        del f["scene"]
+        f["scene"] = text.decode().replace("allowable = [0.05, 0.1, 0.3]", "")
+        f["scene"].attrs.update(attrs)
+    older = demo(tmp_path / "d", "--workers", "2")
+    assert older.returncode == 0, older.stderr
 
 
 def test_demo_leaves_other_files_alone(tmp_path):
