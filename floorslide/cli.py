@@ -1271,6 +1271,12 @@ _ALLOW_INCOMPLETE = click.option(
     help="Report a result file whose run is not finished (tasks missing); every output is "
     "labelled INCOMPLETE. Without it such a file is refused (exit code 4).",
 )
+_FIGURE_WORKERS = click.option(
+    "--workers",
+    type=click.IntRange(min=1),
+    metavar="N",
+    help="Draw the figures in N processes (default: all cores); the files are the same.",
+)
 
 
 @cli.command(epilog=REPORT_EXIT_CODES)
@@ -1421,12 +1427,7 @@ def _emit(text: str, out: str | None) -> None:
 @click.option("--damping", type=NUMBER, metavar="Z", help="FRS damping ratio (one stored).")
 @_ALLOW_INCOMPLETE
 @click.option("--json", "as_json", is_flag=True, help="Print the files written as a JSON list.")
-@click.option(
-    "--workers",
-    type=click.IntRange(min=1),
-    metavar="N",
-    help="Draw the figures in N processes (default: all cores); the files are the same.",
-)
+@_FIGURE_WORKERS
 def plot(result, out, compare, damping, allow_incomplete, as_json, workers):
     """Figures (PNG) from a result file OUT.h5, one per kind and record set: floor motions and
     sliding histories of the stored history record; the isolator's hysteresis loop (force / W
@@ -1615,12 +1616,7 @@ def _demo_may_replace(h5, scene_text: str) -> bool:
     help="The report (default: OUT-report.html beside OUT.h5).",
 )
 @_ALLOW_INCOMPLETE
-@click.option(
-    "--workers",
-    type=click.IntRange(min=1),
-    metavar="N",
-    help="Draw the figures in N processes (default: all cores).",
-)
+@_FIGURE_WORKERS
 def report(result, out, allow_incomplete, workers):
     """One self-contained HTML report of a result file OUT.h5: the design tables, every figure
     (embedded), the records with their provenance and quality flags, the scene as run and the

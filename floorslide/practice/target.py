@@ -122,6 +122,11 @@ def _loglog_interp(T, Tk, Sk):
     return out
 
 
+def outside_limits(factor: float, limits: tuple[float, float] = FACTOR_LIMITS) -> bool:
+    """Whether a scale factor lies outside ``[low, high]`` (a warning, not an error)."""
+    return not (limits[0] <= factor <= limits[1])
+
+
 @dataclass(frozen=True)
 class ScaleFit:
     """The scale factor of one record and how well the scaled record fits the target.
@@ -176,7 +181,7 @@ def scale_factor(
         if not sr > 0:
             raise ModelError(f"the record's S_a at {period:g} s is 0: it cannot be scaled", "scale")
         f = st / sr
-        return ScaleFit(f, 0.0, "period", not (limits[0] <= f <= limits[1]))
+        return ScaleFit(f, 0.0, "period", outside_limits(f, limits))
     lo, hi = period_range
     if not (0 <= lo < hi):
         raise ModelError(f"period range {lo:g}–{hi:g} s is not increasing", "scale.periods")
@@ -189,7 +194,7 @@ def scale_factor(
     ln_f = float(np.mean(resid))
     misfit = float(np.sqrt(np.mean((resid - ln_f) ** 2)))
     f = math.exp(ln_f)
-    return ScaleFit(f, misfit, "range", not (limits[0] <= f <= limits[1]))
+    return ScaleFit(f, misfit, "range", outside_limits(f, limits))
 
 
 def suite_check(

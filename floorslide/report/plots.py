@@ -80,6 +80,7 @@ from matplotlib.lines import Line2D
 from floorslide.constants import G
 from floorslide.errors import FloorslideError, ModelError
 from floorslide.report.columns import MIN_RECORDS, ROCK, DesignTables
+from floorslide.report.practice import allowables, fixed_period, pfa_profiles
 from floorslide.report.statistics import interpolate_spectrum, summarize
 from floorslide.report.study import Study, _natural, _rank, load_study
 from floorslide.report.tables import design_tables, resolve_damping
@@ -1209,36 +1210,6 @@ def _percentiles(values: Sequence[float]) -> tuple[float, float]:
     return median, p84
 
 
-def _pfa_profiles(study: Study, record_set: str) -> dict[str, dict[int, list[tuple[str, float]]]]:
-    """Per building (in the tables' order) and floor: ``(record, PFA/PGA)`` of every record
-    of the set, records in natural order; records without a positive PGA are left out."""
-    out: dict[str, dict[int, list[tuple[str, float]]]] = {}
-    for t in study.set_tasks(record_set):
-        pga = float(t.meta.get("pga", math.nan))
-        if not (math.isfinite(pga) and pga > 0):
-            continue
-        by_floor = out.setdefault(str(t.meta["building"]), {})
-        for floor, pfa in zip(np.asarray(t.floors).tolist(), np.asarray(t.pfa), strict=True):
-            by_floor.setdefault(int(floor), []).append((str(t.meta["record"]), float(pfa) / pga))
-    order = list(study.buildings)
-    return {
-        b: {f: sorted(v, key=lambda o: _natural(o[0])) for f, v in sorted(out[b].items())}
-        for b in sorted(out, key=lambda b: order.index(b) if b in order else len(order))
-    }
-
-
-def _fixed_period(study: Study, record_set: str, bid: str) -> float:
-    """The fixed-base fundamental period stored with the building's tasks (NaN if not)."""
-    for t in study.set_tasks(record_set):
-        if str(t.meta["building"]) == bid:
-            try:
-                value = float(t.meta.get("fixed_period", math.nan))
-            except (TypeError, ValueError):
-                return math.nan
-            return value if math.isfinite(value) and value > 0 else math.nan
-    return math.nan
-
-
 def figure_pfa_profile(study: Study, tables: DesignTables, record_set: str) -> Figure | None:
     """Peak floor acceleration over the peak ground acceleration up the height, against the
     code's floor amplification; or None when the set has no tasks.
@@ -1274,7 +1245,7 @@ def figure_pfa_profile(study: Study, tables: DesignTables, record_set: str) -> F
     """
     from floorslide.practice.code import asce7_floor_amplification
 
-    profiles = _pfa_profiles(study, record_set)
+    profiles = pfa_profiles(study, record_set)
     if not profiles:
         return None
     kinds = ["isolated" if study.buildings[b].kind == "isolated" else "fixed" for b in profiles]
@@ -1285,7 +1256,7 @@ def figure_pfa_profile(study: Study, tables: DesignTables, record_set: str) -> F
     n = max(len(v) for floors in profiles.values() for v in floors.values())
     isolated = "isolated" in panels
     periods = {
-        b: _fixed_period(study, record_set, b)
+        b: fixed_period(study, record_set, b)
         for b, k in zip(profiles, kinds, strict=True)
         if k == "fixed"
     }
@@ -1389,24 +1360,9 @@ def figure_pfa_profile(study: Study, tables: DesignTables, record_set: str) -> F
 
 
 def _allowables(study: Study, content: str) -> tuple[float, ...]:
-    """The allowable displacements (m) of a content in the stored scene (``allowable``, a
-    number or a list of numbers), increasing; ``()`` when it has none."""
-    items = study.scene.get("contents", [])
-    for item in items if isinstance(items, list) else []:
-        if not isinstance(item, dict) or item.get("id") != content:
-            continue
-        value = item.get("allowable", ())
-        values = value if isinstance(value, list | tuple) else [value]
-        out = set()
-        for v in values:
-            try:
-                a = float(v)
-            except (TypeError, ValueError):
-                continue
-            if math.isfinite(a) and a > 0:
-                out.add(a)
-        return tuple(sorted(out))
-    return ()
+    """The allowable displacements (m) of a content in the stored scene, increasing; ``()``
+    when it has none (:func:`floorslide.report.practice.allowables`)."""
+    return allowables(study).get(content, ())
 
 
 def _median_pair(rows: Sequence[dict]) -> tuple[float, float]:

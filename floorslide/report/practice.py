@@ -43,9 +43,10 @@ from collections import defaultdict
 
 import numpy as np
 
-from floorslide.report.columns import MIN_RECORDS, PERCENTILE, ROCK
+from floorslide.report.columns import MIN_RECORDS, ROCK
 from floorslide.report.records import record_rows
-from floorslide.report.study import Study, _float, _rank
+from floorslide.report.statistics import summarize
+from floorslide.report.study import Study, _float, _natural, _rank
 
 ISOLATED_NOTE = (
     "isolated: ASCE 7-22 §17 takes component demands from the response history analysis of "
@@ -65,17 +66,48 @@ def _slide_state(allowable: float) -> str:
 
 
 def allowables(study: Study) -> dict[str, tuple[float, ...]]:
-    """``{content id: allowable displacements (m, increasing)}`` from the stored scene."""
+    """``{content id: allowable displacements (m, increasing, each once)}`` from the stored
+    scene (``allowable``: a number or a list); contents without one are left out."""
+    items = study.scene.get("contents", [])
     out = {}
-    for c in study.scene.get("contents", []) or []:
+    for c in items if isinstance(items, list) else []:
         if not isinstance(c, dict) or not isinstance(c.get("id"), str):
             continue
         a = c.get("allowable", ())
-        a = a if isinstance(a, list) else [a]
-        vals = sorted(float(x) for x in a if isinstance(x, int | float) and x > 0)
+        a = a if isinstance(a, list | tuple) else [a]
+        vals = {_float(x) for x in a if not isinstance(x, bool)}
+        vals = sorted(x for x in vals if math.isfinite(x) and x > 0)
         if vals:
             out[c["id"]] = tuple(vals)
     return out
+
+
+def pfa_profiles(study: Study, record_set: str) -> dict[str, dict[int, list[tuple[str, float]]]]:
+    """Per building (in the tables' order) and floor: ``(record, PFA/PGA)`` of every record
+    of the set, records in natural order; records without a positive PGA are left out."""
+    out: dict[str, dict[int, list[tuple[str, float]]]] = {}
+    for t in study.set_tasks(record_set):
+        pga = _float(t.meta.get("pga"))
+        if not (math.isfinite(pga) and pga > 0):
+            continue
+        by_floor = out.setdefault(str(t.meta["building"]), {})
+        for floor, pfa in zip(np.asarray(t.floors).tolist(), np.asarray(t.pfa), strict=True):
+            by_floor.setdefault(int(floor), []).append((str(t.meta["record"]), float(pfa) / pga))
+    order = list(study.buildings)
+    return {
+        b: {f: sorted(v, key=lambda o: _natural(o[0])) for f, v in sorted(out[b].items())}
+        for b in sorted(out, key=lambda b: _rank(order, b))
+    }
+
+
+def fixed_period(study: Study, record_set: str, bid: str) -> float:
+    """The fixed-base fundamental period stored with the building's tasks of the set (the
+    superstructure's for an isolated building; NaN if none is stored)."""
+    for t in study.set_tasks(record_set):
+        if str(t.meta["building"]) == bid:
+            value = _float(t.meta.get("fixed_period"))
+            return value if math.isfinite(value) and value > 0 else math.nan
+    return math.nan
 
 
 def scaling_table(study: Study) -> list[dict]:
@@ -133,55 +165,42 @@ def suite_table(study: Study) -> list[dict]:
 
 def code_table(study: Study) -> list[dict]:
     """The ``code`` table (see the module docstring): ASCE 7-22 Eq. 13.3-4 beside the computed
-    PFA/PGA."""
+    PFA/PGA (:func:`pfa_profiles`, as the PFA-profile figure draws it)."""
     from floorslide.practice.code import asce7_floor_amplification
 
-    groups: dict[tuple, list[tuple[str, float]]] = defaultdict(list)
-    info: dict[tuple, tuple[int, float]] = {}
-    for t in study.tasks:
-        rs, bid = str(t.meta["record_set"]), str(t.meta["building"])
-        pga = _float(t.meta.get("pga"))
-        info[(rs, bid)] = (
-            int(_float(t.meta.get("stories"), 0)),
-            _float(t.meta.get("fixed_period")),
-        )
-        for floor, pfa in zip(np.asarray(t.floors).tolist(), np.asarray(t.pfa), strict=True):
-            amp = float(pfa) / pga if pga > 0 else math.nan
-            groups[(rs, bid, int(floor))].append((str(t.meta["record"]), amp))
-    sets, bids = study.sets, list(study.buildings)
     rows = []
-    for key in sorted(groups, key=lambda k: (_rank(sets, k[0]), _rank(bids, k[1]), k[2])):
-        rs, bid, floor = key
-        amp = np.array([a for _, a in groups[key]], dtype=float)
-        amp = amp[np.isfinite(amp)]
-        stories, period = info[(rs, bid)]
-        b = study.buildings[bid]
-        fixed = b.kind == "fixed"
-        z_h = floor / stories if stories > 0 else math.nan
-        h_f = math.nan
-        if fixed and math.isfinite(z_h) and 0 <= z_h <= 1 and period > 0:
-            h_f = float(asce7_floor_amplification(z_h, period))
-        med = float(np.median(amp)) if amp.size else math.nan
-        p84 = float(np.percentile(amp, PERCENTILE)) if amp.size else math.nan
-        rows.append(
-            dict(
-                record_set=rs,
-                building=bid,
-                building_kind=b.kind,
-                isolation_period=b.isolation_period,
-                floor=floor,
-                z_over_h=z_h,
-                period_a=period if fixed else math.nan,
-                h_f=h_f,
-                n_records=int(amp.size),
-                few_records=amp.size < MIN_RECORDS,
-                pfa_pga_median=med,
-                pfa_pga_p84=p84,
-                median_over_h_f=med / h_f if h_f == h_f else math.nan,
-                p84_over_h_f=p84 / h_f if h_f == h_f else math.nan,
-                note="" if fixed else ISOLATED_ROW_NOTE,
-            )
-        )
+    for rs in study.sets:
+        for bid, floors in pfa_profiles(study, rs).items():
+            b = study.buildings[bid]
+            fixed = b.kind == "fixed"
+            period = fixed_period(study, rs, bid)
+            for floor, obs in floors.items():
+                amp = np.array([a for _, a in obs], dtype=float)
+                amp = amp[np.isfinite(amp)]
+                _, med, p84 = summarize(amp)
+                z_h = floor / b.stories if b.stories > 0 else math.nan
+                h_f = math.nan
+                if fixed and 0 <= z_h <= 1 and period > 0:
+                    h_f = float(asce7_floor_amplification(z_h, period))
+                rows.append(
+                    dict(
+                        record_set=rs,
+                        building=bid,
+                        building_kind=b.kind,
+                        isolation_period=b.isolation_period,
+                        floor=floor,
+                        z_over_h=z_h,
+                        period_a=period if fixed else math.nan,
+                        h_f=h_f,
+                        n_records=int(amp.size),
+                        few_records=amp.size < MIN_RECORDS,
+                        pfa_pga_median=med,
+                        pfa_pga_p84=p84,
+                        median_over_h_f=med / h_f if h_f == h_f else math.nan,
+                        p84_over_h_f=p84 / h_f if h_f == h_f else math.nan,
+                        note="" if fixed else ISOLATED_ROW_NOTE,
+                    )
+                )
     return rows
 
 

@@ -329,7 +329,7 @@ def _scalings(rs: RecordSetSpec, pga: float, spectrum=None):
     period grid. ``info`` is what the result file keeps of the scaling (None without one).
     """
     if rs.scale is not None:
-        from floorslide.practice.target import scale_factor
+        from floorslide.practice.target import outside_limits, scale_factor
 
         sc = rs.scale
         psa = spectrum()
@@ -352,7 +352,7 @@ def _scalings(rs: RecordSetSpec, pga: float, spectrum=None):
                     level=level,
                     fit_factor=fit.factor,
                     misfit=fit.misfit,
-                    outside_limits=not (sc.limits[0] <= factor <= sc.limits[1]),
+                    outside_limits=outside_limits(factor, sc.limits),
                     psa=psa,
                 ),
             )
@@ -428,7 +428,7 @@ class _Scaling:
         7-22 §16.2.3): ``c = max(1, 0.9 / min ratio)``, stored as ``suite_factor``."""
         import dataclasses
 
-        from floorslide.practice.target import SUITE_FRACTION, suite_check
+        from floorslide.practice.target import SUITE_FRACTION, outside_limits, suite_check
 
         sc = rs.scale
         common: dict[str, float] = {}
@@ -442,7 +442,7 @@ class _Scaling:
             entry["suite_factor"] = c
             for rec in entry["records"]:
                 rec["factor"] *= c
-                rec["outside_limits"] = not (sc.limits[0] <= rec["factor"] <= sc.limits[1])
+                rec["outside_limits"] = outside_limits(rec["factor"], sc.limits)
             self.spectra[name] = [p * c for p in self.spectra[name]]
         out = []
         for r in records:
