@@ -1371,7 +1371,7 @@ def table(result, fmt, as_json, compare, periods, damping, only, per_record, all
             text += "\n"
         else:
             text = formats.format_rows_csv(RECORD_COLUMNS, rows, study.status)
-        _emit(text, out)
+        _emit(text, out, result)
         return
     dt = _report_call(
         click.get_current_context(),
@@ -1384,7 +1384,7 @@ def table(result, fmt, as_json, compare, periods, damping, only, per_record, all
     )
     if fmt == "csv":
         if out:
-            for path in formats.write_csv(dt, out, names):
+            for path in formats.write_csv(dt, out, names, inputs=[result]):
                 click.echo(str(path))
             return
         if len(names) == 1:  # one table: plain CSV, as pandas.read_csv takes it
@@ -1396,15 +1396,16 @@ def table(result, fmt, as_json, compare, periods, damping, only, per_record, all
         text = formats.format_json(dt, names) + "\n"
     else:
         text = formats.format_markdown(dt, names)
-    _emit(text, out)
+    _emit(text, out, result)
 
 
-def _emit(text: str, out: str | None) -> None:
-    """`text` to stdout, or to the file `out` (then its path is printed)."""
+def _emit(text: str, out: str | None, source: str) -> None:
+    """`text` to stdout, or to the file `out` (then its path is printed): never over the
+    result file `source`, nor over a file floorslide did not write."""
     from floorslide.report.formats import write_text
 
     if out:
-        click.echo(str(write_text(out, text)))
+        click.echo(str(write_text(out, text, inputs=[source])))
         return
     click.echo(text, nl=False)
 
@@ -1565,7 +1566,8 @@ def _quality_summary(rows: list[dict]) -> list[str]:
 
 def _older_demo(h5, scene_text: str) -> bool:
     """Whether `h5` is a demo result written by an earlier floorslide (its demo scene had other
-    text under the same ``[scene] name``)."""
+    text under the same ``[scene] name``; its header is read even where it fails its digest:
+    a damaged demo result is still the demo's own)."""
     import tomllib
 
     from floorslide.errors import FloorslideError
@@ -1573,7 +1575,7 @@ def _older_demo(h5, scene_text: str) -> bool:
 
     name = tomllib.loads(scene_text).get("scene", {}).get("name")
     try:
-        return bool(name) and ResultFile(h5).scene_name == name
+        return bool(name) and ResultFile(h5, repair=True).scene_name == name
     except FloorslideError:
         return False
 
@@ -1596,8 +1598,22 @@ def _demo_may_replace(h5, scene_text: str) -> bool:
     from floorslide.errors import OutputExistsError
     from floorslide.run.store import journal_entries, written_for
 
+    folder = h5.parent
+    if folder.is_symlink() or (folder.exists() and not folder.is_dir()):
+        raise OutputExistsError(
+            "is not a folder; the demo writes a folder of results (choose another with -o)",
+            str(folder),
+        )
     if not (h5.exists() or h5.is_symlink()):
-        return bool(journal_entries(h5))
+        if journal_entries(h5):
+            return True
+        if folder.is_dir() and any(folder.iterdir()):
+            raise OutputExistsError(
+                "holds files and no demo result; the demo writes only into a new or empty "
+                "folder, or one of an earlier demo (choose another folder with -o)",
+                str(folder),
+            )
+        return False
     if written_for(h5, scene_text) or _older_demo(h5, scene_text):
         return True
     raise OutputExistsError(
@@ -1671,6 +1687,7 @@ def demo(out_dir, workers):
     from pathlib import Path
 
     from floorslide.report import design_tables, format_markdown, plot_figures, write_csv
+    from floorslide.report.formats import write_text
     from floorslide.report.html import write_report
     from floorslide.report.study import load_study
     from floorslide.run.execute import execute
@@ -1678,12 +1695,12 @@ def demo(out_dir, workers):
     from floorslide.scene.schema import load_scene
 
     scene_path = importlib.resources.files("floorslide.data") / "scenes" / "demo.toml"
-    with importlib.resources.as_file(scene_path) as path:
-        sc = load_scene(path)
-        plan = make_plan(sc)
     out = Path(out_dir)
     h5 = out / "results.h5"
-    replace = _demo_may_replace(h5, sc.text)
+    with importlib.resources.as_file(scene_path) as path:
+        sc = load_scene(path)
+        replace = _demo_may_replace(h5, sc.text)  # before the work: a refusal comes at once
+        plan = make_plan(sc)
     click.echo(plan.describe())
     summary = execute(plan, str(h5), workers=workers, overwrite=replace)
     if summary.interrupted:
@@ -1691,9 +1708,8 @@ def demo(out_dir, workers):
         sys.exit(130)
     study = load_study(h5)  # the result file read once, for the tables and the figures
     tables = design_tables(study)
-    csvs = write_csv(tables, out / "tables")
-    md = out / "tables" / "tables.md"
-    md.write_text(format_markdown(tables), encoding="utf-8")
+    csvs = write_csv(tables, out / "tables", inputs=[h5])
+    md = write_text(out / "tables" / "tables.md", format_markdown(tables), inputs=[h5])
     figures = plot_figures(study, out / "figures", workers=workers or os.cpu_count() or 1)
     html = write_report(study, out / "report.html", tables=tables, figures=figures)
     click.echo("")

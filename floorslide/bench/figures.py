@@ -4,11 +4,12 @@ the "work-precision diagram")."""
 
 from __future__ import annotations
 
+import io
 import math
-from pathlib import Path
 
 from floorslide.bench.cases import METRICS
 from floorslide.bench.study import BenchResult
+from floorslide.outputs import PNG_SOFTWARE
 
 ERROR_FLOOR = 1e-16
 """Errors below this (including exact zeros) are drawn at it: a log axis has no zero."""
@@ -16,8 +17,8 @@ ERROR_FLOOR = 1e-16
 MARKERS = "osD^v<>ph"
 
 
-def work_precision_figure(result: BenchResult, solver: str, path: str | Path) -> Path:
-    """Draw the work–precision diagram of `solver` to `path` (PNG).
+def work_precision_figure(result: BenchResult, solver: str) -> bytes:
+    """The work–precision diagram of `solver` as PNG bytes.
 
     Parameters
     ----------
@@ -25,12 +26,11 @@ def work_precision_figure(result: BenchResult, solver: str, path: str | Path) ->
         A study from :func:`floorslide.bench.run_bench`.
     solver
         The solver's key.
-    path
-        Where to write the figure.
 
     Returns
     -------
-    Path
+    bytes
+        The PNG (``Software`` :data:`floorslide.outputs.PNG_SOFTWARE`).
     """
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
@@ -94,6 +94,6 @@ def work_precision_figure(result: BenchResult, solver: str, path: str | Path) ->
     ax.set_title(f"{result.solvers[solver]}\nrecords: {ids}", fontsize=10)
     ax.grid(True, which="major", lw=0.4, alpha=0.6)
     ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2, frameon=False)
-    path = Path(path)
-    fig.savefig(path)
-    return path
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", metadata={"Software": PNG_SOFTWARE})
+    return buf.getvalue()

@@ -8,6 +8,7 @@ import json
 import math
 from pathlib import Path
 
+from floorslide import outputs
 from floorslide.bench.cases import METRICS
 from floorslide.bench.study import BenchResult
 
@@ -187,18 +188,16 @@ def write_outputs(
     from floorslide.bench.figures import work_precision_figure
 
     out = Path(directory)
-    out.mkdir(parents=True, exist_ok=True)
     written = []
-    for name, text in (
-        ("bench.csv", to_csv(result)),
-        ("bench.md", to_markdown(result, compile_rows)),
-        ("bench.json", to_json(result, compile_rows)),
+    advice = "choose another folder with -o, or move the file away"
+    for name, text, rule in (
+        ("bench.csv", to_csv(result), None),
+        ("bench.md", to_markdown(result, compile_rows), outputs.starts_with(b"Records: ")),
+        ("bench.json", to_json(result, compile_rows), outputs.starts_with(b'{\n "quick": ')),
     ):
-        path = out / name
-        path.write_text(text, encoding="utf-8")
-        written.append(path)
+        rule = rule or outputs.same_first_line(text)
+        written.append(outputs.write_output(out / name, text, replace=rule, advice=advice))
     if compile_rows is not None:
-        path = out / "compile.csv"
         buf = io.StringIO()
         writer = csv.writer(buf, lineterminator="\n")
         writer.writerow(["solver", "method", "compile_time", "kernels"])
@@ -206,10 +205,17 @@ def write_outputs(
             writer.writerow(
                 [r["solver"], r["method"], repr(r["compile_time"]), " ".join(r["kernels"])]
             )
-        path.write_text(buf.getvalue(), encoding="utf-8")
-        written.append(path)
+        text = buf.getvalue()
+        written.append(
+            outputs.write_output(
+                out / "compile.csv", text, replace=outputs.same_first_line(text), advice=advice
+            )
+        )
     for key in result.solvers:
-        path = out / f"{key}.png"
-        work_precision_figure(result, key, path)
-        written.append(path)
+        png = work_precision_figure(result, key)
+        written.append(
+            outputs.write_output(
+                out / f"{key}.png", png, replace=outputs.floorslide_png, advice=advice
+            )
+        )
     return written

@@ -28,7 +28,7 @@ from pathlib import Path
 
 import numpy as np
 
-from floorslide.errors import FloorslideError
+from floorslide import outputs
 from floorslide.report.columns import (
     COLUMNS,
     EMPTY_NOTES,
@@ -132,7 +132,7 @@ def format_markdown(tables: DesignTables, names: Sequence[str] = TABLE_NAMES) ->
     """The design tables as one Markdown document: a title, the conventions, one section per
     table (an INCOMPLETE file says so in its title and first line)."""
     title = tables.scene_name or Path(tables.source).name
-    out = [f"# Design tables: {title}" + (" — INCOMPLETE" if tables.status else ""), ""]
+    out = [f"{MARKDOWN_TITLE}{title}" + (" — INCOMPLETE" if tables.status else ""), ""]
     out.append(f"From `{tables.source}`.")
     out.append("")
     if tables.status:
@@ -197,32 +197,57 @@ def format_csv_sections(tables: DesignTables, names: Sequence[str] = TABLE_NAMES
     return "\n".join(parts)
 
 
-def write_text(path: str | Path, text: str) -> Path:
-    """Write `text` to `path` (folders created); an OS error is one line naming the path."""
-    path = Path(path)
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_text(text, encoding="utf-8")
-    except OSError as exc:
-        raise FloorslideError(f"cannot write: {exc.strerror or exc}", str(path)) from None
-    return path
+MARKDOWN_TITLE = "# Design tables: "
+"""The first line of the Markdown tables begins so (:func:`format_markdown`)."""
+JSON_START = '{\n "source": '
+"""The JSON tables and per-record rows begin so (:func:`format_json`,
+:func:`format_rows_json`)."""
 
 
-def write_csv(tables: DesignTables, directory: str | Path, names: Sequence[str] = TABLE_NAMES):
-    """Write one ``NAME.csv`` per table into `directory` (created); returns the paths."""
+def replace_rule(text: str) -> outputs.Replace:
+    """Which existing file an output of `text` may replace (:mod:`floorslide.outputs`): the
+    Markdown tables or JSON floorslide wrote, or a CSV with the same header (the same table,
+    written before); never anything else."""
+    if text.startswith(MARKDOWN_TITLE):
+        return outputs.starts_with(MARKDOWN_TITLE.encode())
+    if text.startswith(JSON_START):
+        return outputs.starts_with(JSON_START.encode())
+    return outputs.same_first_line(text)
+
+
+def write_text(path: str | Path, text: str, *, inputs: Sequence[str | Path] = ()) -> Path:
+    """Write `text` to `path` (folders created) through :func:`floorslide.outputs.write_output`:
+    atomically, replacing only a file of the same kind floorslide wrote (:func:`replace_rule`),
+    never one of `inputs`.
+
+    Raises
+    ------
+    OutputExistsError
+        `path` holds something else (exit code 2).
+    OutputError
+        It cannot be written: one line naming the path.
+    """
+    return outputs.write_output(
+        path, text, inputs=inputs, replace=replace_rule(text), advice="choose another -o"
+    )
+
+
+def write_csv(
+    tables: DesignTables,
+    directory: str | Path,
+    names: Sequence[str] = TABLE_NAMES,
+    *,
+    inputs: Sequence[str | Path] = (),
+):
+    """Write one ``NAME.csv`` per table into `directory` (created), each as
+    :func:`write_text` does; returns the paths."""
     directory = Path(directory)
-    try:
-        directory.mkdir(parents=True, exist_ok=True)
-        paths = []
-        for name in names:
-            path = directory / f"{name}.csv"
-            path.write_text(format_csv(name, tables[name], tables.status), encoding="utf-8")
-            paths.append(path)
-    except OSError as exc:
-        raise FloorslideError(
-            f"cannot write the tables: {exc.strerror or exc}", str(directory)
-        ) from None
-    return paths
+    return [
+        write_text(
+            directory / f"{name}.csv", format_csv(name, tables[name], tables.status), inputs=inputs
+        )
+        for name in names
+    ]
 
 
 def _json_value(value):

@@ -16,7 +16,7 @@ import tempfile
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
-from floorslide.errors import FloorslideError
+from floorslide import outputs
 from floorslide.report.columns import EMPTY_NOTES, TABLE_NAMES, TITLES, DesignTables
 from floorslide.report.formats import _md_cell, _md_heading, markdown_columns
 from floorslide.report.study import Study, load_study
@@ -41,6 +41,11 @@ pre { background: #f6f6f6; padding: 0.8em; overflow-x: auto; font-size: 0.8em; }
                td, th { padding: 0.1em 0.25em; } figure { page-break-inside: avoid; }
                tr { page-break-inside: avoid; } }
 """
+
+
+GENERATOR = '<meta name="generator" content="floorslide">'
+"""In the head of every report: how a report of an earlier run is recognised (and replaced)."""
+ADVICE = "choose another -o, or move the file away"
 
 
 def _e(text: object) -> str:
@@ -139,7 +144,7 @@ def report_html(
     title = tables.scene_name or Path(study.source).name
     parts = [
         "<!DOCTYPE html>",
-        '<html lang="en"><head><meta charset="utf-8">',
+        f'<html lang="en"><head><meta charset="utf-8">{GENERATOR}',
         f"<title>floorslide report: {_e(title)}</title>",
         f"<style>{CSS}</style></head><body>",
         f"<h1>floorslide report: {_e(title)}</h1>",
@@ -191,14 +196,19 @@ def report_html(
 
 
 def write_report(result: str | Path | Study, path: str | Path, **kwargs) -> Path:
-    """Write :func:`report_html` of `result` to `path`; returns it."""
+    """Write :func:`report_html` of `result` to `path` (:func:`floorslide.outputs.write_output`:
+    atomically; an existing file is replaced only if it is a report floorslide wrote, and
+    never the result file itself); returns it."""
+    source = result.source if isinstance(result, Study) else result
+    outputs.check_target(
+        path, inputs=[source], replace=outputs.contains(GENERATOR.encode()), advice=ADVICE
+    )
     text = report_html(result, **kwargs)
-    path = Path(path)
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_text(text, encoding="utf-8")
-    except OSError as exc:
-        raise FloorslideError(
-            f"cannot write the report: {exc.strerror or exc}", str(path)
-        ) from None
-    return path
+    return outputs.write_output(
+        path,
+        text,
+        inputs=[source],
+        replace=outputs.contains(GENERATOR.encode()),
+        advice=ADVICE,
+        what="the report",
+    )

@@ -77,8 +77,9 @@ import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
+from floorslide import outputs
 from floorslide.constants import G
-from floorslide.errors import FloorslideError, ModelError
+from floorslide.errors import ModelError
 from floorslide.report.columns import MIN_RECORDS, ROCK, DesignTables
 from floorslide.report.practice import allowables, fixed_period, pfa_profiles
 from floorslide.report.statistics import interpolate_spectrum, summarize
@@ -174,11 +175,12 @@ def _few(n: int) -> str:
 
 def _png(fig: Figure | None) -> bytes | None:
     """The figure as PNG bytes (no time stamp or software version: the same figure gives the
-    same bytes), None for no figure."""
+    same bytes; ``Software`` is :data:`floorslide.outputs.PNG_SOFTWARE`, by which a figure of
+    an earlier run is recognised and replaced), None for no figure."""
     if fig is None:
         return None
     buf = io.BytesIO()
-    fig.savefig(buf, dpi=DPI, format="png", metadata={"Software": None})
+    fig.savefig(buf, dpi=DPI, format="png", metadata={"Software": outputs.PNG_SOFTWARE})
     return buf.getvalue()
 
 
@@ -1723,7 +1725,10 @@ def plot_figures(
         Tasks are missing and `allow_incomplete` is False.
     ModelError, SceneError
         A bad `compare` or `damping`, or a bad ``[report]`` entry.
-    FloorslideError
+    OutputExistsError
+        A file in `directory` holds something other than a figure floorslide drew, or is
+        the result file (nothing of it is replaced).
+    OutputError
         The output folder or a file cannot be written.
     """
     study = load_study(result)
@@ -1787,17 +1792,17 @@ def plot_figures(
                 functools.partial(figure_fragility, study, tables, family),
             )
         )
-    try:
-        directory.mkdir(parents=True, exist_ok=True)
-        for stem, png in zip(
-            (stem for stem, _ in jobs), _render([job for _, job in jobs], workers), strict=True
-        ):
-            if png is not None:
-                path = target(stem)
-                path.write_bytes(png)
-                written.append(path)
-    except OSError as exc:
-        raise FloorslideError(
-            f"cannot write the figures: {exc.strerror or exc}", str(directory)
-        ) from None
+    for stem, png in zip(
+        (stem for stem, _ in jobs), _render([job for _, job in jobs], workers), strict=True
+    ):
+        if png is not None:
+            path = outputs.write_output(
+                target(stem),
+                png,
+                inputs=[study.source],
+                replace=outputs.floorslide_png,
+                advice="choose another folder with -o, or move the file away",
+                what="the figure",
+            )
+            written.append(path)
     return written

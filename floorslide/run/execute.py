@@ -259,6 +259,8 @@ def execute(
     FloorslideError
         The Dask scheduler cannot be reached, or has no worker for `scheduler_timeout` s.
     """
+    from floorslide.run.fingerprint import task_fingerprints
+
     t0 = time.perf_counter()
     sc = plan.scene
     writer = ResultWriter(
@@ -269,7 +271,7 @@ def execute(
         plan.summary(),
         resume=resume,
         overwrite=overwrite,
-        task_ids=[t.task_id for t in plan.tasks],
+        fingerprints=task_fingerprints(plan.tasks),
         warn=warn,
     )
     todo = [t for t in plan.tasks if t.task_id not in writer.done]
@@ -307,6 +309,8 @@ def execute(
         raise
     finally:
         bar.close()
+        if interrupted or len(writer.done) != len(plan.tasks):
+            writer.close()  # the journal stays for --resume
     if not interrupted and len(writer.done) == len(plan.tasks):
         writer.finish()
     return RunSummary(

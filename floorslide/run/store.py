@@ -106,20 +106,23 @@ from __future__ import annotations
 
 import contextlib
 import errno
+import fcntl
 import hashlib
 import io
 import json
 import os
 import shutil
+import stat
 import sys
 import time
 import tomllib
-from collections.abc import Callable, Collection, Iterator
+from collections.abc import Callable, Collection, Iterator, Mapping
 from pathlib import Path
 
 import h5py
 import numpy as np
 
+from floorslide import outputs
 from floorslide.errors import OutputError, OutputExistsError, ResultFileError, one_line
 from floorslide.run import journal
 from floorslide.run.results import (
@@ -201,7 +204,18 @@ ISOLATOR_HISTORIES = ("isolator_displacement", "isolator_force_ratio")
 DIGEST_ATTR = "sha256"
 """Attribute of a task group: the digest of the group (:func:`floorslide.run.snapshot.digest`)."""
 DIGESTS_ATTR = "task_digest"
-"""Root attribute of files whose every task carries a digest: the digest's scheme."""
+"""Root attribute of files whose every task carries a digest: the integrity scheme,
+:data:`INTEGRITY` (files of ``"sha256-1"`` carry task digests but no header digest)."""
+INTEGRITY = "sha256-2"
+"""The integrity scheme written: every task carries its digest (:data:`DIGEST_ATTR`) and the
+header (the root's attributes, ``/scene`` and ``/plan``) carries :data:`HEADER_DIGEST_ATTR`."""
+LEGACY_INTEGRITY = DIGEST_SCHEME
+"""Files written before the header had a digest: tasks verified, the header not."""
+HEADER_DIGEST_ATTR = "header_sha256"
+"""Root attribute: the digest of the header (:func:`header_digest`)."""
+FINGERPRINT_ATTR = "fingerprint"
+"""Attribute of a task group: the fingerprint of its inputs
+(:mod:`floorslide.run.fingerprint`), which the plan also lists (``fingerprints``)."""
 BOOKKEEPING = frozenset({"done", DIGEST_ATTR})
 """Attributes of a task group that its digest leaves out (set after the group is written)."""
 ENTRY_SUFFIX = ".entry"
@@ -363,14 +377,7 @@ def _is_lock_conflict(exc: BaseException) -> bool:
     return isinstance(exc, BlockingIOError) or "unable to lock file" in str(exc)
 
 
-def _no_space(exc: BaseException) -> bool:
-    code = getattr(exc, "errno", None)
-    text = str(exc)
-    return (
-        code in (errno.ENOSPC, errno.EDQUOT)
-        or "errno = 28," in text
-        or "No space left on device" in text
-    )
+_no_space = outputs.no_space
 
 
 def _open_h5(path: Path, mode: str, wait: float | None = None) -> h5py.File:
@@ -394,23 +401,45 @@ def _is_hdf5(path: Path) -> bool:
 
 
 def _write_file(path: Path, data: bytes) -> None:
-    """Write `data` as the file `path` atomically: a temporary file, fsync, rename. A failure
-    (a full disk) removes the temporary file and leaves `path` as it was."""
-    tmp = path.with_name(path.name + ".tmp")
-    try:
-        fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o666)
-        try:
-            view = memoryview(data)
-            while view:
-                view = view[os.write(fd, view) :]
-            os.fsync(fd)
-        finally:
-            os.close(fd)
-        os.replace(tmp, path)
-    except OSError:
-        with contextlib.suppress(OSError):
-            tmp.unlink()
-        raise
+    """Write `data` as the file `path` atomically (:func:`floorslide.outputs.write_atomically`:
+    an exclusive temporary file, fsync, rename). A failure (a full disk) removes the temporary
+    file and leaves `path` as it was."""
+    outputs.write_atomically(path, data)
+
+
+def header_digest(f: h5py.File) -> str:
+    """The digest of a result file's header: the root's attributes (but this digest's own),
+    ``/scene`` and ``/plan`` with their attributes (:func:`floorslide.run.snapshot.digest`).
+
+    A bit flipped there (the task count, a scale factor, the integrity scheme itself) would
+    make a half-finished file read as complete or unverified; with this digest it is refused.
+    """
+    node = Node({k: v for k, v in f.attrs.items() if k != HEADER_DIGEST_ATTR})
+    for name in ("scene", "plan"):
+        ds = f[name]
+        if not isinstance(ds, h5py.Dataset):
+            raise ValueError(f"/{name} is not a dataset")
+        node.children[name] = Data(ds[()], dict(ds.attrs))
+    return digest(node)
+
+
+def _write_header(f: h5py.File, scene_text: str, scene_path: str, scene_name: str, plan: dict):
+    """Write (or replace) the header of the open result file `f` and its digest."""
+    from floorslide import __version__
+
+    for name in ("scene", "plan"):
+        if name in f:
+            del f[name]
+    f.attrs["floorslide_format"] = FORMAT
+    f.attrs["floorslide_version"] = __version__
+    f.attrs["scene_name"] = scene_name
+    if "created" not in f.attrs:
+        f.attrs["created"] = time.strftime("%Y-%m-%dT%H:%M:%S")
+    f.attrs[DIGESTS_ATTR] = INTEGRITY
+    ds = f.create_dataset("scene", data=scene_text)
+    ds.attrs["path"] = scene_path
+    f.create_dataset("plan", data=json.dumps(plan))
+    f.attrs[HEADER_DIGEST_ATTR] = header_digest(f)
 
 
 _fallocate = getattr(os, "posix_fallocate", None)
@@ -453,6 +482,12 @@ def _reserve(path: Path, nbytes: int) -> None:
 class ResultWriter:
     """The single writer of a result file (not shared between processes).
 
+    While it is open, the writer holds an advisory lock (``flock``) on the run's journal
+    folder ``<file>.journal/``: a second run writing the same file (``--resume`` or
+    ``--overwrite`` included) is refused in one line instead of deleting the first one's
+    journal or mixing its tasks in. The lock is released by :meth:`finish`, :meth:`abandon`
+    or :meth:`close` (and by the operating system when the process ends).
+
     Parameters
     ----------
     path
@@ -461,12 +496,18 @@ class ResultWriter:
         What the file stores about its run (``/scene``, its ``path``, the ``scene_name``
         attribute, ``/plan``).
     resume
-        Continue the run of the same scene in `path`: its verified tasks and the valid entries
-        of its journal are kept; a task that fails its integrity check is rebuilt.
+        Continue the run of the same scene in `path`: its verified tasks whose inputs are
+        unchanged and the valid entries of its journal are kept; a task that fails its
+        integrity check, or whose inputs changed (`fingerprints`), is run again.
     overwrite
-        Replace whatever is at `path` (and an old journal beside it).
+        Replace the regular file at `path` (and an old journal beside it).
     task_ids
-        The run's task ids: a journal entry of any other task is refused (default: any).
+        The run's task ids: a journal entry of any other task is refused (default: any, or the
+        keys of `fingerprints`).
+    fingerprints
+        The fingerprint of each task's inputs (:func:`floorslide.run.fingerprint.
+        task_fingerprints`), stored with each task and in the plan; on `resume`, a stored task
+        or journal entry with another fingerprint is run again and said so.
     warn
         Called with one line for each thing a resumed run refuses or rebuilds (default: none).
 
@@ -474,7 +515,8 @@ class ResultWriter:
     ------
     OutputExistsError
         `path` exists (or a journal of an unfinished run is beside it) and neither `resume`
-        nor `overwrite` was given.
+        nor `overwrite` was given; `path` is not a regular file (a folder, a device, a link);
+        another run is writing it.
     ResultFileError
         `resume` on a file that is not a floorslide result file, or of another scene.
     OutputError
@@ -492,6 +534,7 @@ class ResultWriter:
         *,
         overwrite: bool = False,
         task_ids: Collection[str] | None = None,
+        fingerprints: Mapping[str, str] | None = None,
         warn: Callable[[str], None] | None = None,
     ):
         if resume and overwrite:
@@ -499,7 +542,12 @@ class ResultWriter:
         self.path = Path(path)
         self.journal = journal_dir(self.path)
         self.scene_text, self.scene_path, self.scene_name = scene_text, scene_path, scene_name
-        self.plan = plan
+        self.fingerprints = dict(fingerprints) if fingerprints is not None else None
+        self.plan = dict(plan)
+        if self.fingerprints is not None:
+            self.plan["fingerprints"] = self.fingerprints
+            if task_ids is None:
+                task_ids = list(self.fingerprints)
         self.scene_sha256 = scene_digest(scene_text)
         self.task_ids = None if task_ids is None else set(task_ids)
         self.warn = warn or _noop
@@ -509,27 +557,113 @@ class ResultWriter:
         """Tasks kept whatever happens next: in the file or in the journal."""
         self.created = False
         """Whether this writer created the file (so that a run that keeps nothing removes it)."""
-        if not resume:
-            self._refuse_to_replace(overwrite)
+        self._lock_fd: int | None = None
+        self._made_journal = False
+        self._check_target(resume, overwrite)
         try:
             self.path.parent.mkdir(parents=True, exist_ok=True)
-            self.journal.mkdir(parents=True, exist_ok=True)
         except OSError as exc:
             raise OutputError(
                 f"cannot create the output folder: {exc.strerror}", str(self.path)
             ) from None
-        if resume:
-            self._open_for_resume()
-            self._recover_journal()
-        else:
-            self._create()
+        self._lock()
+        try:
+            if resume:
+                self._open_for_resume()
+                self._recover_journal()
+            else:
+                self._refuse_to_replace(overwrite)
+                self._create()
+        except BaseException:
+            self._unlock(remove_new_journal=True)
+            raise
 
     # opening
 
+    def _check_target(self, resume: bool, overwrite: bool) -> None:
+        """Refuse what may never be written: not a regular file (with `overwrite` too)."""
+        if overwrite:
+            outputs.check_target(self.path, replace=True, advice="choose another -o")
+            return
+        if resume:
+            try:
+                mode = os.lstat(self.path).st_mode
+            except FileNotFoundError:
+                return
+            except OSError as exc:
+                raise OutputError(f"cannot be read: {exc.strerror}", str(self.path)) from None
+            if not stat.S_ISREG(mode):
+                raise ResultFileError(
+                    "not a floorslide result file (not a regular file); not replaced (choose "
+                    "another -o)",
+                    str(self.path),
+                )
+
+    def _lock(self) -> None:
+        """Create the journal folder if need be and lock it (``flock``, not waiting).
+
+        Raises
+        ------
+        OutputExistsError
+            Another run holds the lock, or the journal's place holds something else.
+        """
+        for _ in range(5):
+            try:
+                os.mkdir(self.journal)
+                made = True
+            except FileExistsError:
+                made = False
+            except OSError as exc:
+                raise OutputError(
+                    f"cannot create the journal folder: {exc.strerror}", str(self.journal)
+                ) from None
+            try:
+                fd = os.open(self.journal, os.O_RDONLY | os.O_DIRECTORY | os.O_NOFOLLOW)
+            except OSError:
+                kind = "a symbolic link" if self.journal.is_symlink() else "not a folder"
+                raise OutputExistsError(
+                    f"is {kind}; floorslide keeps the journal of a run there (move it away)",
+                    str(self.journal),
+                ) from None
+            try:
+                fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            except OSError as exc:
+                os.close(fd)
+                if made:
+                    with contextlib.suppress(OSError):
+                        os.rmdir(self.journal)
+                if exc.errno in (errno.EWOULDBLOCK, errno.EAGAIN, errno.EACCES):
+                    raise OutputExistsError(
+                        "is being written by another floorslide run (its journal is locked); "
+                        "wait for that run to end, or write to another file",
+                        str(self.path),
+                    ) from None
+                raise OutputError(
+                    f"cannot lock the journal: {exc.strerror}", str(self.journal)
+                ) from None
+            held, now = os.fstat(fd), None
+            with contextlib.suppress(OSError):
+                now = os.stat(self.journal)
+            if now is not None and (held.st_dev, held.st_ino) == (now.st_dev, now.st_ino):
+                self._lock_fd, self._made_journal = fd, made
+                return
+            os.close(fd)  # the folder was removed (a run ending) between mkdir and flock
+        raise OutputError("cannot lock the journal (it keeps being replaced)", str(self.journal))
+
+    def _unlock(self, remove_new_journal: bool = False) -> None:
+        """Release the lock; with `remove_new_journal`, remove the journal folder this writer
+        created if it is still empty."""
+        if remove_new_journal and self._made_journal:
+            with contextlib.suppress(OSError):
+                os.rmdir(self.journal)
+        if self._lock_fd is not None:
+            with contextlib.suppress(OSError):
+                os.close(self._lock_fd)
+            self._lock_fd = None
+
     def _refuse_to_replace(self, overwrite: bool) -> None:
         if overwrite:
-            if self.journal.is_dir():
-                shutil.rmtree(self.journal, ignore_errors=True)
+            self._clear_journal()
             return
         if self.path.exists() or self.path.is_symlink():
             raise OutputExistsError(
@@ -545,20 +679,20 @@ class ResultWriter:
                 str(self.journal),
             )
 
+    def _clear_journal(self) -> None:
+        """Remove what an older run left in the (locked) journal folder."""
+        for entry in list(self.journal.iterdir()):
+            with contextlib.suppress(OSError):
+                if entry.is_dir() and not entry.is_symlink():
+                    shutil.rmtree(entry)
+                else:
+                    entry.unlink()
+
     def _image(self) -> bytes:
         """A new result file holding no task, as bytes."""
-        from floorslide import __version__
-
         buf = io.BytesIO()
         with h5py.File(buf, "w") as f:
-            f.attrs["floorslide_format"] = FORMAT
-            f.attrs["floorslide_version"] = __version__
-            f.attrs["scene_name"] = self.scene_name
-            f.attrs["created"] = time.strftime("%Y-%m-%dT%H:%M:%S")
-            f.attrs[DIGESTS_ATTR] = DIGEST_SCHEME
-            ds = f.create_dataset("scene", data=self.scene_text)
-            ds.attrs["path"] = self.scene_path
-            f.create_dataset("plan", data=json.dumps(self.plan))
+            _write_header(f, self.scene_text, self.scene_path, self.scene_name, self.plan)
             f.create_group("tasks")
         return buf.getvalue()
 
@@ -591,7 +725,13 @@ class ResultWriter:
             )
             self._create()
             return
-        if reader.scene_text != self.scene_text:
+        if reader.header_problem:
+            self.warn(
+                f"{self.path}: its stored scene and plan fail their integrity check "
+                f"({reader.header_problem}); they are written again, and only tasks whose "
+                "inputs match this run's are kept"
+            )
+        elif reader.scene_text != self.scene_text:
             raise ResultFileError(
                 "was written for a different scene; resume with the same scene file",
                 str(self.path),
@@ -600,40 +740,108 @@ class ResultWriter:
         for tid, problem in problems.items():
             self.warn(f"{self.path}: task {tid} fails the integrity check ({problem}); rebuilt")
         self.done = set(reader.done_tasks()) - set(problems)
-        self.kept = set(self.done)
         if not reader.verified:
             self.warn(
                 f"{self.path}: written before floorslide kept task digests; its "
                 f"{len(self.done)} finished tasks are kept unverified"
             )
-        damaged = set(reader.damaged) | set(problems)
-        partial = set(reader.partial)
-        if damaged:
-            self._rebuild(reader)
-        elif partial:
-            try:
-                with _open_h5(self.path, "a") as f:
-                    for name in sorted(partial):
-                        del f["tasks"][name]
-            except H5_ERRORS:
-                self._rebuild(reader)
-
-    def _rebuild(self, reader: ResultFile) -> None:
-        """Rewrite the file with its verified tasks only (a damaged group cannot always be
-        deleted in place: HDF5 reads it to free it)."""
-        tmp = self.path.with_name(self.path.name + ".rebuild")
+        drop = set(reader.damaged) | set(problems)
+        moves = self._reconcile(reader, drop)
+        self.kept = set(self.done)
         try:
+            if drop & set(reader.damaged) or problems:
+                self._rebuild(reader, moves)
+            else:
+                _reserve(self.path, RESERVE_MIN + len(json.dumps(self.plan)) * 2)
+                with _open_h5(self.path, "a") as f:
+                    tasks = f["tasks"]
+                    for name in sorted(set(reader.partial) | drop):
+                        if name in tasks:
+                            del tasks[name]
+                    _move(tasks, moves)
+                    self._header(f)
+        except (*H5_ERRORS, OSError) as exc:
+            if isinstance(exc, OutputError):
+                raise
+            self._rebuild(reader, moves)
+
+    def _reconcile(self, reader: ResultFile, drop: set[str]) -> dict[str, str]:
+        """Compare the stored tasks' fingerprints with this run's: keep those that match, move
+        a task whose inputs are a new task's under another id (a catalog row deleted shifts
+        the ids), drop the rest (added to `drop`); say what changed.
+
+        Returns
+        -------
+        dict
+            Moves: stored id → this run's id.
+        """
+        if self.fingerprints is None:
+            return {}
+        new = self.fingerprints
+        stored = reader.fingerprints(sorted(self.done))
+        keep = {tid for tid in self.done if tid in new and stored.get(tid) == new[tid]}
+        by_print: dict[str, list[str]] = {}
+        for tid in sorted(self.done - keep):
+            if stored.get(tid):
+                by_print.setdefault(stored[tid], []).append(tid)
+        moves = {}
+        for tid in sorted(new):
+            if tid in keep:
+                continue
+            sources = by_print.get(new[tid])
+            if sources:
+                moves[sources.pop(0)] = tid
+        gone = self.done - keep - set(moves)
+        unprinted = sum(1 for tid in gone if not stored.get(tid))
+        changed = sum(1 for tid in gone if stored.get(tid) and tid in new)
+        removed = len(gone) - unprinted - changed
+        if unprinted:
+            self.warn(
+                f"{self.path}: {unprinted} finished tasks carry no fingerprint of their inputs "
+                "(written by an earlier floorslide); they run again"
+            )
+        if changed:
+            self.warn(
+                f"{self.path}: {changed} finished tasks were computed from other inputs (a "
+                "record's samples, scale, building, contents, spectra or the floorslide "
+                "version changed); they run again"
+            )
+        if removed:
+            self.warn(f"{self.path}: {removed} finished tasks are no longer in the plan; removed")
+        if moves:
+            self.warn(
+                f"{self.path}: {len(moves)} finished tasks keep their results under new task ids "
+                "(the plan's tasks shifted; their inputs are unchanged)"
+            )
+        drop |= gone
+        self.done = keep | set(moves.values())
+        return moves
+
+    def _header(self, f: h5py.File) -> None:
+        _write_header(f, self.scene_text, self.scene_path, self.scene_name, self.plan)
+
+    def _rebuild(self, reader: ResultFile, moves: Mapping[str, str] | None = None) -> None:
+        """Rewrite the file with its verified, current tasks only (a damaged group cannot
+        always be deleted in place: HDF5 reads it to free it)."""
+        moves = moves or {}
+        renamed = {dst for dst in moves.values()}
+        tmp = None
+        try:
+            fd, tmp = outputs.temporary(self.path)
+            os.close(fd)
             _write_file(tmp, self._image())
             _reserve(tmp, 2 * self.path.stat().st_size + RESERVE_MIN)
             with _open_h5(self.path, "r") as src, _open_h5(tmp, "a") as dst:
                 for tid in reader.done_tasks():
-                    if tid in self.done:
-                        src.copy(src["tasks"][tid], dst["tasks"], name=tid)
-            os.replace(tmp, self.path)
+                    name = moves.get(tid, tid)
+                    if name in self.done and (tid in moves or tid not in renamed):
+                        src.copy(src["tasks"][tid], dst["tasks"], name=name)
+            outputs.replace_atomically(tmp, self.path)
         except (*H5_ERRORS, OSError) as exc:
-            with contextlib.suppress(OSError):
-                tmp.unlink()
-            raise self._failure(exc, tmp) from None
+            if tmp is not None:
+                with contextlib.suppress(OSError):
+                    tmp.unlink()
+            raise self._failure(exc, tmp or self.path) from None
 
     def _recover_journal(self) -> None:
         """Put the journal's valid entries the file lacks into it; refuse the others."""
@@ -649,11 +857,20 @@ class ResultWriter:
                         "not a floorslide journal entry (pickle files are never loaded: they "
                         "could run code)"
                     )
+                if not stat.S_ISREG(os.lstat(entry).st_mode):
+                    raise journal.EntryError("not a regular file")
                 tid, node = journal.decode(entry.read_bytes(), self.scene_sha256)
                 if entry.name != f"{tid}{ENTRY_SUFFIX}":
                     raise journal.EntryError(f"holds task {tid}, not {entry.stem}")
                 if self.task_ids is not None and tid not in self.task_ids:
                     raise journal.EntryError(f"{tid} is not a task of this run")
+                if self.fingerprints is not None and (
+                    _s(node.attrs.get(FINGERPRINT_ATTR, "")) != self.fingerprints[tid]
+                ):
+                    raise journal.EntryError(
+                        "computed from other inputs (a record's samples, scale, building, "
+                        "contents, spectra or the floorslide version changed)"
+                    )
                 _read_task(node, tid)  # the layout of a task, or refused
             except (OSError, journal.EntryError, KeyError, ValueError, TypeError) as exc:
                 refused += 1
@@ -694,6 +911,8 @@ class ResultWriter:
             One line: what could not be written (a full disk: "no space left on device"), how
             many tasks are kept, and to rerun with ``--resume``.
         """
+        if self.fingerprints is not None:
+            result.meta[FINGERPRINT_ATTR] = self.fingerprints[result.task_id]
         node = task_node(result)  # holds no bookkeeping attribute: digest(node) is its digest
         node_digest = digest(node)
         tid = result.task_id
@@ -726,18 +945,38 @@ class ResultWriter:
         self.done.add(tid)
 
     def finish(self) -> None:
-        """A completed run: the journal is no longer needed."""
+        """A completed run: the journal is no longer needed; the lock is released."""
         shutil.rmtree(self.journal, ignore_errors=True)
+        self._unlock()
 
     def abandon(self) -> None:
         """A run that failed before keeping any task: remove the file it created (and its empty
-        journal), so that the same command can simply be run again."""
-        if not self.created or self.kept:
-            return
-        with contextlib.suppress(OSError):
-            self.path.unlink()
-        with contextlib.suppress(OSError):
-            self.journal.rmdir()
+        journal), so that the same command can simply be run again; the lock is released."""
+        if self.created and not self.kept:
+            with contextlib.suppress(OSError):
+                self.path.unlink()
+            with contextlib.suppress(OSError):
+                self.journal.rmdir()
+        self._unlock()
+
+    def close(self) -> None:
+        """Release the lock (the journal stays for ``--resume``); nothing else changes."""
+        self._unlock()
+
+    def __enter__(self) -> ResultWriter:
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+
+def _move(tasks: h5py.Group, moves: Mapping[str, str]) -> None:
+    """Rename task groups (stored id → new id) through temporary names, so that one group's
+    new name may be another's old one."""
+    for src in moves:
+        tasks.move(src, f"moving-{src}")
+    for src, dst in moves.items():
+        tasks.move(f"moving-{src}", dst)
 
 
 # --- reading -----------------------------------------------------------------------------
@@ -797,6 +1036,16 @@ class ResultFile:
                 if f.attrs.get("floorslide_format") != FORMAT or "tasks" not in f:
                     raise ResultFileError("not a floorslide result file", str(self.path))
                 self.verified = DIGESTS_ATTR in f.attrs
+                self.header_problem = _header_problem(f)
+                """Why the header fails its integrity check ("" when it passes or predates
+                the check); only with `repair`, else the file is refused."""
+                if self.header_problem and not repair:
+                    raise ResultFileError(
+                        f"its stored scene and plan fail their integrity check "
+                        f"({self.header_problem}); rebuild it with floorslide run SCENE -o "
+                        f"{self.path} --resume",
+                        str(self.path),
+                    )
                 self.scene_text = _s(f["scene"][()])
                 self.scene_name = str(f.attrs.get("scene_name", ""))
                 self.scene_path = _s(f["scene"].attrs.get("path", ""))
@@ -810,7 +1059,12 @@ class ResultFile:
                         g = tasks.get(k)  # None when a kill left the link but not the group
                         if not isinstance(g, h5py.Group):
                             raise ValueError(f"task {k} is damaged")
-                        done = g.attrs.get("done") == 1
+                        # every attribute name is listed (damaged attributes raise here, not
+                        # read as absent); the writer sets the done mark to 1 or not at all
+                        mark = g.attrs["done"] if "done" in set(g.attrs) else None
+                        if mark is not None and not (np.ndim(mark) == 0 and mark == 1):
+                            raise ValueError(f"task {k} is damaged (its done mark is {mark!r})")
+                        done = mark is not None
                     except H5_ERRORS:
                         if not repair:
                             raise
@@ -838,6 +1092,26 @@ class ResultFile:
     def done_tasks(self) -> list[str]:
         """Ids of the tasks marked done."""
         return list(self._done)
+
+    @property
+    def planned_fingerprints(self) -> dict[str, str] | None:
+        """The fingerprint of each planned task's inputs, from the stored plan (None in files
+        written before floorslide kept them)."""
+        prints = self.plan.get("fingerprints")
+        return prints if isinstance(prints, dict) and not self.header_problem else None
+
+    def fingerprints(self, tids: Collection[str]) -> dict[str, str]:
+        """The stored fingerprint of the inputs of each task of `tids` ("" where none is
+        stored or the group cannot be read)."""
+        out = {}
+        with _open_h5(self.path, "r") as f:
+            tasks = f["tasks"]
+            for tid in tids:
+                try:
+                    out[tid] = _s(tasks[tid].attrs.get(FINGERPRINT_ATTR, ""))
+                except H5_ERRORS:
+                    out[tid] = ""
+        return out
 
     @property
     def planned_tasks(self) -> int | None:
@@ -873,7 +1147,12 @@ class ResultFile:
             ok = _s(stored) == digest(node, BOOKKEEPING)
         except SnapshotError as exc:
             return None, f"unreadable: {exc}"
-        return (node, "") if ok else (None, "values changed after it was written")
+        if not ok:
+            return None, "values changed after it was written"
+        planned = self.planned_fingerprints
+        if planned is not None and _s(node.attrs.get(FINGERPRINT_ATTR, "")) != planned.get(tid):
+            return None, "computed from other inputs than the stored plan's: two runs mixed"
+        return node, ""
 
     def verify(self) -> dict[str, str]:
         """Every done task that fails its integrity check, with why (empty when all pass)."""
@@ -915,6 +1194,23 @@ class ResultFile:
             raise
         except (*H5_ERRORS, AttributeError) as exc:
             raise ResultFileError(f"corrupt result file: {exc}", str(self.path)) from None
+
+
+def _header_problem(f: h5py.File) -> str:
+    """Why the header of the open result file `f` fails its integrity check, or ""."""
+    scheme = f.attrs.get(DIGESTS_ATTR)
+    if scheme is None:  # written before floorslide kept digests: read unverified, with a note
+        return ""
+    stored = f.attrs.get(HEADER_DIGEST_ATTR)
+    if stored is None:  # written before the header had a digest
+        return "no digest" if _s(scheme) == INTEGRITY else ""
+    if _s(scheme) != INTEGRITY:
+        return f"the integrity scheme is {_s(scheme)!r}"
+    try:
+        ok = _s(stored) == header_digest(f)
+    except (SnapshotError, *H5_ERRORS) as exc:
+        return f"unreadable: {exc}"
+    return "" if ok else "changed after it was written"
 
 
 def _journal_of(path: Path, scene_sha256: str) -> bool:
