@@ -120,6 +120,17 @@ SCALE_KEYS = {
 TARGET_KEYS = {"sds", "sd1", "tl"}
 SPECTRA_KEYS = {"floors", "damping", "periods", "broadening"}
 REPORT_KEYS = {"periods", "damping", "compare", "history_record"}
+ID_MAX_CHARS = 64
+"""Longest id of a record set, building or content."""
+ID_RESERVED = "/:@"
+"""Characters an id must not hold: ``/`` separates the groups of the result file, ``:`` the two
+buildings of a comparison (``A:B``), ``@`` an id from its variant's tags (``iso@T=2.5``,
+``set@0.3g``)."""
+ID_RULE = (
+    f"an id is 1–{ID_MAX_CHARS} characters: letters, digits, spaces and punctuation other than "
+    "'/', ':' and '@', not '.' or '..', without control characters or spaces at either end"
+)
+"""What :func:`id_problem` allows, as the error messages say it."""
 QA_ACTIONS = ("warn", "reject")
 """Values of ``[scene] qa`` (:mod:`floorslide.records.quality`)."""
 MAX_STORIES = 200
@@ -431,6 +442,59 @@ class _Checker:
             return None
         return value
 
+    def ident(self, value, where) -> str | None:
+        """An id of a record set, building or content (:func:`id_problem`)."""
+        problem = id_problem(value)
+        if problem is not None:
+            self.add(where, problem)
+            return None
+        return value
+
+
+def name_problem(name: str) -> str | None:
+    """Why `name` cannot be the name of a group of the result file (None if it can).
+
+    HDF5 separates a path's groups with ``/`` and reads ``.`` as the group itself; a name
+    with a NUL is cut short by the C library, and control characters do not survive the
+    round trip through the file's text and the tables. Generated names (building variants
+    ``iso@T=2.5,xi=0.1``, scaled sets ``set@0.3g``) obey this rule too.
+    """
+    if not name:
+        return "must not be empty"
+    if name in (".", ".."):
+        return f"must not be {name!r} (HDF5 reads it as a folder)"
+    if "/" in name:
+        return "must not contain '/' (it separates the groups of the result file)"
+    bad = next((ch for ch in name if not ch.isprintable()), None)
+    if bad is not None:
+        return f"must not contain control or invisible characters (got {bad!r})"
+    return None
+
+
+def id_problem(value: object) -> str | None:
+    """Why `value` is not a valid id of a record set, building or content (None if it is).
+
+    The one rule for every id a scene names (:data:`ID_RULE`): an id becomes the name of a
+    group in the result file (:func:`name_problem`), is written with a variant's tags after
+    ``@`` and is compared as ``A:B``, and is matched after stripping spaces. Unicode letters
+    are fine (``Schrank``, ``機器``).
+    """
+    if not isinstance(value, str) or not value:
+        return f"must be a non-empty string, got {value!r}; {ID_RULE}"
+    problem = name_problem(value)
+    if problem is None:
+        reserved = [ch for ch in ID_RESERVED if ch in value]
+        if reserved:
+            problem = f"must not contain {' or '.join(map(repr, reserved))}"
+        elif value != value.strip():
+            problem = "must not begin or end with a space"
+        elif len(value) > ID_MAX_CHARS:
+            problem = f"must be at most {ID_MAX_CHARS} characters, got {len(value)}"
+    if problem is None:
+        return None
+    shown = value if len(value) <= 40 else value[:40] + "…"
+    return f"{shown!r} {problem}; {ID_RULE}"
+
 
 def _fmt(x: float) -> str:
     return f"{x:g}"
@@ -643,7 +707,7 @@ def _records(value, ck: _Checker, base: Path) -> tuple[tuple[RecordSetSpec, ...]
             ck.add(w, "must be a table")
             continue
         ck.keys(r, RECORD_KEYS, w)
-        name = ck.string(r.get("set"), f"{w}.set") if "set" in r else None
+        name = ck.ident(r.get("set"), f"{w}.set") if "set" in r else None
         if "set" not in r:
             ck.add(f"{w}.set", "missing: name the record set")
         elif name in names:
@@ -1036,25 +1100,27 @@ def _buildings(value, ck: _Checker) -> tuple[tuple[BuildingSpec, ...], set[str]]
         if not isinstance(b, dict):
             ck.add(w, "must be a table")
             continue
-        bid = ck.string(b.get("id"), f"{w}.id") if "id" in b else None
+        bid = ck.ident(b.get("id"), f"{w}.id") if "id" in b else None
+        # declared, even with an invalid id: names of it are not reported again as unknown
+        named = b["id"] if isinstance(b.get("id"), str) and b["id"] else None
         if "id" not in b:
             ck.add(f"{w}.id", "missing: name the building")
-        elif bid in ids:
-            ck.add(f"{w}.id", f"duplicate building id {bid!r}")
-        if bid:
-            ids.add(bid)
+        elif named in ids:
+            ck.add(f"{w}.id", f"duplicate building id {named!r}")
+        if named:
+            ids.add(named)
         kind = b.get("kind")
         if kind not in ("fixed", "isolated"):
             ck.add(f"{w}.kind", f"must be 'fixed' or 'isolated', got {kind!r}")
-            if bid:
-                unknown_kind.add(bid)
+            if named:
+                unknown_kind.add(named)
             continue
         if kind == "isolated":
             ck.keys(b, ISOLATED_KEYS, w)
             isolated.append((i, b, bid))
             continue
-        if bid:
-            declared_fixed.add(bid)
+        if named:
+            declared_fixed.add(named)
         ck.keys(b, FIXED_KEYS, w)
         model = _fixed_model(b, w, ck)
         damps = ck.numbers(b.get("damping", 0.05), f"{w}.damping", lo=0, hi=1, hi_open=True)
@@ -1286,7 +1352,7 @@ def _contents(value, ck: _Checker, stories: set[int]) -> tuple[ContentSpec, ...]
             ck.add(w, "must be a table")
             continue
         ck.keys(c, CONTENT_KEYS, w)
-        cid = ck.string(c.get("id"), f"{w}.id") if "id" in c else None
+        cid = ck.ident(c.get("id"), f"{w}.id") if "id" in c else None
         if "id" not in c:
             ck.add(f"{w}.id", "missing: name the content")
         elif cid in ids:
