@@ -51,8 +51,8 @@ from obspy import Stream, Trace
 from obspy.core import AttribDict
 
 from floorslide.errors import RecordError, UnitsError
-from floorslide.records.formats._text import UNDERSCORE_HINT
 from floorslide.records.units import canonical_units
+from floorslide.text_numbers import UNDERSCORE_HINT, parse_count, parse_number
 
 REQUIRED_COLUMNS = ("file", "dt", "units")
 
@@ -63,13 +63,6 @@ COMPONENT_FILE = re.compile(r"^file_([a-z0-9]+)$")
 def component_columns(columns: Iterable[str]) -> list[str]:
     """The ``file_<component>`` columns of a catalog header (lower-case names)."""
     return [c for c in columns if COMPONENT_FILE.match(c)]
-
-
-def _number(text: str) -> float:
-    """``float(text)``, refusing underscores (``float("0_01")`` is 1.0)."""
-    if "_" in text:
-        raise ValueError(UNDERSCORE_HINT)
-    return float(text)
 
 
 def _hint(exc: ValueError) -> str:
@@ -115,7 +108,7 @@ class CatalogEntry:
         if not text:
             return None
         try:
-            value = _number(text)
+            value = parse_number(text)
         except ValueError as exc:
             raise RecordError(
                 f"dt {text!r} is not a number of seconds{_hint(exc)}", self.where
@@ -176,7 +169,7 @@ class CatalogEntry:
         if not text:
             return
         try:
-            expected = int(_number(text))
+            expected = parse_count(text)
         except ValueError as exc:
             raise RecordError(
                 f"npts {text!r} is not a whole number{_hint(exc)}", self.where

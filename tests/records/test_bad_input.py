@@ -238,7 +238,8 @@ def _case(name: str, tmp: Path):
         return t / "jitter.txt", {}, RecordError, r"line 4: time 0.025 s is .* off the uniform grid"
     if name == "text npts inconsistent":
         (t / "npts.txt").write_text("# dt: 0.01\n# units: g\n# npts: 5\n0.1\n0.2\n")
-        return t / "npts.txt", {}, RecordError, r"npts=5 but the file holds 2 samples \(truncated\)"
+        said = r"truncated: the header says npts=5 but the file holds only 2 values"
+        return t / "npts.txt", {}, RecordError, said
     if name == "unknown format":
         return AT2, {"format": "XYZ"}, RecordError, r"unknown format 'XYZ'"
     raise AssertionError(name)
