@@ -167,17 +167,19 @@ def _check_units(ctx, param, value: str | None) -> str | None:
 
 
 def _number(text: str) -> float:
-    """``float(text)``, refusing underscores (Python reads ``0_01`` as 1.0, a typo for 0.01)."""
-    if "_" in text:
-        raise ValueError(f"{text!r}: underscores are not digit separators here")
-    return float(text)
+    """``float(text)``, refusing underscores (Python reads ``0_01`` as 1.0, a typo for 0.01;
+    :func:`floorslide.text_numbers.parse_number`)."""
+    from floorslide.text_numbers import parse_number
+
+    return parse_number(text)
 
 
 def _whole(text: str) -> int:
-    """``int(text)``, refusing underscores (Python reads ``1_00`` as 100)."""
-    if "_" in text:
-        raise ValueError(f"{text!r}: underscores are not digit separators here")
-    return int(text)
+    """A whole number (``100``, ``100.``, ``1e2``), refusing underscores (Python reads ``1_00``
+    as 100) and fractions (:func:`floorslide.text_numbers.parse_count`)."""
+    from floorslide.text_numbers import parse_count
+
+    return parse_count(text)
 
 
 class _Number(click.ParamType):
@@ -508,7 +510,7 @@ def _building(spec: str | None, floor: str | None):
         number = top
     else:
         try:
-            number = int(floor)
+            number = _whole(floor)
         except ValueError:
             raise click.BadParameter(
                 f"expected a floor number 0..{top} or roof, got {floor!r}", param_hint="--floor"

@@ -198,6 +198,8 @@ def test_floor_response_spectrum_from_the_command_line():
         (("--building", "fixed:masses=1/1"), ("stiffnesses is missing",)),
         (("--building", "fixed:period=0.4", "--floor", "2"), ("--floor", "0..1")),
         (("--building", "fixed:period=0.4", "--floor", "top"), ("--floor", "'top'")),
+        # int('1_0') is 10: a floor of a 12-storey building, not the typo it is
+        (("--building", "fixed:period=0.4,stories=12", "--floor", "1_0"), ("--floor", "'1_0'")),
         (("--floor", "2"), ("--floor", "needs --building")),
     ],
 )

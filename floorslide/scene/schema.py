@@ -809,54 +809,15 @@ def _records(value, ck: _Checker, base: Path) -> tuple[tuple[RecordSetSpec, ...]
 
 
 def _target_csv(path: Path, where: str, ck: _Checker):
-    """A target spectrum from a CSV of ``T, S_a`` rows (s, g; a header line and ``#``
-    comments allowed): the :class:`~floorslide.practice.target.TargetSpectrum`, or None with the
-    problem added (its line number named)."""
+    """A target spectrum from a CSV of ``T, S_a`` rows
+    (:func:`~floorslide.practice.target.read_target_csv`), or None with the problem added."""
     from floorslide.errors import ModelError
-    from floorslide.practice.target import TargetSpectrum
+    from floorslide.practice.target import read_target_csv
 
     try:
-        text = path.read_text(encoding="utf-8-sig")
-    except OSError as exc:
-        ck.add(where, f"cannot read the target file {path} ({exc.strerror or exc})")
-        return None
-    T: list[float] = []
-    S: list[float] = []
-    lines: list[int] = []
-    for k, line in enumerate(text.splitlines(), start=1):
-        body = line.split("#", 1)[0].strip()
-        if not body:
-            continue
-        cells = [c.strip() for c in body.replace(";", ",").replace("\t", ",").split(",")]
-        cells = [c for c in cells if c] if "," in body else body.split()
-        try:
-            t, sa = float(cells[0]), float(cells[1])
-        except (ValueError, IndexError):
-            if not T:  # a header line
-                continue
-            ck.add(
-                where, f"{path.name} line {k}: expected two numbers T (s), S_a (g), got {line!r}"
-            )
-            return None
-        if not (math.isfinite(t) and math.isfinite(sa)):
-            ck.add(where, f"{path.name} line {k}: T and S_a must be finite numbers")
-            return None
-        if sa < 0:
-            ck.add(where, f"{path.name} line {k}: S_a must be > 0 g, got {sa:g} (negative)")
-            return None
-        if T and t <= T[-1]:
-            ck.add(
-                where,
-                f"{path.name} line {k}: periods must increase, got T = {t:g} s after {T[-1]:g} s",
-            )
-            return None
-        T.append(t)
-        S.append(sa)
-        lines.append(k)
-    try:
-        return TargetSpectrum.from_table(T, S, name=path.name)
+        return read_target_csv(path)
     except ModelError as exc:
-        ck.add(where, f"{path.name}: {exc.message}")
+        ck.add(where, exc.message)
         return None
 
 
