@@ -1027,10 +1027,13 @@ def _pair_input(record, record2, reading, processing, building, building_h2, whe
     from floorslide.building.spec import describe_building, parse_building
     from floorslide.errors import ModelError
     from floorslide.pair import make_pair
+    from floorslide.records.pairs import check_components
     from floorslide.records.quality import check_record
 
-    t1, t2 = (_apply_processing(t, processing) for t in _pair_traces(record, record2, reading))
     labels = [record, record2 or f"{record} (2nd)"]
+    raw = _pair_traces(record, record2, reading)
+    check_components(*raw, *labels)
+    t1, t2 = (_apply_processing(t, processing) for t in raw)
     codes = []
     for tr, label in zip((t1, t2), labels, strict=True):
         quality = check_record(tr.data, tr.stats.delta)

@@ -302,6 +302,20 @@ def test_slide_two_component_mistakes(extra, hint):
     assert hint in out.stderr
 
 
+@pytest.mark.parametrize("command", ["slide", "spectrum"])
+def test_one_file_twice_or_two_earthquakes_are_not_a_pair(command):
+    """'slide A A' ran, with a note calling the parallel components '90 degrees off'; two
+    earthquakes at two stations passed as one pair."""
+    landers = H1.replace("RSN1084_NORTHR_SCS052", "RSN879_LANDERS_LCN260")
+    extra = ["--mu", "0.1"] if command == "slide" else ["--periods", "1"]
+    for second, text in ((H1, "the same file is given as both"), (landers, "different stations")):
+        out = run(command, H1, second, *extra)
+        assert out.returncode == 3, out.stderr
+        assert out.stderr.count("\n") == 1 and "Traceback" not in out.stderr
+        assert out.stderr.startswith(f"floorslide: error: {H1} + {second}: ")
+        assert text in out.stderr
+
+
 def test_slide_one_record_is_not_a_pair():
     out = run("slide", H1, "--pair", "--mu", "0.1")
     assert out.returncode != 0

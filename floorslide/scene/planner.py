@@ -607,7 +607,7 @@ def _load_pairs(
     zeros to the longer (said in ``meta["pair_notes"]``), and both scaled by one factor — the
     larger component's PGA to ``scale_pga``."""
     from floorslide.pair import make_pair
-    from floorslide.records.pairs import pair_rows
+    from floorslide.records.pairs import check_components, pair_rows
     from floorslide.records.process import process
 
     try:
@@ -628,8 +628,11 @@ def _load_pairs(
                 stream = e.read()
                 if len(stream) != 1:
                     raise RecordError(f"{len(stream)} traces; a component takes one", e.where)
-                tr = stream[0]
-                traces.append(process(tr, **processing) if processing else tr)
+                traces.append(stream[0])
+            names = (row["h1"].path.name, row["h2"].path.name)
+            check_components(traces[0], traces[1], *names, label)
+            if processing:
+                traces = [tr if tr is None else process(tr, **processing) for tr in traces]
             t1, t2, tv = traces
             pair = make_pair(
                 t1.data,
