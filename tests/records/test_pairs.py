@@ -98,6 +98,7 @@ def _cosmos_channels(tmp_path, components):
         block = lines[: end + 1]
         block[8] = block[8].replace("180 deg", comp)
         block[head + 1 : end] = [f"{(k + 1) * float(s):15.6e}" for s in block[head + 1 : end]]
+        block[10] = block[10].replace("-306.831", f"{-306.831 * (k + 1):.3f}")  # its peak
         blocks.append("\n".join(block))
     path = tmp_path / "three.V2"
     path.write_text("\n".join(blocks) + "\n")

@@ -90,6 +90,9 @@ _MISSING = re.compile(r"unknown/unspecified:\s*(-?\d+)\s*,\s*(-?[\d.]+)", re.I)
 _STATION = re.compile(r"Code:\s*([A-Za-z0-9_]*)\s*-\s*([A-Za-z0-9_]+)")
 _COMPONENT = re.compile(r"Sta\s+Chan\s*[^:]*:\s*(.*?)\s*(?:\(|Location:|$)", re.I)
 _SCNL = re.compile(r"<SCNL>\s*([^\s.]*)\.([^\s.]*)\.([^\s.]*)\.([^\s.]*)")
+# the processed record's peak the text header states: "Max = -306.831 cm/sec2 at 2.150 sec"
+# (not "Uncor max", the raw record's)
+_PEAK = re.compile(r"\bMax\s*=\s*([-+]?[\d.]+(?:[eE][-+]?\d+)?)\s*(\S+)\s+at\s+([\d.]+)\s*sec")
 
 # COSMOS Table 2 (physical units), acceleration entries only.
 _UNIT_CODES = {2: "g", 4: "gal", 7: "in/s**2", 10: "gal", 11: "mg"}
@@ -390,6 +393,14 @@ def _stats(block: _Block, match: re.Match, dt: float, npts: int, units: str) -> 
             meta[name] = value
     meta.comments = [c.rstrip() for c in block.comments]
     meta.header = [line.rstrip() for line in block.text]
+    peak = next((m for m in map(_PEAK.search, block.text) if m is not None), None)
+    if peak is not None and not math.isclose(float(peak.group(1)), block.missing_real):
+        stats.stated_peak = AttribDict(
+            value=float(peak.group(1)),
+            units=peak.group(2),
+            time=float(peak.group(3)),
+            text=" ".join(peak.group(0).split()),
+        )
     stats.cosmos = meta
     return stats
 
