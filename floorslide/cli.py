@@ -427,16 +427,27 @@ def inspect(
 
 
 def _floats(text: str, name: str) -> list[float]:
-    """Comma-separated numbers of an option, or a one-line usage error naming it."""
+    """Comma-separated numbers of an option (at most ``MAX_LIST``; no empty item: ``0.1,,0.2``
+    is a typo, not two values), or a one-line usage error naming it."""
+    from floorslide.constants import MAX_LIST
+
+    items = text.split(",")
+    if not text.strip():
+        raise click.BadParameter("expected at least one number", param_hint=name)
+    if len(items) > MAX_LIST:
+        raise click.BadParameter(f"at most {MAX_LIST} values, got {len(items)}", param_hint=name)
+    empty = next((k for k, v in enumerate(items) if not v.strip()), None)
+    if empty is not None:
+        raise click.BadParameter(
+            f"item {empty + 1} of {text[:60]!r} is empty; expected numbers separated by commas",
+            param_hint=name,
+        )
     try:
-        values = [_number(v) for v in text.split(",") if v.strip()]
+        return [_number(v) for v in items]
     except ValueError:
         raise click.BadParameter(
-            f"expected numbers separated by commas, got {text!r}", param_hint=name
+            f"expected numbers separated by commas, got {text[:60]!r}", param_hint=name
         ) from None
-    if not values:
-        raise click.BadParameter("expected at least one number", param_hint=name)
-    return values
 
 
 def _read_one(

@@ -85,6 +85,8 @@ def test_spectrum_log_spaced_periods_text_output():
         (("spectrum", RECORD, "--periods", "0.1:5:10000", "--damping", "0.02,0.05"), 0, ""),
         (("spectrum", RECORD, "--dt", "0_01"), 2, "'0_01'"),  # float('0_01') is 1.0
         (("slide", RECORD, "--mu", "0_1"), 2, "--mu"),
+        (("slide", RECORD, "--mu", "0.1,,0.2"), 2, "item 2 of '0.1,,0.2' is empty"),  # dropped
+        (("slide", RECORD, "--mu", ",".join(["0.1"] * 10001)), 2, "at most 10000 values, got"),
         (("slide", RECORD, "--mu", "0.1", "--scale-pga", "0_3"), 2, "'0_3'"),
         (("spectrum", RECORD, "--periods", "0.1:5:1_00"), 2, "--periods"),
         (("slide", RECORD, "--mu", "0.1", "--building", "fixed:period=0_4"), 2, "period='0_4'"),

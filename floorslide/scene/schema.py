@@ -496,6 +496,25 @@ def id_problem(value: object) -> str | None:
     return f"{shown!r} {problem}; {ID_RULE}"
 
 
+def parse_comparison(spec: object) -> tuple[str, str]:
+    """``"A:B"`` → ``("A", "B")``: the comparison of building A with building B (ids of
+    buildings or of their variants), as ``[report] compare`` and ``--compare`` give it.
+
+    Raises
+    ------
+    ValueError
+        Not two non-empty building ids separated by one colon, or one building twice (a
+        ratio of a building to itself is 1 by construction).
+    """
+    parts = spec.split(":") if isinstance(spec, str) else []
+    if len(parts) != 2 or not all(p.strip() for p in parts):
+        raise ValueError(f"expected A:B with two building ids, e.g. isolated:fixed, got {spec!r}")
+    a, b = parts[0].strip(), parts[1].strip()
+    if a == b:
+        raise ValueError(f"{spec!r} compares building {a!r} with itself; give two buildings")
+    return a, b
+
+
 def _fmt(x: float) -> str:
     return f"{x:g}"
 
@@ -1479,11 +1498,12 @@ def _report(
     valid_bases = {b.base for b in buildings}
     variants = {b.id for b in buildings}
     for j, comp in enumerate(comps):
-        parts = comp.split(":") if isinstance(comp, str) else []
-        if len(parts) != 2 or not all(p.strip() for p in parts):
-            ck.add(f"report.compare[{j}]", f"must be 'A:B' (two building ids), got {comp!r}")
+        try:
+            parts = parse_comparison(comp)
+        except ValueError as exc:
+            ck.add(f"report.compare[{j}]", str(exc))
             continue
-        for p in (x.strip() for x in parts):
+        for p in parts:
             base_id = p.split("@")[0]
             if base_id not in building_ids:
                 known = ", ".join(sorted(building_ids)) or "none"

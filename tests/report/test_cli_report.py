@@ -99,6 +99,7 @@ def test_table_json_options(monkeypatch, capsys, study, tmp_path):
         (["--compare", "isolated"], "--compare"),
         (["--compare", ":fixed"], "--compare"),
         (["--compare", "tower:fixed"], "--compare"),
+        (["--compare", "fixed:fixed"], "--compare"),  # a building with itself
         (["--compare", "isolated:fixed", "--compare", "fixed:tower@T=1"], "--compare"),
         (["--damping", "0.1"], "--damping"),
         (["--periods", "0.1,x"], "--periods"),

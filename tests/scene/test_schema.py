@@ -299,6 +299,7 @@ def test_a_bad_kind_reports_only_itself():
         ('history_record = "ImperialValley_1940_ELC-18"', "report.history_record: no record"),
         ('compare = ["iso@T=9,xi=0.1:fb1"]', "report.compare[0]: no building variant"),
         ('compare = ["tower:fb1"]', "report.compare[0]: unknown building 'tower'"),
+        ('compare = ["fb1 : fb1"]', "report.compare[0]: 'fb1 : fb1' compares building 'fb1' with"),
         ("damping = 0.02", "report.damping: 0.02 is not among spectra.damping (0.05)"),
     ],
 )
