@@ -45,7 +45,7 @@ import obspy
 from obspy import Stream, Trace
 from obspy.core import AttribDict
 
-from floorslide.errors import RecordError, UnitsError
+from floorslide.errors import RecordError, UnitsError, excerpt
 from floorslide.records import gmprocess_formats
 from floorslide.records.formats import at2, cosmos, text
 from floorslide.records.units import FACTORS, SI_UNITS, canonical_units
@@ -388,7 +388,8 @@ def _stated_units(trace: Trace, fmt: str, where: str) -> tuple[str | None, float
             return canonical_units(raw), 1.0
         except UnitsError:
             raise UnitsError(
-                f"the file gives unknown units {raw!r}; expected one of {', '.join(FACTORS)}",
+                f"the file gives unknown units {excerpt(raw)}; expected one of "
+                f"{', '.join(FACTORS)}",
                 where=where,
             ) from None
     return None, 1.0

@@ -38,7 +38,7 @@ import numpy as np
 from obspy import Stream, Trace
 from obspy.core import AttribDict, Stats
 
-from floorslide.errors import RecordError, UnitsError
+from floorslide.errors import RecordError, UnitsError, excerpt
 from floorslide.records.formats._text import (
     check_finite,
     count_mismatch,
@@ -103,13 +103,13 @@ def _parse_npts_dt(line: str, where: str) -> tuple[int, float]:
         npts_match, dt_match = _NPTS_EQ.search(line), _DT_EQ.search(line)
         if npts_match is None or not npts_match.group(1):
             raise RecordError(
-                f"header line {line.strip()!r} gives no NPTS "
+                f"header line {excerpt(line.strip(), 60)} gives no NPTS "
                 "(expected e.g. 'NPTS=  5590, DT=   .0100 SEC,')",
                 where=where,
             )
         if dt_match is None or not dt_match.group(1):
             raise RecordError(
-                f"header line {line.strip()!r} gives no DT "
+                f"header line {excerpt(line.strip(), 60)} gives no DT "
                 "(expected e.g. 'NPTS=  5590, DT=   .0100 SEC,')",
                 where=where,
             )
