@@ -167,17 +167,19 @@ def _check_units(ctx, param, value: str | None) -> str | None:
 
 
 def _number(text: str) -> float:
-    """``float(text)``, refusing underscores (Python reads ``0_01`` as 1.0, a typo for 0.01)."""
-    if "_" in text:
-        raise ValueError(f"{text!r}: underscores are not digit separators here")
-    return float(text)
+    """``float(text)``, refusing underscores (Python reads ``0_01`` as 1.0, a typo for 0.01;
+    :func:`floorslide.text_numbers.parse_number`)."""
+    from floorslide.text_numbers import parse_number
+
+    return parse_number(text)
 
 
 def _whole(text: str) -> int:
-    """``int(text)``, refusing underscores (Python reads ``1_00`` as 100)."""
-    if "_" in text:
-        raise ValueError(f"{text!r}: underscores are not digit separators here")
-    return int(text)
+    """A whole number (``100``, ``100.``, ``1e2``), refusing underscores (Python reads ``1_00``
+    as 100) and fractions (:func:`floorslide.text_numbers.parse_count`)."""
+    from floorslide.text_numbers import parse_count
+
+    return parse_count(text)
 
 
 class _Number(click.ParamType):
@@ -425,16 +427,27 @@ def inspect(
 
 
 def _floats(text: str, name: str) -> list[float]:
-    """Comma-separated numbers of an option, or a one-line usage error naming it."""
+    """Comma-separated numbers of an option (at most ``MAX_LIST``; no empty item: ``0.1,,0.2``
+    is a typo, not two values), or a one-line usage error naming it."""
+    from floorslide.constants import MAX_LIST
+
+    items = text.split(",")
+    if not text.strip():
+        raise click.BadParameter("expected at least one number", param_hint=name)
+    if len(items) > MAX_LIST:
+        raise click.BadParameter(f"at most {MAX_LIST} values, got {len(items)}", param_hint=name)
+    empty = next((k for k, v in enumerate(items) if not v.strip()), None)
+    if empty is not None:
+        raise click.BadParameter(
+            f"item {empty + 1} of {text[:60]!r} is empty; expected numbers separated by commas",
+            param_hint=name,
+        )
     try:
-        values = [_number(v) for v in text.split(",") if v.strip()]
+        return [_number(v) for v in items]
     except ValueError:
         raise click.BadParameter(
-            f"expected numbers separated by commas, got {text!r}", param_hint=name
+            f"expected numbers separated by commas, got {text[:60]!r}", param_hint=name
         ) from None
-    if not values:
-        raise click.BadParameter("expected at least one number", param_hint=name)
-    return values
 
 
 def _read_one(
@@ -508,7 +521,7 @@ def _building(spec: str | None, floor: str | None):
         number = top
     else:
         try:
-            number = int(floor)
+            number = _whole(floor)
         except ValueError:
             raise click.BadParameter(
                 f"expected a floor number 0..{top} or roof, got {floor!r}", param_hint="--floor"
@@ -1025,10 +1038,13 @@ def _pair_input(record, record2, reading, processing, building, building_h2, whe
     from floorslide.building.spec import describe_building, parse_building
     from floorslide.errors import ModelError
     from floorslide.pair import make_pair
+    from floorslide.records.pairs import check_components
     from floorslide.records.quality import check_record
 
-    t1, t2 = (_apply_processing(t, processing) for t in _pair_traces(record, record2, reading))
     labels = [record, record2 or f"{record} (2nd)"]
+    raw = _pair_traces(record, record2, reading)
+    check_components(*raw, *labels)
+    t1, t2 = (_apply_processing(t, processing) for t in raw)
     codes = []
     for tr, label in zip((t1, t2), labels, strict=True):
         quality = check_record(tr.data, tr.stats.delta)

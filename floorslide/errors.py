@@ -17,6 +17,14 @@ def one_line(text: str) -> str:
     return _CONTROL.sub(lambda m: m.group().encode("unicode_escape").decode(), text)
 
 
+def excerpt(text: object, limit: int = 40) -> str:
+    """A user's text quoted in a message: ``repr`` of its first `limit` characters on one line
+    (control characters escaped, ``…`` where it was cut) — never a whole line of a file,
+    which may be long or binary."""
+    text = one_line(str(text))
+    return repr(text if len(text) <= limit else text[:limit] + "…")
+
+
 class FloorslideError(Exception):
     """Base class of the errors floorslide reports to its users.
 

@@ -208,7 +208,9 @@ def unwrap_record(
     try:
         canonical = canonical_units(units)
     except UnitsError as exc:
-        raise UnitsError(f"the trace given as {name} has {exc.message}", where) from None
+        raise UnitsError(
+            f"stats.units of the trace given as {name}: {exc.message}", where
+        ) from None
     data = trace.data
     if np.ma.isMaskedArray(data) and np.ma.is_masked(data):
         raise RecordError(

@@ -160,11 +160,17 @@ def make_pair(
     azimuths = None
     if az[0] is not None and az[1] is not None:
         azimuths = (az[0] % 360.0, az[1] % 360.0)
-        off = abs(((azimuths[1] - azimuths[0]) % 180.0) - 90.0)
-        if off > 1e-6:
+        turn = (azimuths[1] - azimuths[0]) % 180.0
+        between = min(turn, 180.0 - turn)  # the angle between the two axes, 0–90 degrees
+        if 90.0 - between > 1e-6:
+            how = (
+                "parallel: both along one axis"
+                if between < 1e-6
+                else f"{between:g} degrees apart, {90.0 - between:g} degrees from perpendicular"
+            )
             notes.append(
                 f"components {names[0]} and {names[1]} are not perpendicular by their azimuths "
-                f"({off:g} degrees off): the plane's frame takes them as x and y"
+                f"({how}): the plane's frame takes them as x and y"
             )
     return RecordPair(
         arrays["h1"],

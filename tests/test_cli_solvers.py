@@ -85,6 +85,8 @@ def test_spectrum_log_spaced_periods_text_output():
         (("spectrum", RECORD, "--periods", "0.1:5:10000", "--damping", "0.02,0.05"), 0, ""),
         (("spectrum", RECORD, "--dt", "0_01"), 2, "'0_01'"),  # float('0_01') is 1.0
         (("slide", RECORD, "--mu", "0_1"), 2, "--mu"),
+        (("slide", RECORD, "--mu", "0.1,,0.2"), 2, "item 2 of '0.1,,0.2' is empty"),  # dropped
+        (("slide", RECORD, "--mu", ",".join(["0.1"] * 10001)), 2, "at most 10000 values, got"),
         (("slide", RECORD, "--mu", "0.1", "--scale-pga", "0_3"), 2, "'0_3'"),
         (("spectrum", RECORD, "--periods", "0.1:5:1_00"), 2, "--periods"),
         (("slide", RECORD, "--mu", "0.1", "--building", "fixed:period=0_4"), 2, "period='0_4'"),
@@ -198,6 +200,8 @@ def test_floor_response_spectrum_from_the_command_line():
         (("--building", "fixed:masses=1/1"), ("stiffnesses is missing",)),
         (("--building", "fixed:period=0.4", "--floor", "2"), ("--floor", "0..1")),
         (("--building", "fixed:period=0.4", "--floor", "top"), ("--floor", "'top'")),
+        # int('1_0') is 10: a floor of a 12-storey building, not the typo it is
+        (("--building", "fixed:period=0.4,stories=12", "--floor", "1_0"), ("--floor", "'1_0'")),
         (("--floor", "2"), ("--floor", "needs --building")),
     ],
 )
@@ -298,6 +302,20 @@ def test_slide_two_component_mistakes(extra, hint):
     out = run("slide", H1, H2, "--mu", "0.1", *extra)
     assert out.returncode == 2
     assert hint in out.stderr
+
+
+@pytest.mark.parametrize("command", ["slide", "spectrum"])
+def test_one_file_twice_or_two_earthquakes_are_not_a_pair(command):
+    """'slide A A' ran, with a note calling the parallel components '90 degrees off'; two
+    earthquakes at two stations passed as one pair."""
+    landers = H1.replace("RSN1084_NORTHR_SCS052", "RSN879_LANDERS_LCN260")
+    extra = ["--mu", "0.1"] if command == "slide" else ["--periods", "1"]
+    for second, text in ((H1, "the same file is given as both"), (landers, "different stations")):
+        out = run(command, H1, second, *extra)
+        assert out.returncode == 3, out.stderr
+        assert out.stderr.count("\n") == 1 and "Traceback" not in out.stderr
+        assert out.stderr.startswith(f"floorslide: error: {H1} + {second}: ")
+        assert text in out.stderr
 
 
 def test_slide_one_record_is_not_a_pair():

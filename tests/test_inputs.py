@@ -163,6 +163,17 @@ def test_unknown_units_are_refused_naming_them(trace_g):
     assert "'counts'" in one_line(exc)
 
 
+def test_units_that_are_not_a_string_name_the_key(trace_g):
+    """The message read 'the trace given as acc has units must be a string ...'."""
+    tr = trace_g.copy()
+    tr.stats.units = 3
+    with pytest.raises(UnitsError) as exc:
+        fs.slide(tr, mu_k=0.1)
+    text = one_line(exc)
+    assert "stats.units of the trace given as acc: units must be a string" in text
+    assert " has units" not in text
+
+
 def test_dt_contradicting_the_trace_is_refused(trace_g):
     with pytest.raises(RecordError) as exc:
         fs.slide(trace_g, 0.02, mu_k=0.1)

@@ -13,11 +13,14 @@ Spectral accelerations are in units of g throughout (as codes give them).
 from __future__ import annotations
 
 import math
+import os
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 
 from floorslide.errors import ModelError
+from floorslide.text_numbers import parse_number, underscore_hint
 
 FACTOR_LIMITS = (0.25, 4.0)
 """Scale factors outside this range are flagged: a record scaled that far is a different
@@ -25,6 +28,13 @@ earthquake (its duration and frequency content no longer match the amplitude).""
 
 SUITE_FRACTION = 0.9
 """ASCE 7-22 §16.2.3: the suite's mean spectrum is at least 90 % of the target over the range."""
+
+MAX_TARGET_BYTES = 10 * 2**20
+"""Largest target-spectrum CSV read (10 MiB, about 300 000 rows): a target spectrum has at
+most a few thousand rows; a larger file is not one (and is refused before it is read)."""
+
+MAX_TARGET_ROWS = 100_000
+"""Most ``(T, S_a)`` rows a target-spectrum CSV may hold."""
 
 
 @dataclass(frozen=True)
@@ -94,6 +104,117 @@ class TargetSpectrum:
                 "target",
             )
         return _loglog_interp(T, self.periods, self.sa)
+
+
+def _cells(body: str) -> list[str]:
+    """The fields of a CSV line: separated by commas, semicolons or tabs, else white space."""
+    if any(sep in body for sep in ",;\t"):
+        cells = [c.strip() for c in body.replace(";", ",").replace("\t", ",").split(",")]
+        return [c for c in cells if c]
+    return body.split()
+
+
+def _is_word(cell: str) -> bool:
+    """Whether a field is a column name rather than a (mistyped) number: not a number, not even
+    without its underscores (``T_s`` is a name, ``0_05`` a number with an underscore)."""
+    for text in (cell, cell.replace("_", "")):
+        try:
+            float(text)
+        except ValueError:
+            continue
+        return False
+    return True
+
+
+def read_target_csv(path: str | os.PathLike) -> TargetSpectrum:
+    """A target spectrum from a CSV file of ``T, S_a`` rows (s, g).
+
+    Two fields per row (``0,05;1,2`` with decimal commas is refused, not read as 0 and 5),
+    separated by commas, semicolons, tabs or white space; ``#`` starts a comment;
+    lines of column names (``T_s, Sa_g``) may come before the first row; periods must increase
+    and ``S_a`` be > 0 (:meth:`TargetSpectrum.from_table`). The file is read line by line: a
+    file above :data:`MAX_TARGET_BYTES` or with more than :data:`MAX_TARGET_ROWS` rows is
+    refused, and so are UTF-16, binary and non-UTF-8 files and numbers with underscores
+    (Python reads ``0_05`` as 5; :mod:`floorslide.text_numbers`).
+
+    Raises
+    ------
+    ModelError
+        ``where`` is ``"target"``; the message names the file (and the line) and what was
+        expected.
+    """
+    path = Path(path)
+    name = path.name
+    expected = "a target spectrum is a UTF-8 CSV of T (s), S_a (g) rows"
+
+    def fail(problem: str, line: int = 0) -> ModelError:
+        return ModelError(
+            f"{name} line {line}: {problem}" if line else f"{name}: {problem}", "target"
+        )
+
+    periods: list[float] = []
+    sa: list[float] = []
+    try:
+        size = path.stat().st_size
+        if size > MAX_TARGET_BYTES:
+            raise fail(
+                f"{size:,} bytes; {expected}, at most {MAX_TARGET_BYTES // 2**20} MiB "
+                f"and {MAX_TARGET_ROWS:,} rows"
+            )
+        with open(path, "rb") as fh:
+            head = fh.read(4096)
+            if head.startswith((b"\xff\xfe", b"\xfe\xff")):
+                raise fail(f"UTF-16 text; {expected}: save it as UTF-8")
+            if b"\x00" in head:
+                raise fail(f"binary data, not text; {expected}")
+            fh.seek(0)
+            for k, raw in enumerate(fh, start=1):
+                try:
+                    line = raw.decode("utf-8")
+                except UnicodeDecodeError:
+                    raise fail(f"not UTF-8 text; {expected}", k) from None
+                body = line.removeprefix("\ufeff").split("#", 1)[0].strip()
+                if not body:
+                    continue
+                cells = _cells(body)
+                if not periods and all(_is_word(c) for c in cells):
+                    continue  # column names
+                row = _row(cells, k, expected, fail)
+                if periods and row[0] <= periods[-1]:
+                    raise fail(
+                        f"periods must increase, got T = {row[0]:g} s after {periods[-1]:g} s", k
+                    )
+                if len(periods) == MAX_TARGET_ROWS:
+                    raise fail(f"more than {MAX_TARGET_ROWS:,} rows; {expected}")
+                periods.append(row[0])
+                sa.append(row[1])
+    except OSError as exc:
+        raise fail(f"cannot read the file ({exc.strerror or exc})") from None
+    try:
+        return TargetSpectrum.from_table(periods, sa, name=name)
+    except ModelError as exc:
+        raise fail(exc.message) from None
+
+
+def _row(cells: list[str], k: int, expected: str, fail) -> tuple[float, float]:
+    """``(T, S_a)`` of the fields of line `k`, or the error `fail` makes."""
+    if len(cells) != 2:
+        shown = ", ".join(cells)
+        shown = shown if len(shown) <= 60 else shown[:60] + "…"
+        raise fail(f"{len(cells)} field{'' if len(cells) == 1 else 's'} ({shown!r}); {expected}", k)
+    values = []
+    for cell in cells:
+        try:
+            values.append(parse_number(cell))
+        except ValueError:
+            shown = cell if len(cell) <= 30 else cell[:30] + "…"
+            raise fail(f"{shown!r} is not a number{underscore_hint(cell)}", k) from None
+    t, s = values
+    if not (math.isfinite(t) and math.isfinite(s)):
+        raise fail("T and S_a must be finite numbers", k)
+    if s < 0:
+        raise fail(f"S_a must be > 0 g, got {s:g} (negative)", k)
+    return t, s
 
 
 def _two_point(T, sds, sd1, tl):

@@ -9,7 +9,8 @@ bundled ``data/records/slammer/index.csv``::
 
 Rules:
 
-- ``file`` is relative to the catalog's folder (an absolute path is used as is);
+- ``file`` is relative to the catalog's folder and stays inside it (``../x`` is refused), or
+  an absolute path, used as is;
 - ``dt`` (s) and ``units`` may be left empty for a self-describing format (AT2, COSMOS, text
   with a header), and must agree with the file when both are given;
 - optional columns ``format`` and ``component`` are passed to
@@ -51,8 +52,8 @@ from obspy import Stream, Trace
 from obspy.core import AttribDict
 
 from floorslide.errors import RecordError, UnitsError
-from floorslide.records.formats._text import UNDERSCORE_HINT
 from floorslide.records.units import canonical_units
+from floorslide.text_numbers import UNDERSCORE_HINT, parse_count, parse_number
 
 REQUIRED_COLUMNS = ("file", "dt", "units")
 
@@ -63,13 +64,6 @@ COMPONENT_FILE = re.compile(r"^file_([a-z0-9]+)$")
 def component_columns(columns: Iterable[str]) -> list[str]:
     """The ``file_<component>`` columns of a catalog header (lower-case names)."""
     return [c for c in columns if COMPONENT_FILE.match(c)]
-
-
-def _number(text: str) -> float:
-    """``float(text)``, refusing underscores (``float("0_01")`` is 1.0)."""
-    if "_" in text:
-        raise ValueError(UNDERSCORE_HINT)
-    return float(text)
 
 
 def _hint(exc: ValueError) -> str:
@@ -115,7 +109,7 @@ class CatalogEntry:
         if not text:
             return None
         try:
-            value = _number(text)
+            value = parse_number(text)
         except ValueError as exc:
             raise RecordError(
                 f"dt {text!r} is not a number of seconds{_hint(exc)}", self.where
@@ -176,7 +170,7 @@ class CatalogEntry:
         if not text:
             return
         try:
-            expected = int(_number(text))
+            expected = parse_count(text)
         except ValueError as exc:
             raise RecordError(
                 f"npts {text!r} is not a whole number{_hint(exc)}", self.where
@@ -339,7 +333,7 @@ def load_catalog(
         if "file" in row:
             if not row["file"]:
                 raise RecordError("empty 'file' column", where=f"{path}:{line}")
-            found = [CatalogEntry(path, line, path.parent / row["file"], row)]
+            found = [CatalogEntry(path, line, _record_path(path, row["file"], line, "file"), row)]
         else:
             named = [c for c in component_columns(columns) if row[c]]
             if not named:
@@ -350,13 +344,36 @@ def load_catalog(
             found = []
             for column in named:
                 own = _component_row(row, column)
-                found.append(CatalogEntry(path, line, path.parent / own["file"], own, column))
+                record = _record_path(path, own["file"], line, column)
+                found.append(CatalogEntry(path, line, record, own, column))
         for entry in found:
             _check_duplicate(entry, seen)
         if where and not _matches(row, where):
             continue
         entries.extend(found)
     return entries
+
+
+def _record_path(catalog: Path, text: str, line: int, column: str) -> Path:
+    """The record file a catalog row names: a relative path under the catalog's folder, or an
+    absolute path, used as given (a user's own catalog may point anywhere, in plain sight).
+
+    A relative path that leaves the catalog's folder (``../../etc/passwd``) is refused: a
+    catalog handed on with its records must not reach files outside them, and reading an
+    arbitrary file as a record would quote its text in the errors and the result file.
+    """
+    path = Path(text)
+    if path.is_absolute():
+        return path
+    parts = Path(os.path.normpath(text)).parts
+    if parts and parts[0] == os.pardir:
+        raise RecordError(
+            f"{column} {text[:80]!r} leaves the catalog's folder; a relative path is read "
+            "inside it: move the catalog up to a folder that holds its records, or give an "
+            "absolute path",
+            where=f"{catalog}:{line}",
+        )
+    return catalog.parent / path
 
 
 def _check_duplicate(entry: CatalogEntry, seen: dict[tuple[Path, str], CatalogEntry]) -> None:
@@ -414,7 +431,7 @@ def _rows(fh, path: Path, components: bool = False):
             if missing == ["file"] and per_component:
                 missing = []
             if missing:
-                found = ", ".join(c for c in columns if c) or "none"
+                found = ", ".join(c for c in columns if c)[:80] or "none"  # not a whole line
                 raise RecordError(
                     f"not a record catalog: no column {', '.join(map(repr, missing))}; a "
                     f"catalog needs the columns {', '.join(REQUIRED_COLUMNS)} (or "

@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import logging
 import math
+import re
 import warnings
 from contextlib import contextmanager
 from importlib.metadata import PackageNotFoundError, version
@@ -174,7 +175,49 @@ def read_gmprocess(path: str | Path, where: str, detect: bool = False) -> Stream
     stream = to_record_stream(streams, where)
     for trace in stream:
         trace.stats.gmprocess["log"] = list(notes)
+    _attach_stated_peaks(stream, path)
     return stream
+
+
+STATED_PEAK = {
+    "dmg": re.compile(
+        r"PEAK\s+ACCELERATION\s*=\s*([-+]?[\d.]+(?:[eE][-+]?\d+)?)\s+(\S+)\s+AT\s+([\d.]+)\s+SEC"
+    ),
+    "geonet": re.compile(
+        r"Acceleration:\s+Peak\s+([-+]?[\d.]+(?:[eE][-+]?\d+)?)\s+(\S+)\s+at\s+([\d.]+)\s*s\b"
+    ),
+}
+"""The header line stating a channel's peak acceleration and its time, per gmprocess format
+(DMG/CSMIP: ``PEAK ACCELERATION =  -267.957    CM/SEC/SEC  AT   10.940   SEC.``; GeoNet
+V1A/V2A: ``Acceleration:  Peak  -2080.5 mm/s/s at  23.28 s``): one per channel, in the
+channels' order. gmprocess reads neither; :func:`floorslide.records.read.read_record`
+checks the samples against them (a damaged GeoNet time step read silently otherwise)."""
+
+
+def _attach_stated_peaks(stream: Stream, path: str | Path) -> None:
+    """``stats.stated_peak`` of each trace from its header line (:data:`STATED_PEAK`), when the
+    file states one per acceleration trace read (else none: they cannot be matched)."""
+    by_format: dict[str, list[Trace]] = {}
+    for trace in stream:
+        by_format.setdefault(trace.stats._format.removeprefix(FORMAT_PREFIX), []).append(trace)
+    for name, traces in by_format.items():
+        pattern = STATED_PEAK.get(name)
+        if pattern is None:
+            continue
+        try:
+            with open(path, encoding="latin-1") as fh:
+                found = [m for m in map(pattern.search, fh) if m is not None]
+        except OSError:
+            return
+        if len(found) != len(traces):
+            continue
+        for trace, match in zip(traces, found, strict=True):
+            trace.stats.stated_peak = AttribDict(
+                value=float(match.group(1)),
+                units=match.group(2),
+                time=float(match.group(3)),
+                text=" ".join(match.group(0).split()),
+            )
 
 
 @contextmanager

@@ -27,6 +27,7 @@ from floorslide.pair import RecordPair, make_pair
 
 __all__ = [
     "RecordPair",
+    "check_components",
     "is_pair_catalog",
     "make_pair",
     "pair_id",
@@ -34,6 +35,75 @@ __all__ = [
     "read_pair",
     "read_pairs",
 ]
+
+
+START_TOLERANCE = 60.0
+"""Most seconds the start times of the two components of one recording may differ (when both
+files state one): one instrument starts its channels together; components that start
+minutes or hours apart are of different recordings (an aftershock, another earthquake)."""
+
+
+def _said(trace, key: str) -> str:
+    """``stats.record.<key>`` (event, station, path, component) as a comparable text ('' when
+    the file does not say)."""
+    rec = getattr(trace.stats, "record", None)
+    value = rec.get(key, "") if rec is not None else ""
+    return " ".join(str(value or "").split())
+
+
+def _start(trace):
+    """The start time a file states, or None (readers without one leave ObsPy's 1970-01-01)."""
+    from obspy import UTCDateTime
+
+    start = trace.stats.starttime
+    return None if start == UTCDateTime(0) else start
+
+
+def check_components(trace1, trace2, label1: str, label2: str, where: str | None = None) -> None:
+    """Refuse two Traces that cannot be the two horizontal components of one recording.
+
+    The rule (docs/design.md §10d), each a one-line :class:`~floorslide.errors.RecordError`
+    naming both (``label1 + label2``, or ``where`` — a catalog line — and then the labels in
+    the message):
+
+    - the same file and component twice, or two components holding the same samples (one
+      component given twice: its "pair" would be one motion along 45°, not the recording);
+    - files whose metadata name different stations or different events (``stats.record``:
+      the AT2 title, COSMOS and K-NET headers, a text header, the catalog's columns), compared
+      without regard to case and spacing, when both name one;
+    - start times more than :data:`START_TOLERANCE` apart, when both files state one.
+    """
+    both = f" ({label1}, {label2})" if where else ""
+    where = where or f"{label1} + {label2}"
+    path1, path2 = _said(trace1, "path"), _said(trace2, "path")
+    same_file = bool(path1 and path2) and Path(path1).resolve() == Path(path2).resolve()
+    if same_file and _said(trace1, "component") == _said(trace2, "component"):
+        problem = (
+            "the same file is given as both horizontal components; a pair is two components "
+            "of one recording (the second horizontal's file as RECORD2, or file_h2)"
+        )
+        raise RecordError(problem + both, where)
+    if trace1.stats.delta == trace2.stats.delta and np.array_equal(trace1.data, trace2.data):
+        problem = (
+            f"both components hold the same {trace1.stats.npts} samples: one component given "
+            "twice, not two horizontal components of one recording"
+        )
+        raise RecordError(problem + both, where)
+    for key in ("station", "event"):
+        a, b = _said(trace1, key), _said(trace2, key)
+        if a and b and a.casefold() != b.casefold():
+            problem = (
+                f"the components are of different {key}s ({a!r} and {b!r}); a pair is two "
+                "horizontal components of one recording"
+            )
+            raise RecordError(problem + both, where)
+    t1, t2 = _start(trace1), _start(trace2)
+    if t1 is not None and t2 is not None and abs(t2 - t1) > START_TOLERANCE:
+        problem = (
+            f"the components start {abs(t2 - t1):.0f} s apart ({t1}, {t2}; at most "
+            f"{START_TOLERANCE:g} s for one recording): two different recordings"
+        )
+        raise RecordError(problem + both, where)
 
 
 def _one(stream, path) -> tuple[np.ndarray, float, str]:
@@ -146,6 +216,7 @@ def read_pair(
                 )
             return read_pair(*sibs, format=format, units=units, dt=dt)
         (t1, t2), tv = _split(stream, path_h1)
+        check_components(t1, t2, f"{path_h1} ({_component(t1)})", f"{path_h1} ({_component(t2)})")
         name = Path(path_h1).name
         return make_pair(
             np.asarray(t1.data, dtype=float),
@@ -157,8 +228,10 @@ def read_pair(
             dt2=float(t2.stats.delta),
             dt_v=None if tv is None else float(tv.stats.delta),
         )
-    a1, dt1, c1 = _one(read(path_h1), path_h1)
-    a2, dt2, c2 = _one(read(path_h2), path_h2)
+    s1, s2 = read(path_h1), read(path_h2)
+    a1, dt1, c1 = _one(s1, path_h1)
+    a2, dt2, c2 = _one(s2, path_h2)
+    check_components(s1[0], s2[0], str(path_h1), str(path_h2))
     av = dtv = None
     if path_v is not None:
         av, dtv, _ = _one(read(path_v), path_v)
@@ -235,8 +308,11 @@ def read_pairs(catalog: str | os.PathLike, where=None) -> list[RecordPair]:
     out = []
     for row in pair_rows(catalog, where):
         e1, e2, ev = row["h1"], row["h2"], row["v"]
-        a1, dt1, _ = _one(e1.read(), e1.path)
-        a2, dt2, _ = _one(e2.read(), e2.path)
+        s1, s2 = e1.read(), e2.read()
+        a1, dt1, _ = _one(s1, e1.path)
+        a2, dt2, _ = _one(s2, e2.path)
+        where = f"{catalog}:{row['line']}"
+        check_components(s1[0], s2[0], e1.path.name, e2.path.name, where)
         av = dtv = None
         if ev is not None:
             av, dtv, _ = _one(ev.read(), ev.path)

@@ -69,6 +69,7 @@ from floorslide.errors import ModelError, UnitsError
 from floorslide.records.measures import velocity_displacement
 from floorslide.records.read import PROCESSING_PREFIX
 from floorslide.records.units import SI_UNITS, canonical_units
+from floorslide.text_numbers import parse_number
 
 STEPS = (
     "demean",
@@ -100,7 +101,7 @@ def _positive(key: str, value: Any) -> float:
     if isinstance(value, bool):
         raise _fail(key, f"{value!r} is not a number")
     try:
-        number = float(value)
+        number = parse_number(value) if isinstance(value, str) else float(value)
     except (TypeError, ValueError):
         raise _fail(key, f"{value!r} is not a number") from None
     if not np.isfinite(number) or number <= 0:

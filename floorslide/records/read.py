@@ -45,7 +45,7 @@ import obspy
 from obspy import Stream, Trace
 from obspy.core import AttribDict
 
-from floorslide.errors import RecordError, UnitsError
+from floorslide.errors import RecordError, UnitsError, excerpt
 from floorslide.records import gmprocess_formats
 from floorslide.records.formats import at2, cosmos, text
 from floorslide.records.units import FACTORS, SI_UNITS, canonical_units
@@ -125,6 +125,10 @@ SIDECAR = "index.csv"
 """Name of the sidecar catalog looked for next to a text record that lacks dt or units."""
 
 _SAC_IACC = 8  # SAC header IDEP value "acceleration (nm/s**2)"
+
+PEAK_TOLERANCE = 0.01
+"""Relative difference allowed between the peak a file's header states and the peak of its
+samples (the header prints it rounded; a wrong channel, scale or units is far off)."""
 
 
 def read_record(
@@ -384,10 +388,69 @@ def _stated_units(trace: Trace, fmt: str, where: str) -> tuple[str | None, float
             return canonical_units(raw), 1.0
         except UnitsError:
             raise UnitsError(
-                f"the file gives unknown units {raw!r}; expected one of {', '.join(FACTORS)}",
+                f"the file gives unknown units {excerpt(raw)}; expected one of "
+                f"{', '.join(FACTORS)}",
                 where=where,
             ) from None
     return None, 1.0
+
+
+def _stated_peak(trace: Trace, fmt: str) -> tuple[float, float | None, str, bool] | None:
+    """The peak acceleration the file states for this trace, as ``(m/s², time in s or None,
+    what the file says, whether it is the peak of the record less its mean)``, or None: a
+    COSMOS text header's ``Max = … at … sec``, a K-NET header's ``Max. Acc. (gal)`` (of the
+    record less its mean: raw K-NET records carry an offset), a DMG or GeoNet header read
+    through gmprocess (``stats.stated_peak``, set by the readers)."""
+    stats = trace.stats
+    if fmt == "KNET" and "accmax" in stats.get("knet", {}):
+        value = float(stats.knet.accmax)
+        return value * FACTORS["gal"], None, f"Max. Acc. (gal) {value:g}", True
+    said = stats.get("stated_peak")
+    if not said:
+        return None
+    try:
+        factor = FACTORS[canonical_units(str(said.units))]
+    except UnitsError:
+        return None  # units the check cannot read: no check
+    time = said.get("time")
+    value = abs(float(said.value)) * factor
+    return value, None if time is None else float(time), said.text, False
+
+
+def _check_stated_peak(trace: Trace, fmt: str, where: str) -> None:
+    """Refuse samples that disagree with the peak acceleration the file's header states
+    (:func:`_stated_peak`; docs/design.md §9): their largest magnitude must be within
+    :data:`PEAK_TOLERANCE` of it and, when the header says when, reached within
+    ``2·dt + 0.01 s`` of that time. A damaged time step (GeoNet ``0.0200`` → ``0.2000``) or
+    damaged samples read silently as another record otherwise."""
+    stated = _stated_peak(trace, fmt)
+    if stated is None:
+        return
+    value, time, said, demeaned = stated
+    data = trace.data - trace.data.mean() if demeaned else trace.data
+    index = int(np.argmax(np.abs(data)))
+    peak, dt = float(abs(data[index])), float(trace.stats.delta)
+    found = (
+        f"the samples{' less their mean' if demeaned else ''} peak at {peak:.6g} m/s² at "
+        f"{index * dt:g} s (dt = {dt:g} s)"
+    )
+    if not value > 0 or abs(peak - value) > PEAK_TOLERANCE * value:
+        raise RecordError(
+            f"the header states the peak acceleration ({said!r}, {value:.6g} m/s²) but "
+            f"{found}: header and samples disagree",
+            where=where,
+        )
+    if time is None:
+        return
+    reach = 2.0 * dt + 0.01
+    lo, hi = max(0, int(np.ceil((time - reach) / dt))), int(np.floor((time + reach) / dt)) + 1
+    near = float(np.abs(data[lo:hi]).max()) if lo < min(hi, data.size) else 0.0
+    if near < (1.0 - PEAK_TOLERANCE) * value:
+        raise RecordError(
+            f"the header states the peak acceleration at {time:g} s ({said!r}) but {found}: "
+            "a damaged time step or damaged samples; header and samples disagree",
+            where=where,
+        )
 
 
 def _normalise(
@@ -440,6 +503,7 @@ def _normalise(
             f"factor={factor!r})"
         )
         stats.setdefault("processing", []).append(note)
+    _check_stated_peak(trace, fmt, where)
     event, station, comp = _source_metadata(trace, fmt)
     stats.record = AttribDict(path=where, format=fmt, event=event, station=station, component=comp)
 

@@ -29,6 +29,7 @@ from pathlib import Path
 import numpy as np
 
 from floorslide import outputs
+from floorslide.errors import one_line
 from floorslide.report.columns import (
     COLUMNS,
     EMPTY_NOTES,
@@ -73,7 +74,26 @@ def _rocks(column: str, row: Mapping) -> bool:
     return False
 
 
-def _md_cell(value, column: Column, row: Mapping) -> str:
+_MD_ESCAPES = {"\\": "\\\\", "|": "\\|", "[": "\\[", "]": "\\]", "`": "\\`"}
+_HTML_ESCAPES = {"&": "&amp;", "<": "&lt;", ">": "&gt;"}
+
+
+def md_text(text: object) -> str:
+    """`text` (a scene's or catalog's string: an id, a name, a path, a note quoting them) as
+    literal Markdown text on one line: HTML-significant characters as entities (``<script>``
+    shows, never runs, in a viewer that renders HTML), ``|`` escaped (no extra table cell),
+    ``[``/``]`` and backticks escaped (no link, image or code span), a backslash doubled, and
+    control characters (a newline ends a table row) shown as escapes (``\\n``)."""
+    out = []
+    for ch in one_line(str(text)):
+        out.append(_HTML_ESCAPES.get(ch) or _MD_ESCAPES.get(ch) or ch)
+    return "".join(out)
+
+
+def cell_text(value, column: Column, row: Mapping) -> str:
+    """A table cell as plain text (Markdown and HTML escape it their own way): NaN as ``—``
+    (``rocks`` where the statistic falls on rocking records), ``inf`` as ``∞``, ``†`` on a
+    p84 from few records, a tuple as ``a; b; c``."""
     if isinstance(value, tuple | list):
         return "; ".join(f"{v:g}" if isinstance(v, float) else str(v) for v in value)
     if isinstance(value, bool | np.bool_):
@@ -88,8 +108,11 @@ def _md_cell(value, column: Column, row: Mapping) -> str:
         text = f"{value:.4g}"
         few = row.get("few_records") and ("_p84" in column.name)
         return text + "†" if few else text
-    text = str(value)
-    return text.replace("|", "\\|")
+    return str(value)
+
+
+def _md_cell(value, column: Column, row: Mapping) -> str:
+    return md_text(cell_text(value, column, row))
 
 
 def _md_heading(column: Column) -> str:
@@ -131,19 +154,19 @@ def format_markdown_table(name: str, rows: Sequence[Mapping]) -> str:
 def format_markdown(tables: DesignTables, names: Sequence[str] = TABLE_NAMES) -> str:
     """The design tables as one Markdown document: a title, the conventions, one section per
     table (an INCOMPLETE file says so in its title and first line)."""
-    title = tables.scene_name or Path(tables.source).name
+    title = md_text(tables.scene_name or Path(tables.source).name)
     out = [f"{MARKDOWN_TITLE}{title}" + (" — INCOMPLETE" if tables.status else ""), ""]
-    out.append(f"From `{tables.source}`.")
+    out.append(f"From {md_text(tables.source)}.")
     out.append("")
     if tables.status:
-        out += [f"**{tables.status}**", ""]
+        out += [f"**{md_text(tables.status)}**", ""]
     for note in tables.notes:
-        out.append(f"- {note}")
+        out.append(f"- {md_text(note)}")
     if tables.comparisons:
         comps = "; ".join(
             f"{c.spec} ({', '.join(c.a)} over {', '.join(c.b)})" for c in tables.comparisons
         )
-        out.append(f"- comparisons: {comps}")
+        out.append(f"- comparisons: {md_text(comps)}")
     for name in names:
         out += ["", f"## {TITLES[name]}" + (" (INCOMPLETE)" if tables.status else ""), ""]
         rows = tables[name]

@@ -18,7 +18,7 @@ from pathlib import Path
 
 from floorslide import outputs
 from floorslide.report.columns import EMPTY_NOTES, TABLE_NAMES, TITLES, DesignTables
-from floorslide.report.formats import _md_cell, _md_heading, markdown_columns
+from floorslide.report.formats import _md_heading, cell_text, markdown_columns
 from floorslide.report.study import Study, load_study
 from floorslide.report.tables import design_tables
 
@@ -61,7 +61,7 @@ def _td(value, column, row: Mapping) -> str:
     label = column.units == "" and not isinstance(value, bool)
     long = label and column.name in LONG_COLUMNS
     cls = ' class="long"' if long else (' class="t"' if label else "")
-    return f"<td{cls}>{_e(_md_cell(value, column, row))}</td>"
+    return f"<td{cls}>{_e(cell_text(value, column, row))}</td>"
 
 
 def _table(name: str, rows: Sequence[Mapping]) -> str:

@@ -721,17 +721,17 @@ def frs_table(study: Study, periods: Sequence[float], damping: float | None) -> 
 
 
 def parse_comparison(spec: str) -> tuple[str, str]:
-    """``"A:B"`` → ``("A", "B")``.
+    """``"A:B"`` → ``("A", "B")`` (:func:`floorslide.scene.schema.parse_comparison`, the one
+    rule of a comparison for the scene and the command line).
 
     Raises
     ------
     ValueError
-        Not two non-empty building ids separated by one colon.
+        Not two non-empty building ids separated by one colon, or one building twice.
     """
-    parts = spec.split(":") if isinstance(spec, str) else []
-    if len(parts) != 2 or not all(p.strip() for p in parts):
-        raise ValueError(f"expected A:B with two building ids, e.g. isolated:fixed, got {spec!r}")
-    return parts[0].strip(), parts[1].strip()
+    from floorslide.scene.schema import parse_comparison as rule
+
+    return rule(spec)
 
 
 def _match(study: Study, name: str) -> tuple[str, ...]:

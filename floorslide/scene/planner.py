@@ -26,7 +26,7 @@ import numpy as np
 
 from floorslide.constants import G
 from floorslide.contents.rocking import response_mode
-from floorslide.errors import FloorslideError, RecordError, SceneError
+from floorslide.errors import FloorslideError, RecordError, SceneError, one_line
 from floorslide.scene.schema import (
     BuildingSpec,
     ContentSpec,
@@ -309,6 +309,20 @@ def _quality(tr, vtr, periods) -> tuple[dict, ...]:
         for f in check_record(vtr.data, vtr.stats.delta).flags:
             flags.append({**f.to_dict(), "check": f"vertical:{f.check}"})
     return tuple(flags)
+
+
+FAILURE_CHARS = 300
+"""Longest description of a record that failed, as the plan (stored in the result file) keeps
+it: the reason on one line, never the raw text of a damaged file."""
+
+
+class _Failures(list):
+    """The failures of a plan: each a one-line description of at most :data:`FAILURE_CHARS`
+    characters (control characters escaped; a longer one is cut, ``…``)."""
+
+    def append(self, text: object) -> None:
+        line = one_line(str(text))
+        super().append(line if len(line) <= FAILURE_CHARS else line[: FAILURE_CHARS - 1] + "…")
 
 
 def _rejected(rs, record_id, label, flags, failures, rejected) -> None:
@@ -607,7 +621,7 @@ def _load_pairs(
     zeros to the longer (said in ``meta["pair_notes"]``), and both scaled by one factor — the
     larger component's PGA to ``scale_pga``."""
     from floorslide.pair import make_pair
-    from floorslide.records.pairs import pair_rows
+    from floorslide.records.pairs import check_components, pair_rows
     from floorslide.records.process import process
 
     try:
@@ -628,8 +642,11 @@ def _load_pairs(
                 stream = e.read()
                 if len(stream) != 1:
                     raise RecordError(f"{len(stream)} traces; a component takes one", e.where)
-                tr = stream[0]
-                traces.append(process(tr, **processing) if processing else tr)
+                traces.append(stream[0])
+            names = (row["h1"].path.name, row["h2"].path.name)
+            check_components(traces[0], traces[1], *names, label)
+            if processing:
+                traces = [tr if tr is None else process(tr, **processing) for tr in traces]
             t1, t2, tv = traces
             pair = make_pair(
                 t1.data,
@@ -716,7 +733,7 @@ def plan(scene: Scene, *, force: bool = False, evaluate: bool = True) -> Plan:
     evaluate
         Also evaluate the per-object rules (true PFA per task and floor) so the plan counts them.
     """
-    failures: list[str] = []
+    failures: list[str] = _Failures()
     records: list[LoadedRecord] = []
     rejected: list[dict] = []
     periods = tuple(scene.spectra.periods) if scene.spectra is not None else ()

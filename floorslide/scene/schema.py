@@ -120,6 +120,17 @@ SCALE_KEYS = {
 TARGET_KEYS = {"sds", "sd1", "tl"}
 SPECTRA_KEYS = {"floors", "damping", "periods", "broadening"}
 REPORT_KEYS = {"periods", "damping", "compare", "history_record"}
+ID_MAX_CHARS = 64
+"""Longest id of a record set, building or content."""
+ID_RESERVED = "/:@"
+"""Characters an id must not hold: ``/`` separates the groups of the result file, ``:`` the two
+buildings of a comparison (``A:B``), ``@`` an id from its variant's tags (``iso@T=2.5``,
+``set@0.3g``)."""
+ID_RULE = (
+    f"an id is 1–{ID_MAX_CHARS} characters: letters, digits, spaces and punctuation other than "
+    "'/', ':' and '@', not '.' or '..', without control characters or spaces at either end"
+)
+"""What :func:`id_problem` allows, as the error messages say it."""
 QA_ACTIONS = ("warn", "reject")
 """Values of ``[scene] qa`` (:mod:`floorslide.records.quality`)."""
 MAX_STORIES = 200
@@ -431,6 +442,78 @@ class _Checker:
             return None
         return value
 
+    def ident(self, value, where) -> str | None:
+        """An id of a record set, building or content (:func:`id_problem`)."""
+        problem = id_problem(value)
+        if problem is not None:
+            self.add(where, problem)
+            return None
+        return value
+
+
+def name_problem(name: str) -> str | None:
+    """Why `name` cannot be the name of a group of the result file (None if it can).
+
+    HDF5 separates a path's groups with ``/`` and reads ``.`` as the group itself; a name
+    with a NUL is cut short by the C library, and control characters do not survive the
+    round trip through the file's text and the tables. Generated names (building variants
+    ``iso@T=2.5,xi=0.1``, scaled sets ``set@0.3g``) obey this rule too.
+    """
+    if not name:
+        return "must not be empty"
+    if name in (".", ".."):
+        return f"must not be {name!r} (HDF5 reads it as a folder)"
+    if "/" in name:
+        return "must not contain '/' (it separates the groups of the result file)"
+    bad = next((ch for ch in name if not ch.isprintable()), None)
+    if bad is not None:
+        return f"must not contain control or invisible characters (got {bad!r})"
+    return None
+
+
+def id_problem(value: object) -> str | None:
+    """Why `value` is not a valid id of a record set, building or content (None if it is).
+
+    The one rule for every id a scene names (:data:`ID_RULE`): an id becomes the name of a
+    group in the result file (:func:`name_problem`), is written with a variant's tags after
+    ``@`` and is compared as ``A:B``, and is matched after stripping spaces. Unicode letters
+    are fine (``Schrank``, ``機器``).
+    """
+    if not isinstance(value, str) or not value:
+        return f"must be a non-empty string, got {value!r}; {ID_RULE}"
+    problem = name_problem(value)
+    if problem is None:
+        reserved = [ch for ch in ID_RESERVED if ch in value]
+        if reserved:
+            problem = f"must not contain {' or '.join(map(repr, reserved))}"
+        elif value != value.strip():
+            problem = "must not begin or end with a space"
+        elif len(value) > ID_MAX_CHARS:
+            problem = f"must be at most {ID_MAX_CHARS} characters, got {len(value)}"
+    if problem is None:
+        return None
+    shown = value if len(value) <= 40 else value[:40] + "…"
+    return f"{shown!r} {problem}; {ID_RULE}"
+
+
+def parse_comparison(spec: object) -> tuple[str, str]:
+    """``"A:B"`` → ``("A", "B")``: the comparison of building A with building B (ids of
+    buildings or of their variants), as ``[report] compare`` and ``--compare`` give it.
+
+    Raises
+    ------
+    ValueError
+        Not two non-empty building ids separated by one colon, or one building twice (a
+        ratio of a building to itself is 1 by construction).
+    """
+    parts = spec.split(":") if isinstance(spec, str) else []
+    if len(parts) != 2 or not all(p.strip() for p in parts):
+        raise ValueError(f"expected A:B with two building ids, e.g. isolated:fixed, got {spec!r}")
+    a, b = parts[0].strip(), parts[1].strip()
+    if a == b:
+        raise ValueError(f"{spec!r} compares building {a!r} with itself; give two buildings")
+    return a, b
+
 
 def _fmt(x: float) -> str:
     return f"{x:g}"
@@ -643,7 +726,7 @@ def _records(value, ck: _Checker, base: Path) -> tuple[tuple[RecordSetSpec, ...]
             ck.add(w, "must be a table")
             continue
         ck.keys(r, RECORD_KEYS, w)
-        name = ck.string(r.get("set"), f"{w}.set") if "set" in r else None
+        name = ck.ident(r.get("set"), f"{w}.set") if "set" in r else None
         if "set" not in r:
             ck.add(f"{w}.set", "missing: name the record set")
         elif name in names:
@@ -745,54 +828,15 @@ def _records(value, ck: _Checker, base: Path) -> tuple[tuple[RecordSetSpec, ...]
 
 
 def _target_csv(path: Path, where: str, ck: _Checker):
-    """A target spectrum from a CSV of ``T, S_a`` rows (s, g; a header line and ``#``
-    comments allowed): the :class:`~floorslide.practice.target.TargetSpectrum`, or None with the
-    problem added (its line number named)."""
+    """A target spectrum from a CSV of ``T, S_a`` rows
+    (:func:`~floorslide.practice.target.read_target_csv`), or None with the problem added."""
     from floorslide.errors import ModelError
-    from floorslide.practice.target import TargetSpectrum
+    from floorslide.practice.target import read_target_csv
 
     try:
-        text = path.read_text(encoding="utf-8-sig")
-    except OSError as exc:
-        ck.add(where, f"cannot read the target file {path} ({exc.strerror or exc})")
-        return None
-    T: list[float] = []
-    S: list[float] = []
-    lines: list[int] = []
-    for k, line in enumerate(text.splitlines(), start=1):
-        body = line.split("#", 1)[0].strip()
-        if not body:
-            continue
-        cells = [c.strip() for c in body.replace(";", ",").replace("\t", ",").split(",")]
-        cells = [c for c in cells if c] if "," in body else body.split()
-        try:
-            t, sa = float(cells[0]), float(cells[1])
-        except (ValueError, IndexError):
-            if not T:  # a header line
-                continue
-            ck.add(
-                where, f"{path.name} line {k}: expected two numbers T (s), S_a (g), got {line!r}"
-            )
-            return None
-        if not (math.isfinite(t) and math.isfinite(sa)):
-            ck.add(where, f"{path.name} line {k}: T and S_a must be finite numbers")
-            return None
-        if sa < 0:
-            ck.add(where, f"{path.name} line {k}: S_a must be > 0 g, got {sa:g} (negative)")
-            return None
-        if T and t <= T[-1]:
-            ck.add(
-                where,
-                f"{path.name} line {k}: periods must increase, got T = {t:g} s after {T[-1]:g} s",
-            )
-            return None
-        T.append(t)
-        S.append(sa)
-        lines.append(k)
-    try:
-        return TargetSpectrum.from_table(T, S, name=path.name)
+        return read_target_csv(path)
     except ModelError as exc:
-        ck.add(where, f"{path.name}: {exc.message}")
+        ck.add(where, exc.message)
         return None
 
 
@@ -1036,25 +1080,27 @@ def _buildings(value, ck: _Checker) -> tuple[tuple[BuildingSpec, ...], set[str]]
         if not isinstance(b, dict):
             ck.add(w, "must be a table")
             continue
-        bid = ck.string(b.get("id"), f"{w}.id") if "id" in b else None
+        bid = ck.ident(b.get("id"), f"{w}.id") if "id" in b else None
+        # declared, even with an invalid id: names of it are not reported again as unknown
+        named = b["id"] if isinstance(b.get("id"), str) and b["id"] else None
         if "id" not in b:
             ck.add(f"{w}.id", "missing: name the building")
-        elif bid in ids:
-            ck.add(f"{w}.id", f"duplicate building id {bid!r}")
-        if bid:
-            ids.add(bid)
+        elif named in ids:
+            ck.add(f"{w}.id", f"duplicate building id {named!r}")
+        if named:
+            ids.add(named)
         kind = b.get("kind")
         if kind not in ("fixed", "isolated"):
             ck.add(f"{w}.kind", f"must be 'fixed' or 'isolated', got {kind!r}")
-            if bid:
-                unknown_kind.add(bid)
+            if named:
+                unknown_kind.add(named)
             continue
         if kind == "isolated":
             ck.keys(b, ISOLATED_KEYS, w)
             isolated.append((i, b, bid))
             continue
-        if bid:
-            declared_fixed.add(bid)
+        if named:
+            declared_fixed.add(named)
         ck.keys(b, FIXED_KEYS, w)
         model = _fixed_model(b, w, ck)
         damps = ck.numbers(b.get("damping", 0.05), f"{w}.damping", lo=0, hi=1, hi_open=True)
@@ -1286,7 +1332,7 @@ def _contents(value, ck: _Checker, stories: set[int]) -> tuple[ContentSpec, ...]
             ck.add(w, "must be a table")
             continue
         ck.keys(c, CONTENT_KEYS, w)
-        cid = ck.string(c.get("id"), f"{w}.id") if "id" in c else None
+        cid = ck.ident(c.get("id"), f"{w}.id") if "id" in c else None
         if "id" not in c:
             ck.add(f"{w}.id", "missing: name the content")
         elif cid in ids:
@@ -1452,11 +1498,12 @@ def _report(
     valid_bases = {b.base for b in buildings}
     variants = {b.id for b in buildings}
     for j, comp in enumerate(comps):
-        parts = comp.split(":") if isinstance(comp, str) else []
-        if len(parts) != 2 or not all(p.strip() for p in parts):
-            ck.add(f"report.compare[{j}]", f"must be 'A:B' (two building ids), got {comp!r}")
+        try:
+            parts = parse_comparison(comp)
+        except ValueError as exc:
+            ck.add(f"report.compare[{j}]", str(exc))
             continue
-        for p in (x.strip() for x in parts):
+        for p in parts:
             base_id = p.split("@")[0]
             if base_id not in building_ids:
                 known = ", ".join(sorted(building_ids)) or "none"

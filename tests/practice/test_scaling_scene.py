@@ -161,6 +161,60 @@ def test_bad_target_csv(tmp_path, csv, scale, expect):
     assert expect in text
 
 
+TARGET_ROWS = "T_s,Sa_g\n0.05,0.5\n0.2,1.0\n1.0,0.6\n4.0,0.15\n"
+
+
+@pytest.mark.parametrize(
+    ("content", "expect"),
+    [
+        # float('0_05') is 5.0: the row read as T = 5 s
+        (
+            b"T_s,Sa_g\n0.01,0.5\n0_05,1.0\n1.0,0.6\n",
+            "t.csv line 3: '0_05' is not a number (underscores are not digit separators)",
+        ),
+        (TARGET_ROWS.encode("utf-16"), "t.csv: UTF-16 text; a target spectrum is a UTF-8 CSV"),
+        (b"\x89PNG\r\n\x1a\n\x00\x00\x00\rIHDR", "t.csv: binary data, not text"),
+        (b"T,Sa\n0.1,0.5\n0.2,1.0 # S\xe4ule\n", "t.csv line 3: not UTF-8 text"),
+        # decimal commas: '0,05;1,2' read as T = 0, S_a = 5
+        (b"0,05;1,2\n0,2;1,0\n", "t.csv line 1: 4 fields ('0, 05, 1, 2'); a target spectrum"),
+    ],
+)
+def test_target_csv_that_is_not_t_sa_text_is_one_key_path_line(tmp_path, content, expect):
+    """A binary or UTF-16 target gave a traceback; '0_05' and decimal commas were read as
+    other numbers."""
+    (tmp_path / "t.csv").write_bytes(content)
+    with pytest.raises(SceneError) as err:
+        parse_scene(_scene('{ target = "t.csv", periods = [0.1, 0.2] }'), tmp_path / "s.toml")
+    problems = [p for p in err.value.problems if p.startswith("records[0].scale.target: ")]
+    assert len(problems) == 1 and expect in problems[0], err.value.problems
+    assert "\n" not in str(err.value)
+
+
+def test_target_csv_size_and_rows_are_bounded(tmp_path, monkeypatch):
+    """A 125 MB target CSV took 1.28 GB to read: a file above 10 MiB is refused before it is
+    read, and one with too many rows as soon as it has them."""
+    import tracemalloc
+
+    from floorslide.practice import target
+
+    big = tmp_path / "t.csv"
+    with open(big, "wb") as fh:
+        fh.truncate(target.MAX_TARGET_BYTES + 1)
+    scene = _scene('{ target = "t.csv", periods = [0.1, 0.2] }')
+    tracemalloc.start()
+    try:
+        text = _problems(scene, tmp_path)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert "records[0].scale.target: t.csv: 10,485,761 bytes; a target spectrum is a" in text
+    assert "at most 10 MiB and 100,000 rows" in text
+    assert peak < 2**20
+    monkeypatch.setattr(target, "MAX_TARGET_ROWS", 3)
+    big.write_text(TARGET_ROWS)
+    assert "t.csv: more than 3 rows" in _problems(scene, tmp_path)
+
+
 @pytest.mark.parametrize(
     ("scale", "extra", "expect"),
     [

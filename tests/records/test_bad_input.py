@@ -21,7 +21,7 @@ from obspy import Stream, Trace
 import floorslide as fs
 from floorslide.cli import cli
 from floorslide.errors import RecordError, UnitsError
-from tests.conftest import SLAMMER
+from tests.conftest import ROOT, SLAMMER
 from tests.records.conftest import ELC_FILE, FIXTURES
 
 AT2 = FIXTURES / "ELC180_ngawest2.AT2"
@@ -238,7 +238,8 @@ def _case(name: str, tmp: Path):
         return t / "jitter.txt", {}, RecordError, r"line 4: time 0.025 s is .* off the uniform grid"
     if name == "text npts inconsistent":
         (t / "npts.txt").write_text("# dt: 0.01\n# units: g\n# npts: 5\n0.1\n0.2\n")
-        return t / "npts.txt", {}, RecordError, r"npts=5 but the file holds 2 samples \(truncated\)"
+        said = r"truncated: the header says npts=5 but the file holds only 2 values"
+        return t / "npts.txt", {}, RecordError, said
     if name == "unknown format":
         return AT2, {"format": "XYZ"}, RecordError, r"unknown format 'XYZ'"
     raise AssertionError(name)
@@ -394,3 +395,37 @@ def test_console_script_exit_code_and_no_traceback(tmp_path, good_catalog):
     assert proc.returncode == 3
     assert proc.stderr.strip() == f"floorslide: error: {tmp_path / 'empty.AT2'}: empty file"
     assert len(json.loads(proc.stdout)) == 1
+
+
+# ------------------------------------------------- the peak a header states, checked
+
+
+def test_samples_that_disagree_with_the_stated_peak_are_refused(tmp_path):
+    """A header stating the peak (COSMOS 'Max = … at … sec', K-NET 'Max. Acc. (gal)') is
+    checked against the samples: a damaged sample (a new spike) or scale factor would read
+    silently as another record."""
+    v2 = (FIXTURES / "ELC180.V2").read_text()
+    assert fs.read_record(FIXTURES / "ELC180.V2")[0].stats.stated_peak.time == 2.15
+    lines = v2.splitlines()
+    first = next(i for i, s in enumerate(lines) if "acceleration pts" in s) + 1
+    lines[first + 1000] = f"{999.0:15.6e}"  # a damaged sample at 10 s: 999 gal
+    path = tmp_path / "spike.V2"
+    path.write_text("\n".join(lines) + "\n")
+    with pytest.raises(RecordError) as info:
+        fs.read_record(path)
+    message = str(info.value)
+    assert message.startswith(f"{path}: the header states the peak acceleration ('Max = ")
+    assert "Max = -306.831 cm/sec2 at 2.150 sec', 3.06831 m/s²)" in message
+    assert "but the samples peak at 9.99 m/s² at 10 s (dt = 0.01 s)" in message
+    knet = (FIXTURES / "ELC180.knet").read_text()
+    fs.read_record(FIXTURES / "ELC180.knet", format="KNET")  # the fixture's header agrees
+    # K-NET states the peak of the record less its mean: a real raw record (offset 2.4 gal)
+    raw = fs.read_record(ROOT / "tests" / "data" / "raw" / "AOM0081801241951.NS")[0].data
+    assert abs(raw).max() > 1.06 * 0.36185
+    path = tmp_path / "scale.knet"
+    path.write_text(knet.replace("3920(gal)/6182761", "39200(gal)/6182761"))
+    said = (
+        r"'Max. Acc. \(gal\) 306.831', 3.06831 m/s²\) but the samples less their mean peak at 30.68"
+    )
+    with pytest.raises(RecordError, match=said):
+        fs.read_record(path, format="KNET")

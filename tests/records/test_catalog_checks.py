@@ -151,3 +151,33 @@ def test_wrong_columns_say_what_is_required_and_found(tmp_path):
         "the columns file, dt, units (or file_h1, file_h2 ..., dt, units); line 1 has: name, "
         "step, unit"
     )
+
+
+def test_a_relative_path_that_leaves_the_catalog_folder_is_refused(tmp_path):
+    """A catalog's '../../etc/passwd' was read as a record (its text quoted in the errors and
+    the result file). Relative paths stay under the catalog's folder; absolute ones are the
+    user's own, used as given."""
+    from floorslide.errors import SceneError
+    from floorslide.scene.schema import parse_scene
+
+    folder = tmp_path / "cat"
+    (folder / "sub").mkdir(parents=True)
+    (folder / "sub" / "rec.txt").write_text("0.1\n0.2\n-0.1\n")
+    (tmp_path / "outside.txt").write_text("0.1\n0.2\n-0.1\n")
+    catalog = folder / "index.csv"
+    catalog.write_text("file,dt,units\nsub/../sub/rec.txt,0.01,g\n../outside.txt,0.01,g\n")
+    with pytest.raises(RecordError) as info:
+        fs.read_catalog(catalog)
+    assert str(info.value) == (
+        f"{catalog}:3: file '../outside.txt' leaves the catalog's folder; a relative path is "
+        "read inside it: move the catalog up to a folder that holds its records, or give an "
+        "absolute path"
+    )
+    scene = (
+        '[[records]]\nset = "s"\ncatalog = "cat/index.csv"\n[[buildings]]\nid = "f"\n'
+        'kind = "fixed"\nperiod = 0.2\n[[contents]]\nid = "c"\nmu = [0.1]\n'
+    )
+    with pytest.raises(SceneError, match=r"records\[0\]\.catalog: .*index.csv:3: file "):
+        parse_scene(scene, tmp_path / "s.toml")  # caught by the dry run
+    catalog.write_text(f"file,dt,units\nsub/rec.txt,0.01,g\n{tmp_path / 'outside.txt'},0.01,g\n")
+    assert [tr.stats.npts for tr in fs.read_catalog(catalog)] == [3, 3]

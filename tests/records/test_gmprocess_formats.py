@@ -299,3 +299,49 @@ def test_cli_inspect(gmprocess):
     assert {row["format"] for row in rows} == {FILES[name](DATA / name)["format"] for name in FILES}
     for row in rows:
         assert row["pga"] > 0 and row["station"]
+
+
+def test_stated_peak_lines_of_dmg_and_geonet():
+    """The header lines gmprocess does not read: a channel's peak acceleration and its time
+    (GeoNet's as in its format description's sample header)."""
+    geonet = "Acceleration:  Peak  -2080.5 mm/s/s at  23.28 s     RMS   145.6"
+    match = gmprocess_formats.STATED_PEAK["geonet"].search(geonet)
+    assert match.groups() == ("-2080.5", "mm/s/s", "23.28")
+    dmg = "PEAK ACCELERATION =  -267.957    CM/SEC/SEC  AT   10.940   SEC."
+    match = gmprocess_formats.STATED_PEAK["dmg"].search(dmg)
+    assert match.groups() == ("-267.957", "CM/SEC/SEC", "10.940")
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "says"),
+    [
+        # the time step in the real header, 0.020 -> 0.200 s: every time and velocity x10
+        (
+            "65.000      .020      .100",
+            "65.000      .200      .100",
+            "the header states the peak acceleration at 10.94 s ('PEAK ACCELERATION = -267.957 "
+            "CM/SEC/SEC AT 10.940 SEC') but the samples peak at 2.67957 m/s² at 109.4 s "
+            "(dt = 0.2 s): a damaged time step",
+        ),
+        (
+            "PEAK ACCELERATION =  -267.957",
+            "PEAK ACCELERATION =  -167.957",
+            "1.67957 m/s²) but the samples peak at 2.67957 m/s² at 10.94 s",
+        ),
+    ],
+)
+def test_damaged_header_against_the_stated_peak(gmprocess, tmp_path, old, new, says):
+    """A damaged GeoNet V2A time step (0.0200 -> 0.2000) read with exit 0 and every time off
+    by 10: where the header states the peak and when, the samples must agree (here the DMG
+    fixture, whose header states it; GeoNet's line is read the same way)."""
+    text = (DATA / "ce36456p_CE36456.V2").read_text()
+    assert text.count(old) == 1
+    path = tmp_path / "damaged.V2"
+    path.write_text(text.replace(old, new))
+    with pytest.raises(RecordError) as info:
+        fs.read_record(path)
+    message = str(info.value)
+    assert "\n" not in message and message.startswith(f"{path}: ")
+    assert says in message
+    stream = fs.read_record(DATA / "ce36456p_CE36456.V2")
+    assert stream[0].stats.stated_peak.time == 10.94

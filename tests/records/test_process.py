@@ -192,6 +192,7 @@ def test_full_chain_is_recorded(elc):
         ({"lowpass": 50.0}, r"lowpass: 50 Hz is at or above the Nyquist"),
         ({"highpass": -1.0}, r"highpass: -1.0 must be > 0"),
         ({"highpass": "fast"}, r"highpass: 'fast' is not a number"),
+        ({"highpass": "0_1"}, r"highpass: '0_1' is not a number"),  # float('0_1') is 1.0
         ({"bandpass": (0.1, 20), "highpass": 0.1}, "either bandpass or highpass"),
         ({"bandpass": (20, 0.1)}, "low corner 20 Hz must be below"),
         ({"bandpass": 5.0}, "must be a pair"),

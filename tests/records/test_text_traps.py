@@ -48,6 +48,89 @@ def test_count_line_of_a_truncated_file(tmp_path, elc_g):
     assert "3900 values follow it: a truncated file?" in message
 
 
+@pytest.mark.parametrize("count", ["3949.", "3949.0", "3.949E+03", "+3949"])
+def test_count_line_in_any_spelling_is_a_count(tmp_path, elc_g, count):
+    """'3949.' or '3.949E+03' above 3949 samples was read as a sample (a 3949 g spike)."""
+    path = tmp_path / "counted.txt"
+    path.write_text(f"# dt: 0.01\n# units: g\n{count}\n" + "\n".join(f"{v:.6g}" for v in elc_g))
+    with pytest.raises(RecordError) as info:
+        fs.read_record(path)
+    message = _one_line(info, path)
+    assert f"line 3: {count} is the number of values after it, a sample count" in message
+
+
+@pytest.mark.parametrize("count", ["2000", "2000.", "2.0E+03"])
+def test_count_of_a_truncated_file_in_gal_is_not_its_peak(tmp_path, elc_g, count):
+    """'2000.' above the first 1500 samples of a record in gal (peak 311 gal) was read as a
+    2000 gal sample: PGA 2.04 g instead of 0.32 g, and no flag named it. A whole first value
+    above every other value and above their number is a count that disagrees with them."""
+    path = tmp_path / "cut_gal.txt"
+    gal = elc_g[:1500] * 980.665
+    path.write_text(f"# dt: 0.01\n# units: gal\n{count}\n" + "\n".join(f"{v:.4f}" for v in gal))
+    with pytest.raises(RecordError) as info:
+        fs.read_record(path)
+    message = _one_line(info, path)
+    assert f"line 3: {count} looks like a sample count, not a sample" in message
+    assert "1500 values follow it: a truncated file?" in message
+
+
+def test_count_header_in_any_spelling(tmp_path):
+    path = tmp_path / "npts.txt"
+    body = "# dt: 0.01\n# units: g\n# npts: {}\n0.1\n0.2\n-0.1\n"
+    for count in ("3", "3.", "3.0E+00"):
+        path.write_text(body.format(count))
+        assert fs.read_record(path)[0].stats.npts == 3
+    path.write_text(body.format("4."))
+    with pytest.raises(RecordError) as info:
+        fs.read_record(path)
+    assert "truncated: the header says npts=4 but the file holds only 3 values" in _one_line(
+        info, path
+    )
+    path.write_text(body.format("3.5"))
+    with pytest.raises(RecordError, match=r"header npts: '3.5' is not a whole number"):
+        fs.read_record(path)
+
+
+@pytest.mark.parametrize("count", ["3949.", "3.949E+03"])
+def test_cosmos_and_at2_counts_in_any_spelling(tmp_path, count):
+    """COSMOS count lines ('3949. acceleration pts', '100. Real-header values ...') and the
+    AT2 NPTS are whole numbers in any spelling; a count with a fraction is refused in one
+    line."""
+    v2 = (FIXTURES / "ELC180.V2").read_text()
+    want = fs.read_record(FIXTURES / "ELC180.V2")[0].data
+    path = tmp_path / "counts.V2"
+    path.write_text(
+        v2.replace("    3949 acceleration pts", f"{count:>8} acceleration pts").replace(
+            " 100 Real-header", " 100. Real-header"
+        )
+    )
+    np.testing.assert_array_equal(fs.read_record(path)[0].data, want)
+    path.write_text(v2.replace("    3949 acceleration pts", "  3949.5 acceleration pts"))
+    with pytest.raises(RecordError) as info:
+        fs.read_record(path)
+    assert "line 50: the number of points '3949.5' is not a whole number" in _one_line(info, path)
+    at2 = (FIXTURES / "ELC180_ngawest2.AT2").read_text()
+    path = tmp_path / "counts.AT2"
+    path.write_text(at2.replace("NPTS=  3949", f"NPTS= {count}"))
+    assert fs.read_record(path)[0].stats.npts == 3949
+    path.write_text(at2.replace("NPTS=  3949", "NPTS= 4.0E+03"))
+    with pytest.raises(RecordError) as info:
+        fs.read_record(path)
+    message = _one_line(info, path)
+    assert "truncated: the header says NPTS=4000 but the file holds only 3949 values" in message
+
+
+def test_catalog_npts_with_a_fraction_is_refused(tmp_path, elc_g):
+    """A catalog's npts '3949.5' was cut to 3949 and passed."""
+    (tmp_path / "rec.txt").write_text("\n".join(f"{v:.6g}" for v in elc_g) + "\n")
+    catalog = tmp_path / "index.csv"
+    catalog.write_text("file,dt,units,npts\nrec.txt,0.01,g,3.949E+03\n")
+    assert fs.read_catalog(catalog)[0].stats.npts == 3949
+    catalog.write_text("file,dt,units,npts\nrec.txt,0.01,g,3949.5\n")
+    with pytest.raises(RecordError, match=r"index.csv:2: npts '3949.5' is not a whole number"):
+        fs.read_catalog(catalog)
+
+
 def test_count_line_above_two_columns(tmp_path):
     path = tmp_path / "counted2.txt"
     path.write_text("# units: g\n3\n0.00 0.1\n0.01 0.2\n0.02 0.3\n")

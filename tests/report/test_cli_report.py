@@ -99,6 +99,7 @@ def test_table_json_options(monkeypatch, capsys, study, tmp_path):
         (["--compare", "isolated"], "--compare"),
         (["--compare", ":fixed"], "--compare"),
         (["--compare", "tower:fixed"], "--compare"),
+        (["--compare", "fixed:fixed"], "--compare"),  # a building with itself
         (["--compare", "isolated:fixed", "--compare", "fixed:tower@T=1"], "--compare"),
         (["--damping", "0.1"], "--damping"),
         (["--periods", "0.1,x"], "--periods"),
@@ -286,7 +287,9 @@ def test_plot_compare_that_draws_nothing_is_an_error(monkeypatch, capsys, study,
     code, out, err = invoke(
         monkeypatch, capsys, "plot", study.path, "--compare", "fixed:fixed", "-o", tmp_path
     )
-    assert code == 2 and "--compare" in err and "draws nothing" in err and out == ""
+    # a building compared with itself is refused before anything is drawn
+    assert code == 2 and "--compare" in err and out == ""
+    assert "'fixed:fixed' compares building 'fixed' with itself" in err
 
 
 def test_help_and_readme_state_the_exit_codes(monkeypatch, capsys):

@@ -562,3 +562,30 @@ def test_tables_as_dataframes(tables):
     assert df["n_rock"].dtype.kind == "i" and df.attrs["status"] == ""
     with pytest.raises(KeyError, match="no table 'nope'"):
         tables.to_pandas("nope")
+
+
+def test_markdown_shows_scene_and_catalog_strings_as_text(tables):
+    """Scene and catalog strings went into the Markdown raw: '<script>' ran in a viewer that
+    renders HTML, '|' and a newline broke the table, '[x](url)' became a link."""
+    import dataclasses
+
+    evil = "<script>alert(1)</script>|x\ny [a](http://e) `c` \\"
+    rows = [dict(r) for r in tables["slides"]]
+    rows[0]["record_set"] = evil
+    hostile = dataclasses.replace(
+        tables,
+        scene_name=evil,
+        notes=(*tables.notes, f"note {evil}"),
+        tables={**tables.tables, "slides": rows},
+    )
+    text = format_markdown(hostile, ["slides"])
+    assert "<" not in text and ">" not in text.replace("&gt;", "")
+    shown = "&lt;script&gt;alert(1)&lt;/script&gt;\\|x\\\\ny \\[a\\](http://e) \\`c\\` \\\\"
+    assert text.startswith(f"# Design tables: {shown}\n")
+    assert f"- note {shown}\n" in text
+    lines = text.splitlines()
+    header = next(ln for ln in lines if ln.startswith("| record_set"))
+    row = next(ln for ln in lines if shown in ln and ln.startswith("| "))
+    # the row has as many cells as the header: no '|' of the string splits it
+    cells = lambda line: len(line.replace("\\|", "").split("|"))  # noqa: E731
+    assert cells(row) == cells(header)

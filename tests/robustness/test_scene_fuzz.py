@@ -17,10 +17,18 @@ BASE = tomllib.loads(
     .read_text()
     .replace("../records/slammer/index.csv", CATALOG)
 )
+ODD_TEXT = st.one_of(
+    st.sampled_from(["/", "a/b", ".", "..", "a\x00b", "\x01", "a\nb", " a", "a ", "a@b", "a:b"]),
+    st.sampled_from(["\u200b", "\u00a0", "\u202e", "é", "機器", "x" * 64, "x" * 65]),
+    st.text(alphabet=st.characters(codec="utf-8"), min_size=1, max_size=6),
+)
+"""Strings with the characters an id must not hold (separators, dots, control and invisible
+characters) and ones it may (any script)."""
 WEIRD = st.one_of(
     st.integers(-5, 5),
     st.floats(allow_nan=True, allow_infinity=True),
     st.text(max_size=8),
+    ODD_TEXT,
     st.booleans(),
     st.lists(st.floats(-2, 10), max_size=3),
     st.just([]),
@@ -131,3 +139,45 @@ def test_a_list_as_the_isolator_model_is_a_key_path_error():
     text = text.replace('model = "friction_pendulum"', "model = []")
     with pytest.raises(SceneError, match=r"buildings\[2\]\.isolator\.model: must be one of"):
         parse_scene(text, ROOT / "data" / "scenes" / "fuzz.toml")
+
+
+IDS = [p for p in ALL if p[-1] in ("id", "set", "superstructure") and len(p) == 3]
+"""Paths of the ids (and the references to them) of the base scene."""
+
+
+def _usable_name(name: str) -> bool:
+    """Whether `name` comes back unchanged as the only group of a fresh HDF5 group, and
+    reads as an id: no separator of variants (``@``) or comparisons (``:``), no spaces at
+    either end, printable."""
+    import h5py
+
+    if "@" in name or ":" in name or name != name.strip() or not name.isprintable():
+        return False
+    try:
+        with h5py.File("ids.h5", "w", driver="core", backing_store=False) as f:
+            f.create_group("g").create_group(name)
+            return list(f["g"].keys()) == [name]
+    except (ValueError, KeyError, TypeError):
+        return False
+
+
+@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    which=st.lists(st.sampled_from(IDS), min_size=1, max_size=2),
+    names=st.lists(ODD_TEXT, min_size=2, max_size=2),
+)
+def test_odd_ids_are_refused_or_name_result_groups(which, names):
+    """An id with odd characters (``/``, ``.``, NUL, control, reserved separators) is a key-path
+    error; an id the scene accepts is a usable group name of the result file."""
+    doc = BASE
+    for path, name in zip(which, names, strict=False):
+        doc = edit(doc, path, name, False)
+    try:
+        scene = parse_scene(dump(doc), ROOT / "data" / "scenes" / "fuzz.toml")
+    except SceneError as exc:
+        for p in exc.problems:
+            assert ": " in p and "\n" not in p
+        return
+    ids = [r.set for r in scene.records] + [b.base for b in scene.buildings]
+    for name in ids + [c.id for c in scene.contents]:
+        assert _usable_name(name), name

@@ -230,3 +230,21 @@ def test_a_run_says_the_isolation_does_not_isolate(tmp_path, monkeypatch, capsys
         "the fixed-base period 0.4 s of the superstructure 'fb': the isolators would not "
         "isolate (almost surely a mistake)\n"
     )
+
+
+def test_a_failed_record_is_stored_as_a_short_description(tmp_path):
+    """The plan (stored in the result file) kept the raw text of a damaged file's line: a
+    failure is one line of at most FAILURE_CHARS characters, quoting at most an excerpt."""
+    from floorslide.scene.planner import FAILURE_CHARS
+
+    shutil.copy(SLAMMER / "Kobe_1995_KAK-000.txt", tmp_path / "good.txt")
+    (tmp_path / "index.csv").write_text("file,dt,units\ngood.txt,0.01,g\n")
+    junk = "<script>" + "A" * 5000
+    (tmp_path / "bad.AT2").write_text(f"PEER\nx, y, z, 1\nUNITS OF G\nNPTS= ,DT= {junk} SEC\n1\n")
+    scene = parse_scene(SMALL.format(records='files = ["*.txt", "*.AT2"]'), tmp_path / "s.toml")
+    p = plan(scene, evaluate=False)
+    assert [r.record for r in p.records] == ["good"]
+    (failure,) = p.failures
+    assert "gives no NPTS" in failure and "A" * 100 not in failure
+    assert len(failure) <= FAILURE_CHARS and "\n" not in failure
+    assert p.summary()["record_failures"] == [failure]

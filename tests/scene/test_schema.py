@@ -299,6 +299,7 @@ def test_a_bad_kind_reports_only_itself():
         ('history_record = "ImperialValley_1940_ELC-18"', "report.history_record: no record"),
         ('compare = ["iso@T=9,xi=0.1:fb1"]', "report.compare[0]: no building variant"),
         ('compare = ["tower:fb1"]', "report.compare[0]: unknown building 'tower'"),
+        ('compare = ["fb1 : fb1"]', "report.compare[0]: 'fb1 : fb1' compares building 'fb1' with"),
         ("damping = 0.02", "report.damping: 0.02 is not among spectra.damping (0.05)"),
     ],
 )
@@ -356,3 +357,75 @@ def test_dry_run_catches_a_history_record_typo(tmp_path, monkeypatch, capsys):
     err = capsys.readouterr().err
     assert exit_.value.code == 2 and err.count("\n") == 1
     assert "report.history_record: no record 'nope'" in err
+
+
+# --- ids: names of groups in the result file, checked when the scene is loaded ----------
+
+ODD_IDS = [
+    ("cabinet/rack", "must not contain '/'"),
+    (".", "must not be '.'"),
+    ("..", "must not be '..'"),
+    ("a\\u0000b", "control or invisible characters"),
+    ("a\\u0007b", "control or invisible characters"),
+    ("a\\u200bb", "control or invisible characters"),
+    (" cabinet", "must not begin or end with a space"),
+    ("cab@1", "must not contain '@'"),
+    ("a:b", "must not contain ':'"),
+    ("x" * 65, "at most 64 characters"),
+]
+
+
+@pytest.mark.parametrize(("value", "problem"), ODD_IDS)
+@pytest.mark.parametrize(
+    ("key", "where"),
+    [
+        ('id = "cabinet"', "contents[0].id"),
+        ('id = "fb1"', "buildings[1].id"),
+        ('set = "bb"', "records[0].set"),
+    ],
+)
+def test_ids_that_cannot_name_a_result_group_are_refused_at_load(key, where, value, problem):
+    """An id with '/' ran into a result file the reports called corrupt; '.', '..', NUL and
+    control characters gave integrity alarms: every id is checked once, by key path, saying
+    what an id may be."""
+    name = key.split(" = ")[0]
+    text = GOOD.replace(key, f'{name} = "{value}"', 1)
+    text = text.replace('superstructure = "fb1"', f'superstructure = "{value}"')
+    with pytest.raises(SceneError) as err:
+        parse_scene(text, ROOT / "x.toml")
+    mine = [p for p in err.value.problems if p.startswith(f"{where}: ")]
+    assert mine, err.value.problems
+    assert problem in mine[0]
+    assert "letters, digits, spaces and punctuation other than '/', ':' and '@'" in mine[0]
+    if where == "buildings[1].id":  # the isolated building on it is not reported again
+        assert not any(p.startswith("buildings[2]") for p in err.value.problems)
+
+
+def test_ids_in_any_script_with_punctuation_are_valid():
+    text = (
+        GOOD.replace('id = "cabinet"', 'id = "Schrank Ä-1 (0.6 m), #2"', 1)
+        .replace('set = "bb"', 'set = "機器 set.v2"', 1)
+        .replace('id = "fb1"', 'id = "fb 1+2"', 1)
+        .replace('superstructure = "fb1"', 'superstructure = "fb 1+2"', 1)
+    )
+    sc = parse_scene(text, ROOT / "x.toml")
+    assert sc.contents[0].id == "Schrank Ä-1 (0.6 m), #2"
+    assert sc.records[0].set == "機器 set.v2"
+
+
+def test_building_variant_ids_are_valid_result_names():
+    """Sweeps name variants ``iso@T=2,xi=0.05``: generated names obey the rule of a name in
+    the result file (the base id's rule without the '@' it adds)."""
+    from floorslide.scene.schema import name_problem
+
+    text = GOOD.replace("period = [2.0, 3.0]", "period = [1e-05, 2.5e6]", 1).replace(
+        'superstructure = "fb1"',
+        'superstructure = "fb1"\nbase_mass_ratio = [0.5, 1.25]\n'
+        'isolator = { model = "friction_pendulum", mu = [0.0, 0.04] }',
+        1,
+    )
+    sc = parse_scene(text, ROOT / "x.toml")
+    variants = [b.id for b in sc.buildings]
+    assert "iso@mb=0.5,T=1e-05,xi=0.05,mu=0" in variants
+    for vid in variants:
+        assert name_problem(vid) is None, vid

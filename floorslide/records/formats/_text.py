@@ -17,6 +17,8 @@ from typing import IO, BinaryIO
 import numpy as np
 
 from floorslide.errors import RecordError
+from floorslide.text_numbers import UNDERSCORE_HINT as _NO_UNDERSCORES
+from floorslide.text_numbers import parse_count, parse_number
 
 HEAD_BYTES = 8192
 """How much of a file the ``_is_<format>`` checks look at."""
@@ -152,7 +154,7 @@ def read_text(filename: str | os.PathLike) -> str:
     return decode(raw[offset:])
 
 
-UNDERSCORE_HINT = "underscores are not digit separators in a record"
+UNDERSCORE_HINT = f"{_NO_UNDERSCORES} in a record"
 """Why a number such as ``1_000`` is refused: Python's ``float`` reads it as 1000, but no
 record format writes digits that way, so it is damage or a typo."""
 
@@ -288,11 +290,37 @@ def check_finite(values: np.ndarray, where: str, locate=None) -> None:
 
 
 def parse_float_field(text: str, name: str, where: str) -> float:
-    """A header value as float, with a RecordError naming the field."""
+    """A header value as float (a Fortran ``D`` exponent read as ``E``), with a RecordError
+    naming the field (:func:`floorslide.text_numbers.parse_number`)."""
     try:
-        if "_" in text:
-            raise ValueError(UNDERSCORE_HINT)
-        return float(text.replace("D", "E").replace("d", "e"))
+        return parse_number(text.replace("D", "E").replace("d", "e"))
     except ValueError:
         hint = f" ({UNDERSCORE_HINT})" if "_" in text else ""
         raise RecordError(f"{name} {text!r} is not a number{hint}", where=where) from None
+
+
+def parse_count_field(text: str, name: str, where: str) -> int:
+    """A header count (of samples, values, lines) ≥ 0: a whole number in any spelling —
+    ``2000``, ``2000.``, ``2.0E+03`` (:func:`floorslide.text_numbers.parse_count`) — with a
+    RecordError naming the field."""
+    parse_float_field(text, name, where)  # not a number: that error
+    try:
+        count = parse_count(text.replace("D", "E").replace("d", "e"))
+    except ValueError:
+        count = -1
+    if count < 0:
+        raise RecordError(f"{name} {text!r} is not a whole number ≥ 0", where=where)
+    return count
+
+
+def count_mismatch(said: str, count: int, found: int, where: str) -> RecordError:
+    """The error for a count the file states (``said`` + `count`, e.g. ``the header says
+    NPTS=`` 2000) that disagrees with the `found` values it holds (docs/design.md §9): a
+    truncated file, or header and data that disagree; both numbers named."""
+    if found < count:
+        return RecordError(
+            f"truncated: {said}{count} but the file holds only {found} values", where=where
+        )
+    return RecordError(
+        f"{said}{count} but the file holds {found} values; header and data disagree", where=where
+    )

@@ -38,10 +38,12 @@ import numpy as np
 from obspy import Stream, Trace
 from obspy.core import AttribDict, Stats
 
-from floorslide.errors import RecordError, UnitsError
+from floorslide.errors import RecordError, UnitsError, excerpt
 from floorslide.records.formats._text import (
     check_finite,
+    count_mismatch,
     locate_token,
+    parse_count_field,
     parse_float_field,
     parse_floats,
     read_head,
@@ -101,21 +103,18 @@ def _parse_npts_dt(line: str, where: str) -> tuple[int, float]:
         npts_match, dt_match = _NPTS_EQ.search(line), _DT_EQ.search(line)
         if npts_match is None or not npts_match.group(1):
             raise RecordError(
-                f"header line {line.strip()!r} gives no NPTS "
+                f"header line {excerpt(line.strip(), 60)} gives no NPTS "
                 "(expected e.g. 'NPTS=  5590, DT=   .0100 SEC,')",
                 where=where,
             )
         if dt_match is None or not dt_match.group(1):
             raise RecordError(
-                f"header line {line.strip()!r} gives no DT "
+                f"header line {excerpt(line.strip(), 60)} gives no DT "
                 "(expected e.g. 'NPTS=  5590, DT=   .0100 SEC,')",
                 where=where,
             )
         npts_text, dt_text = npts_match.group(1), dt_match.group(1)
-    npts_value = parse_float_field(npts_text, "NPTS", where)
-    if not np.isfinite(npts_value) or npts_value != int(npts_value):
-        raise RecordError(f"NPTS {npts_text!r} is not a whole number", where=where)
-    npts = int(npts_value)
+    npts = parse_count_field(npts_text, "NPTS", where)
     if npts <= 0:
         raise RecordError(f"NPTS = {npts}: a record needs at least one sample", where=where)
     dt = parse_float_field(dt_text, "DT", where)
@@ -223,17 +222,8 @@ def _read_at2(filename: str | os.PathLike, headonly: bool = False, **kwargs: obj
     body = lines[index + 1 :]
     first_line = index + 2
     data = parse_floats(body, first_line, where, commas=False)
-    if data.size < npts:
-        raise RecordError(
-            f"truncated: the header says NPTS={npts} but the file holds only {data.size} values",
-            where=where,
-        )
-    if data.size > npts:
-        raise RecordError(
-            f"the header says NPTS={npts} but the file holds {data.size} values; "
-            "header and data disagree",
-            where=where,
-        )
+    if data.size != npts:
+        raise count_mismatch("the header says NPTS=", npts, data.size, where)
     check_finite(data, where, lambda i: locate_token(body, first_line, i))
     _check_not_cut(body, text, first_line, where)
     stats.npts = data.size

@@ -61,6 +61,7 @@ from obspy.core import AttribDict, Stats
 from floorslide.errors import RecordError, UnitsError
 from floorslide.records.formats._text import (
     check_finite,
+    parse_count_field,
     parse_fixed_width,
     parse_floats,
     read_head,
@@ -71,11 +72,14 @@ from floorslide.records.units import canonical_units
 FORMAT = "COSMOSV2"
 
 _FIRST = re.compile(r"\(Format\s+v\s*(\d+(?:\.\d+)?)\s+with\s+(\d+)\s+text\s+lines\)", re.I)
-_INT_HDR = re.compile(r"^\s*(\d+)\s+Integer-header\s+values\s+follow\s+on\s+(\d+)\s+lines", re.I)
-_REAL_HDR = re.compile(r"^\s*(\d+)\s+Real-header\s+values\s+follow\s+on\s+(\d+)\s+lines", re.I)
-_COMMENTS = re.compile(r"^\s*(\d+)\s+Comment\s+line", re.I)
+# a count field: a whole number in any spelling ("3949", "3949.", "3.949E+03"), read by
+# parse_count_field (a fraction is refused there, not taken for another line)
+_N = r"([+]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)"
+_INT_HDR = re.compile(rf"^\s*{_N}\s+Integer-header\s+values\s+follow\s+on\s+{_N}\s+lines", re.I)
+_REAL_HDR = re.compile(rf"^\s*{_N}\s+Real-header\s+values\s+follow\s+on\s+{_N}\s+lines", re.I)
+_COMMENTS = re.compile(rf"^\s*{_N}\s+Comment\s+line", re.I)
 _DATA = re.compile(
-    r"^\s*(\d+)\s+([A-Za-z]+)\s+(?:pts|points)\b"
+    rf"^\s*{_N}\s+([A-Za-z]+)\s+(?:pts|points)\b"
     r"(?:.*?approx\s+([\d.]+)\s*sec)?"
     r"(?:.*?units\s*=\s*([^(,]*?)\s*(?:\(\s*(\d+)\s*\))?\s*(?:,|$))?",
     re.I,
@@ -86,6 +90,9 @@ _MISSING = re.compile(r"unknown/unspecified:\s*(-?\d+)\s*,\s*(-?[\d.]+)", re.I)
 _STATION = re.compile(r"Code:\s*([A-Za-z0-9_]*)\s*-\s*([A-Za-z0-9_]+)")
 _COMPONENT = re.compile(r"Sta\s+Chan\s*[^:]*:\s*(.*?)\s*(?:\(|Location:|$)", re.I)
 _SCNL = re.compile(r"<SCNL>\s*([^\s.]*)\.([^\s.]*)\.([^\s.]*)\.([^\s.]*)")
+# the processed record's peak the text header states: "Max = -306.831 cm/sec2 at 2.150 sec"
+# (not "Uncor max", the raw record's)
+_PEAK = re.compile(r"\bMax\s*=\s*([-+]?[\d.]+(?:[eE][-+]?\d+)?)\s*(\S+)\s+at\s+([\d.]+)\s*sec")
 
 # COSMOS Table 2 (physical units), acceleration entries only.
 _UNIT_CODES = {2: "g", 4: "gal", 7: "in/s**2", 10: "gal", 11: "mg"}
@@ -142,6 +149,10 @@ class _Reader:
     def fail(self, problem: str) -> RecordError:
         return RecordError(problem, where=self.where)
 
+    def count(self, text: str, what: str) -> int:
+        """A count field of the line just read (``3949``, ``3949.``, ``3.949E+03``)."""
+        return parse_count_field(text, f"line {self.pos}: {what}", self.where)
+
     def line(self, what: str) -> str:
         if self.pos >= len(self.lines):
             raise self.fail(f"truncated: the file ends where {what} was expected")
@@ -193,7 +204,12 @@ class _Reader:
                 f"line {self.pos}: expected 'NNN Integer-header values follow on NN lines', "
                 f"found {header.strip()[:60]!r}"
             )
-        ints = self.values(int(match.group(1)), int(match.group(2)), header, "integer header")
+        ints = self.values(
+            self.count(match.group(1), "the number of integer-header values"),
+            self.count(match.group(2), "the number of integer-header lines"),
+            header,
+            "integer header",
+        )
 
         header = self.line("the real-header line")
         match = _REAL_HDR.match(header)
@@ -202,7 +218,12 @@ class _Reader:
                 f"line {self.pos}: expected 'NNN Real-header values follow on NN lines', "
                 f"found {header.strip()[:60]!r}"
             )
-        reals = self.values(int(match.group(1)), int(match.group(2)), header, "real header")
+        reals = self.values(
+            self.count(match.group(1), "the number of real-header values"),
+            self.count(match.group(2), "the number of real-header lines"),
+            header,
+            "real header",
+        )
 
         header = self.line("the comment-count line")
         match = _COMMENTS.match(header)
@@ -211,7 +232,8 @@ class _Reader:
                 f"line {self.pos}: expected 'N Comment line(s) follow', "
                 f"found {header.strip()[:60]!r}"
             )
-        comments = [self.line("a comment line") for _ in range(int(match.group(1)))]
+        ncomments = self.count(match.group(1), "the number of comment lines")
+        comments = [self.line("a comment line") for _ in range(ncomments)]
         return _Block(text, ints, reals, comments, missing_int, missing_real, version)
 
     def data(self) -> tuple[re.Match, str, np.ndarray]:
@@ -222,7 +244,7 @@ class _Reader:
                 f"line {self.pos}: expected 'NNN acceleration pts, approx NN secs, units=...', "
                 f"found {header.strip()[:60]!r}"
             )
-        npts = int(match.group(1))
+        npts = self.count(match.group(1), "the number of points")
         start = self.pos
         end = start
         while end < len(self.lines):
@@ -371,6 +393,14 @@ def _stats(block: _Block, match: re.Match, dt: float, npts: int, units: str) -> 
             meta[name] = value
     meta.comments = [c.rstrip() for c in block.comments]
     meta.header = [line.rstrip() for line in block.text]
+    peak = next((m for m in map(_PEAK.search, block.text) if m is not None), None)
+    if peak is not None and not math.isclose(float(peak.group(1)), block.missing_real):
+        stats.stated_peak = AttribDict(
+            value=float(peak.group(1)),
+            units=peak.group(2),
+            time=float(peak.group(3)),
+            text=" ".join(peak.group(0).split()),
+        )
     stats.cosmos = meta
     return stats
 

@@ -50,11 +50,14 @@ from floorslide.errors import RecordError, UnitsError
 from floorslide.records.formats._text import (
     HEAD_BYTES,
     UNDERSCORE_HINT,
+    count_mismatch,
     decode,
     open_text,
+    parse_count_field,
     read_head,
 )
 from floorslide.records.units import canonical_units
+from floorslide.text_numbers import is_count, parse_number
 
 FORMAT = "FSTEXT"
 
@@ -73,7 +76,6 @@ _PLAIN_NUMBER_BYTES = b"0123456789+-.eE \t\r\n\f\v,"
 _ONE_FIELD_ROW = re.compile(rb"\n[ \t\r\f\v]*+[^\s]++[ \t\r\f\v]*+(?:\n|\Z)")
 _BLANK_LINE = re.compile(rb"^[ \t\r\f\v]*$", re.MULTILINE)
 _BLANK_BETWEEN = re.compile(rb"\n[ \t\r\f\v]*\n")
-_WHOLE_NUMBER = re.compile(r"^\+?\d+$")
 _MILLISECONDS = re.compile(r"(?:^|[^a-z])(?:ms|msec|millisec\w*)(?:[^a-z]|$)", re.IGNORECASE)
 
 CHUNK_BYTES = 1 << 22
@@ -339,10 +341,8 @@ def _values_by_lines(chunk: bytes, line: int, ncols: int, where: str) -> np.ndar
 
 def _float_or_none(token: str) -> float | None:
     """``float(token)``, or None for a token that is not a number (or has underscores)."""
-    if "_" in token:
-        return None
     try:
-        return float(token)
+        return parse_number(token)
     except ValueError:
         return None
 
@@ -436,18 +436,9 @@ def parse_text_record(filename: str | os.PathLike) -> TextRecord:
         units = canonical_units_in_header(raw_units, where)
     data = np.ascontiguousarray(table[:, -1])
     if "npts" in header:
-        try:
-            npts = int(header["npts"])
-        except ValueError:
-            raise RecordError(
-                f"header npts: {header['npts']!r} is not an integer", where=where
-            ) from None
+        npts = parse_count_field(header["npts"], "header npts:", where)
         if npts != data.size:
-            raise RecordError(
-                f"the header says npts={npts} but the file holds {data.size} samples"
-                + (" (truncated)" if data.size < npts else ""),
-                where=where,
-            )
+            raise count_mismatch("the header says npts=", npts, data.size, where)
     return TextRecord(data, dt, units, header, ncols, t0, pre.names)
 
 
@@ -455,9 +446,15 @@ def _count_hint(count: str) -> str:
     return f"delete that line, or make it a header line '# npts: {count}' (then it is checked)"
 
 
+def _is_count_token(token: str) -> bool:
+    """Whether a field is written as a count: a whole number ≥ 1 in any spelling (``2000``,
+    ``2000.``, ``2.0E+03``; :func:`floorslide.text_numbers.parse_count`)."""
+    return is_count(token) and parse_number(token) >= 1
+
+
 def _check_count_line_above_two_columns(fh: BinaryIO, pre: _Preamble, where: str) -> None:
     """A lone whole number above two-column data is a sample-count line, not data."""
-    if len(pre.tokens) != 1 or not _WHOLE_NUMBER.match(pre.tokens[0]):
+    if len(pre.tokens) != 1 or not _is_count_token(pre.tokens[0]):
         return
     following = _Preamble(fh, pre.end)
     if len(following.tokens) == 2 and not following.names:
@@ -471,13 +468,19 @@ def _check_count_line_above_two_columns(fh: BinaryIO, pre: _Preamble, where: str
 def _check_count_line(values: np.ndarray, pre: _Preamble, where: str) -> None:
     """Refuse a first value that is a sample count rather than a sample.
 
-    A first value written as a whole number that equals the number of values after it is a
-    count line (``3949`` above 3949 samples), not a 3949 g spike. One that is a whole number
-    at least :data:`COUNT_SPIKE` times the largest of the other values, which are not all
-    whole numbers, is one too, for a file whose count no longer matches (truncated).
+    A first value written as a whole number ≥ 1 (``3949``, ``3949.``, ``3.949E+03``) that
+    equals the number of values after it is a count line (``3949`` above 3949 samples), not a
+    3949 g spike. When the other values are not all whole numbers, a whole first value is a
+    count line too, one that disagrees with the values present, when it is
+
+    - above every other value's magnitude and above their number (a count of a truncated
+      file: ``2000.`` above 1500 samples in gal would otherwise be a 2000 gal PGA), or
+    - at least :data:`COUNT_SPIKE` times the largest of the other values.
+
+    Both numbers are named in the error.
     """
     token = pre.tokens[0]
-    if values.size < 2 or not _WHOLE_NUMBER.match(token):
+    if values.size < 2 or not _is_count_token(token):
         return
     first, rest = float(values[0]), values[1:]
     if first == rest.size:
@@ -486,14 +489,21 @@ def _check_count_line(values: np.ndarray, pre: _Preamble, where: str) -> None:
             f"a sample; {_count_hint(token)}",
             where=where,
         )
+    if np.all(rest == np.round(rest)):
+        return  # whole-number samples (counts of a digitiser): a count cannot be told apart
     largest = max(float(rest.max()), -float(rest.min()))
-    if abs(first) >= COUNT_SPIKE * largest and np.any(rest != np.round(rest)):
-        raise RecordError(
-            f"line {pre.line}: {token} looks like a sample count, not a sample (a whole number "
-            f"{COUNT_SPIKE:g}x the largest other value, {largest:.3g}), but {rest.size} values "
-            f"follow it: a truncated file? {_count_hint(token)}",
-            where=where,
-        )
+    if first > largest and first > rest.size:
+        why = f"above every value after it (largest {largest:.3g})"
+    elif first >= COUNT_SPIKE * largest:
+        why = f"{COUNT_SPIKE:g}x the largest other value, {largest:.3g}"
+    else:
+        return
+    disagree = "a truncated file?" if rest.size < first else "count and data disagree;"
+    raise RecordError(
+        f"line {pre.line}: {token} looks like a sample count, not a sample (a whole number "
+        f"{why}), but {rest.size} values follow it: {disagree} {_count_hint(token)}",
+        where=where,
+    )
 
 
 def _check_time_label(pre: _Preamble, where: str) -> None:
