@@ -32,6 +32,7 @@ import numpy as np
 
 from floorslide.building.model import IsolatedBuilding, LinearBuilding, ShearBuilding
 from floorslide.errors import ModelError
+from floorslide.text_numbers import parse_number
 
 KINDS = ("fixed", "isolated")
 """Building kinds of a spec (the scene's ``kind``)."""
@@ -96,20 +97,13 @@ def _split(text: str) -> tuple[str, dict[str, str]]:
     return kind, values
 
 
-def _plain(text: str) -> str:
-    """`text`, refusing underscores (Python reads ``0_4`` as 4.0, a typo for 0.4)."""
-    if "_" in text:
-        raise ValueError(text)
-    return text
-
-
 def _number(values: dict[str, str], key: str, default: float | None = None) -> float:
     if key not in values:
         if default is None:
             raise ModelError(f"{key} is missing", key)
         return default
     try:
-        return float(_plain(values[key]))
+        return parse_number(values[key])
     except ValueError:
         raise ModelError(f"{key}={values[key]!r} is not a number", key) from None
 
@@ -117,7 +111,7 @@ def _number(values: dict[str, str], key: str, default: float | None = None) -> f
 def _numbers(values: dict[str, str], key: str) -> list[float]:
     parts = values[key].split("/")
     try:
-        return [float(_plain(p)) for p in parts]
+        return [parse_number(p) for p in parts]
     except ValueError:
         raise ModelError(
             f"{key}={values[key]!r}: expected numbers separated by '/' (e.g. 2e5/2e5/1.5e5)", key
@@ -135,7 +129,9 @@ def _integer(values: dict[str, str], key: str, default: int) -> int:
     if key not in values:
         return default
     try:
-        return int(_plain(values[key]))
+        text = values[key]
+        parse_number(text)  # no underscores (text_numbers owns the rule)
+        return int(text)
     except ValueError:
         raise ModelError(f"{key}={values[key]!r} is not a whole number", key) from None
 
