@@ -1100,11 +1100,14 @@ def _spectrum_pair(record, record2, grid, zetas, building, building_h2, floor_no
 
 
 def _print_summary(summary, plan) -> None:
-    """The end of a run: counts, time, where the results are, unreadable records."""
+    """The end of a run: counts, time, where the results are, the flags of finished tasks,
+    unreadable records and failed tasks."""
     click.echo(
         f"{summary.ran} tasks run, {summary.resumed} already done, {summary.tasks} in all, "
         f"in {summary.seconds:.1f} s → {summary.out}"
     )
+    for warning in summary.warnings:
+        click.echo(f"floorslide: warning: {warning}", err=True)
     for failure in summary.failures:
         click.echo(f"floorslide: error: {failure}", err=True)
 
@@ -1147,13 +1150,14 @@ def run(scene, out, dry_run, resume, overwrite, workers, scheduler, scheduler_ti
 
     The planner simulates only what the scene asks for and says what it skipped; results are
     written as tasks finish, so an interrupted run keeps them and --resume continues it.
-    An existing OUT.h5 is never replaced unless --overwrite is given. Unreadable records are
-    reported and the others still run (exit code 3).
+    An existing OUT.h5 is never replaced unless --overwrite is given. Unreadable records and
+    tasks that fail (a solver at its event limit) are reported, left out of OUT.h5 (which
+    stays INCOMPLETE) and the others still run (exit code 3).
 
     Exit codes: 0 done; 1 results could not be written (e.g. a full disk: the finished tasks
     are kept, free space and rerun with --resume) or no Dask worker came; 2 bad usage, an
     invalid scene, or OUT.h5 exists (without --resume or --overwrite) or is foreign; 3 a
-    record could not be read; 130 interrupted.
+    record could not be read or a task failed; 130 interrupted.
     """
     from pathlib import Path
 

@@ -33,6 +33,8 @@ from floorslide.building.isolators import (
     STICK,
     BilinearIsolator,
     FrictionPendulum,
+    small_angle_exceeded,
+    small_angle_note,
 )
 from floorslide.building.model import ShearBuilding
 from floorslide.constants import G
@@ -240,6 +242,10 @@ class IsolatorResponse:
     event_branches: np.ndarray
     capacity_exceeded: bool = False
     """The isolator displacement went beyond the layer's ``capacity`` (when one is given)."""
+    small_angle_exceeded: bool = False
+    """A friction pendulum without a ``capacity`` went beyond
+    :attr:`~floorslide.building.isolators.FrictionPendulum.small_angle_limit` (``0.2 R``),
+    where its small-angle restoring force ``(W/R)·u`` is more than 2 % off."""
     notes: tuple[str, ...] = ()
     block_states: np.ndarray | None = None
     """Final states of the rigid blocks asked for (columns of ``floorslide.contents._kernels``)."""
@@ -647,14 +653,19 @@ def isolator_response(
             force[sel] = vals[-2]
     times = ev_row[:n_ev] * h + ev_tau[:n_ev]
     cap_m = building.isolator.capacity
-    exceeded = cap_m is not None and float(peak[-1]) > cap_m
+    # (with `oscillator`, peak holds the oscillator's peaks, not the isolator's)
+    peak_disp = float("nan") if oscillator is not None else float(peak[-1])
+    exceeded = cap_m is not None and peak_disp > cap_m
     notes = ()
     if exceeded:
         notes = (
-            f"isolator displacement {float(peak[-1]):.4g} m exceeds its capacity {cap_m:g} m: "
+            f"isolator displacement {peak_disp:.4g} m exceeds its capacity {cap_m:g} m: "
             "the impact that would follow (moat wall, bearing rim) is not modelled; the response "
             "after it is that of an unlimited layer",
         )
+    small_angle = small_angle_exceeded(building.isolator, peak_disp)
+    if small_angle:
+        notes += (small_angle_note(peak_disp, building.isolator.R),)
     return IsolatorResponse(
         dt=float(dt),
         substeps=int(m),
@@ -663,13 +674,14 @@ def isolator_response(
         pfa=peak.copy() if oscillator is not None else peak[:-2].copy(),
         isolator_displacement=samples[:, 0].copy(),
         isolator_force=force,
-        peak_displacement=float("nan") if oscillator is not None else float(peak[-1]),
+        peak_displacement=peak_disp,
         residual_displacement=float(samples[-1, 0]),
         peak_force_ratio=float("nan") if oscillator is not None else float(peak[-2] / W),
         branch=br.copy(),
         event_times=times,
         event_branches=ev_branch[:n_ev].copy(),
         capacity_exceeded=exceeded,
+        small_angle_exceeded=small_angle,
         notes=notes,
         block_states=bstates[np.argsort(order, kind="stable")] if len(blocks) else None,
         block_slides=hist_u[np.argsort(order, kind="stable")] if block_histories else None,

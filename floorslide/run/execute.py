@@ -15,13 +15,13 @@ import sys
 import time
 from collections.abc import Callable
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from tqdm import tqdm
 
 from floorslide.errors import FloorslideError
 from floorslide.run.store import ResultWriter, warn_stderr
-from floorslide.run.task import run_task
+from floorslide.run.task import TaskFailure, attempt_task, task_warnings
 from floorslide.scene.planner import Plan
 
 
@@ -34,8 +34,13 @@ class RunSummary:
     ran: int
     resumed: int
     failures: list[str]
+    """Unreadable records (the plan's) and tasks that failed (:class:`~floorslide.run.task.
+    TaskFailure`: left out of the result file, which then stays INCOMPLETE), one line each."""
     seconds: float
     interrupted: bool = False
+    warnings: list[str] = field(default_factory=list)
+    """One line per flag of a finished task a user should not miss
+    (:func:`~floorslide.run.task.task_warnings`)."""
 
 
 def _worker_init() -> None:
@@ -64,7 +69,7 @@ def _worker_init() -> None:
 def _run_local(todo, workers: int, force: bool, on_result: Callable) -> None:
     if workers <= 1:
         for task in todo:
-            on_result(run_task(task, force))
+            on_result(attempt_task(task, force))
         return
     # the first task here: the compiled kernels it needs are then loaded (or compiled, on a
     # fresh install) once, in this process, and every forked worker inherits them
@@ -75,7 +80,7 @@ def _run_local(todo, workers: int, force: bool, on_result: Callable) -> None:
 
         first = warmup.family(todo[0])
         warming = warmup.start(sorted({warmup.family(t) for t in todo} - {first}))
-        on_result(run_task(todo[0], force))
+        on_result(attempt_task(todo[0], force))
         warmup.finish(warming)
         todo = todo[1:]
     ctx = multiprocessing.get_context("fork" if sys.platform != "win32" else "spawn")
@@ -87,14 +92,14 @@ def _run_local(todo, workers: int, force: bool, on_result: Callable) -> None:
                 task = next(queue, None)
                 if task is None:
                     break
-                pending.add(pool.submit(run_task, task, force))
+                pending.add(pool.submit(attempt_task, task, force))
             while pending:
                 done, pending = wait(pending, return_when=FIRST_COMPLETED)
                 for fut in done:
                     on_result(fut.result())
                     task = next(queue, None)
                     if task is not None:
-                        pending.add(pool.submit(run_task, task, force))
+                        pending.add(pool.submit(attempt_task, task, force))
         except BaseException:
             for fut in pending:
                 fut.cancel()
@@ -103,11 +108,11 @@ def _run_local(todo, workers: int, force: bool, on_result: Callable) -> None:
 
 
 def _run_task_single_blas(task, force):
-    """run_task on a Dask worker with one BLAS thread."""
+    """attempt_task on a Dask worker with one BLAS thread."""
     from threadpoolctl import threadpool_limits
 
     with threadpool_limits(limits=1):
-        return run_task(task, force)
+        return attempt_task(task, force)
 
 
 SCHEDULER_TIMEOUT = 60.0
@@ -284,11 +289,17 @@ def execute(
         dynamic_ncols=True,
     )
     ran = 0
+    failed: list[str] = []
+    flagged: list[str] = []
 
     def on_result(result):
         nonlocal ran
-        writer.write(result)
-        ran += 1
+        if isinstance(result, TaskFailure):
+            failed.append(result.message)  # left out of the file: it stays INCOMPLETE
+        else:
+            writer.write(result)
+            ran += 1
+            flagged.extend(task_warnings(result))
         bar.update()
 
     interrupted = False
@@ -314,7 +325,8 @@ def execute(
         len(plan.tasks),
         ran,
         resumed,
-        list(plan.failures),
+        list(plan.failures) + failed,
         time.perf_counter() - t0,
         interrupted,
+        flagged,
     )
