@@ -1131,7 +1131,7 @@ def _print_summary(summary, plan) -> None:
     "--workers",
     type=click.IntRange(min=1),
     metavar="N",
-    help="Local worker processes (default: all cores).",
+    help="Local worker processes (default: all cores; at most one per task and 2 per core).",
 )
 @click.option(
     "--scheduler", metavar="ADDRESS", help="Send the tasks to a running Dask distributed scheduler."
@@ -1279,8 +1279,20 @@ _FIGURE_WORKERS = click.option(
     "--workers",
     type=click.IntRange(min=1),
     metavar="N",
-    help="Draw the figures in N processes (default: all cores); the files are the same.",
+    help="Draw the figures in N processes (default: all cores; at most 2 per core and one "
+    "per figure); the files are the same.",
 )
+
+
+def _figure_workers(workers: int | None) -> int:
+    """``--workers`` of plot and report capped at the machine (one line when reduced); the
+    figures cap it again at their number."""
+    from floorslide.parallel import worker_count
+
+    n, note = worker_count(workers, sys.maxsize, "figures")
+    if note:
+        click.echo(f"floorslide: warning: {note}", err=True)
+    return n
 
 
 @cli.command(epilog=REPORT_EXIT_CODES)
@@ -1461,7 +1473,7 @@ def plot(result, out, compare, damping, allow_incomplete, as_json, workers):
         compare=list(compare) or None,
         damping=damping,
         allow_incomplete=True,
-        workers=workers or os.cpu_count() or 1,
+        workers=_figure_workers(workers),
     )
     if as_json:
         click.echo(json.dumps([str(p) for p in paths], indent=1))
@@ -1638,7 +1650,7 @@ def report(result, out, allow_incomplete, workers):
         study,
         path,
         allow_incomplete=True,
-        workers=workers or os.cpu_count() or 1,
+        workers=_figure_workers(workers),
     )
     click.echo(str(written))
 

@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 from tqdm import tqdm
 
 from floorslide.errors import FloorslideError
+from floorslide.parallel import worker_count
 from floorslide.run.store import ResultWriter, warn_stderr
 from floorslide.run.task import TaskFailure, attempt_task, task_warnings
 from floorslide.scene.planner import Plan
@@ -83,6 +84,11 @@ def _run_local(todo, workers: int, force: bool, on_result: Callable) -> None:
         on_result(attempt_task(todo[0], force))
         warmup.finish(warming)
         todo = todo[1:]
+    workers = min(workers, len(todo))  # no process without a task
+    if workers <= 1:
+        for task in todo:
+            on_result(attempt_task(task, force))
+        return
     ctx = multiprocessing.get_context("fork" if sys.platform != "win32" else "spawn")
     with ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_worker_init) as pool:
         pending = set()
@@ -236,7 +242,9 @@ def execute(
     out
         Result file (HDF5).
     workers
-        Local worker processes (default: all cores; 1 runs in this process).
+        Local worker processes (default: one per usable core; 1 runs in this process), at most
+        one per task to run and :data:`~floorslide.parallel.PER_CORE` per core (a request
+        reduced is said in one line through `warn`).
     scheduler
         Address of a running ``dask.distributed`` scheduler to send the tasks to instead.
     resume
@@ -252,7 +260,7 @@ def execute(
         With `scheduler`: seconds to wait while no Dask worker is connected before giving up.
     warn
         Called with one line for each warning: entries refused or tasks rebuilt on resume, a
-        scheduler without workers (default: printed on stderr).
+        scheduler without workers, a `workers` request reduced (default: printed on stderr).
 
     Raises
     ------
@@ -309,8 +317,11 @@ def execute(
         if scheduler:
             _run_dask(todo, scheduler, force, on_result, scheduler_timeout, warn)
         else:
+            n, note = worker_count(workers, len(todo))
+            if note:
+                warn(note)
             with threadpool_limits(limits=1):
-                _run_local(todo, workers or os.cpu_count() or 1, force, on_result)
+                _run_local(todo, n, force, on_result)
     except KeyboardInterrupt:
         interrupted = True
     except Exception:
