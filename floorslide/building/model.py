@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Literal
 
 import numpy as np
 
+from floorslide.building.exact import model_substeps, spectral_radius
 from floorslide.errors import ModelError, ModelWarning
 from floorslide.numerics.blas import eigh
 
@@ -275,6 +276,13 @@ class LinearBuilding:
     def periods(self) -> np.ndarray:
         """Undamped natural periods, s, longest first."""
         return self.modal_properties().periods
+
+    def substeps(self, dt: float) -> int:
+        """Sub-steps per record step of `dt` on which the building is stepped exactly
+        (``ρ(A)·h ≤ 0.5``; :func:`~floorslide.building.exact.model_substeps`: a ModelError
+        beyond its limits — a building too stiff for the records' dt)."""
+        A, _ = self.state_matrices()
+        return model_substeps(spectral_radius(A), dt, A.shape[0])
 
     # ----------------------------------------------------------------- state space
     def state_matrices(self) -> tuple[np.ndarray, np.ndarray]:

@@ -22,7 +22,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from floorslide.building import _nonlinear_kernel as kern
-from floorslide.building.exact import ExactStepper, spectral_radius, substeps_for
+from floorslide.building.exact import (
+    ExactStepper,
+    model_substeps,
+    spectral_radius,
+    substeps_for,
+)
 from floorslide.building.isolators import (
     BRANCH_NAMES,
     ELASTIC,
@@ -126,6 +131,14 @@ class NonlinearIsolatedBuilding:
                 f"effective damping {damping:.3g} ≥ 1 at {displacement:g} m", "displacement"
             )
         return IsolatedBuilding(self.superstructure, self.base_mass_ratio, period, damping)
+
+    def substeps(self, dt: float) -> int:
+        """Sub-steps per record step of `dt` on which every branch is stepped exactly
+        (``ρ·h ≤ 0.5`` for the fastest branch; :func:`~floorslide.building.exact.model_substeps`:
+        a ModelError beyond its limits)."""
+        systems = [self.branch_system(b)[0] for b in self.branches()]
+        rho = max(spectral_radius(A) for A in systems)
+        return model_substeps(rho, dt, systems[0].shape[0])
 
     def branches(self) -> tuple[int, ...]:
         """The branches this layer can be on."""
@@ -493,7 +506,7 @@ def isolator_response(
     systems, rho, mats, outputs, r_f, d_f = _prepared(prep_key, building, floors, oscillator)
     N = next(iter(systems.values()))[0].shape[0]
     oscillators = [] if oscillators is None else list(oscillators)
-    m = substeps_for(rho, dt)
+    m = model_substeps(rho, dt, N)
     from floorslide.contents.oscillator import phase_radius
 
     if flexible is not None:

@@ -704,6 +704,47 @@ def _check_short_periods(scene: Scene, records: list[LoadedRecord]) -> None:
         )
 
 
+def _building_key(scene: Scene, base: str) -> str:
+    """The key path ``buildings[i]`` of the scene's building table with id `base`."""
+    import tomllib
+
+    try:
+        tables = tomllib.loads(scene.text).get("buildings", [])
+    except (tomllib.TOMLDecodeError, AttributeError, TypeError):
+        tables = []
+    for i, b in enumerate(tables if isinstance(tables, list) else []):
+        if isinstance(b, dict) and b.get("id") == base:
+            return f"buildings[{i}]"
+    return "buildings"
+
+
+def _check_substeps(scene: Scene, records: list[LoadedRecord]) -> None:
+    """Every building (each direction of a two-way one) steps the coarsest record within
+    :data:`~floorslide.building.exact.MAX_SUBSTEPS` sub-steps per record step and
+    :data:`~floorslide.building.exact.MAX_STEP_BYTES` of states (known once the records are
+    read): beyond them a run would exhaust the memory or the user's patience, so it is an
+    invalid scene, one line per building, before anything runs (``--dry-run`` says so too)."""
+    from floorslide.building.directions import per_direction
+    from floorslide.errors import ModelError
+
+    if not records:
+        return
+    coarsest = max(records, key=lambda r: r.dt)
+    problems = []
+    for b in scene.buildings:
+        try:
+            models = per_direction(b.build_plane()) if b.two_way else (b.build(),)
+            for model in models:
+                model.substeps(coarsest.dt)
+        except ModelError as exc:
+            problems.append(
+                f"{_building_key(scene, b.base)} (building {b.id!r}, under record "
+                f"{coarsest.label}): {exc.message}"
+            )
+    if problems:
+        raise SceneError(problems, scene.path)
+
+
 def plan(scene: Scene, *, force: bool = False, evaluate: bool = True) -> Plan:
     """Turn a scene into tasks.
 
@@ -727,6 +768,7 @@ def plan(scene: Scene, *, force: bool = False, evaluate: bool = True) -> Plan:
             got = scaling.match_suite(rs, got)
         records += got
     _check_short_periods(scene, records)
+    _check_substeps(scene, records)
     history = scene.report.get("history_record")
     if history is None and records:
         history = records[0].record
