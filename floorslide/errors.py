@@ -98,6 +98,14 @@ class SolverLimitError(FloorslideError):
     exit_code = 1
 
 
+class NonFiniteError(FloorslideError):
+    """A model or a solver produced NaN or infinite values from finite input (magnitudes
+    beyond float64's range inside it). Rather than return zeros or NaN as a result, it stops,
+    naming the building, record or object (exit code 1; in a run, that task fails alone)."""
+
+    exit_code = 1
+
+
 class FloorslideWarning(UserWarning):
     """Base class of the warnings floorslide gives: something was done to the input that the
     caller should know of (the same text is kept in the result's ``notes``)."""

@@ -182,11 +182,23 @@ class ExactStepper:
         given)."""
         A = np.asarray(A, dtype=float)
         b = np.asarray(b, dtype=float).reshape(A.shape[0])
+        if not (np.all(np.isfinite(A)) and np.all(np.isfinite(b))):
+            raise ModelError(
+                "the state matrices are not finite (the building's masses and stiffnesses "
+                "overflow float64 in M⁻¹K and M⁻¹C)",
+                "building",
+            )
         rho = spectral_radius(A)
         if substeps is None:
             substeps = model_substeps(rho, dt, A.shape[0])
         h = dt / substeps
         phi, g0, g1 = foh_matrices(A, b, h)
+        if not (np.all(np.isfinite(phi)) and np.all(np.isfinite(g0)) and np.all(np.isfinite(g1))):
+            raise ModelError(
+                f"the exact sub-step matrices (h = {h:.3g} s) are not finite: the building's "
+                "matrices are beyond float64's range",
+                "building",
+            )
         return cls(A, b, float(dt), int(substeps), h, phi, g0, g1, taylor_degree(rho * h))
 
     @property

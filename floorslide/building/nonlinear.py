@@ -43,7 +43,7 @@ from floorslide.building.isolators import (
 )
 from floorslide.building.model import ShearBuilding
 from floorslide.constants import G
-from floorslide.errors import ModelError, SolverLimitError
+from floorslide.errors import ModelError, NonFiniteError, SolverLimitError
 from floorslide.inputs import as_record
 
 MAX_EVENTS_PER_SUBSTEP = 64
@@ -76,8 +76,7 @@ class NonlinearIsolatedBuilding:
         self.superstructure = superstructure
         self.isolator = isolator
         self.base_mass_ratio = ratio
-        self.mass = np.concatenate([[ratio * ms.sum()], ms])
-        n = self.mass.size
+        n = ms.size + 1
         iota = np.ones(ms.size)
 
         def assemble(sup: np.ndarray) -> np.ndarray:
@@ -88,9 +87,20 @@ class NonlinearIsolatedBuilding:
             out[1:, 1:] = sup
             return out
 
-        self.stiffness_matrix = assemble(superstructure.stiffness_matrix)
-        self.damping_matrix = assemble(superstructure.damping_matrix)
-        self.constants = isolator.constants(self.total_mass)
+        with np.errstate(over="ignore", invalid="ignore"):
+            self.mass = np.concatenate([[ratio * ms.sum()], ms])
+            self.stiffness_matrix = assemble(superstructure.stiffness_matrix)
+            self.damping_matrix = assemble(superstructure.damping_matrix)
+            self.constants = isolator.constants(self.total_mass)
+        finite = [self.mass, self.stiffness_matrix, self.damping_matrix]
+        if not all(np.all(np.isfinite(a)) for a in finite) or not all(
+            np.isfinite(v) for v in self.constants.values()
+        ):
+            raise ModelError(
+                "the building's matrices or isolator constants are not finite (they overflow "
+                "float64): give masses (kg) and stiffnesses (N/m) of a building",
+                "base_mass_ratio",
+            )
 
     @property
     def n_dof(self) -> int:
@@ -650,6 +660,10 @@ def isolator_response(
     h = dt / m
     samples = X
     br = BR
+    if not (np.all(np.isfinite(peak)) and np.all(np.isfinite(samples[-1]))):
+        raise NonFiniteError(
+            "the building's response is not finite (it overflows float64)", "building"
+        )
     if oscillator is None:
         acc_out = np.ascontiguousarray(Yo[:, :-2].T)
         force = Yo[:, -2].copy()

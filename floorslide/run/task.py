@@ -18,7 +18,7 @@ from floorslide.building.isolators import small_angle_note
 from floorslide.contents.oscillator import slide_oscillator
 from floorslide.contents.rocking_block import rock as rock_blocks
 from floorslide.contents.sliding import slide
-from floorslide.errors import FloorslideError
+from floorslide.errors import FloorslideError, NonFiniteError
 from floorslide.run.results import ContentResult, Histories, SpectrumResult, TaskResult
 from floorslide.scene.planner import Task, decide
 from floorslide.spectra.core import broaden, response_spectrum
@@ -252,7 +252,42 @@ def _content_result(content, floor, modes, reasons, mu, mu_s, arrays, **extra) -
 
 
 def run_task(task: Task, force: bool = False) -> TaskResult:
-    """Compute everything `task` asks for (see the planner for the skip rules)."""
+    """Compute everything `task` asks for (see the planner for the skip rules).
+
+    Raises
+    ------
+    NonFiniteError
+        A result that must be a number (a floor's PFA, a spectrum, an isolator's peak, a slide
+        or rotation) is NaN or infinite: the solvers overflowed (docs/design.md §9).
+    """
+    result = _run(task, force)
+    _check_finite(result)
+    return result
+
+
+def _check_finite(result: TaskResult) -> None:
+    """Every number a task computes is finite — except the NaN that mean "not this kind of
+    result" (a rocker's slide, a slider's rotation, an oscillator's deformation on a rigid
+    block, no overturning): the PFA, spectra and isolator peaks are finite, and no array holds
+    an infinity. A solver that overflowed says so instead of writing NaN or zeros."""
+    bad = []
+    if not np.all(np.isfinite(result.pfa)):
+        bad.append("the floors' PFA")
+    for key in ("isolator_peak_displacement", "isolator_peak_force_ratio"):
+        if key in result.meta and not np.isfinite(result.meta[key]):
+            bad.append(key)
+    for sp in result.spectra:
+        if not all(np.all(np.isfinite(getattr(sp, k))) for k in ("psa", "sd")):
+            bad.append(f"the floor spectrum of floor {sp.floor}")
+    for c in result.contents:
+        for name, value in vars(c).items():
+            if isinstance(value, np.ndarray) and value.dtype.kind == "f" and np.isinf(value).any():
+                bad.append(f"{name} of content {c.content} on floor {c.floor}")
+    if bad:
+        raise NonFiniteError(f"not finite (the solvers overflowed): {', '.join(bad)}", "task")
+
+
+def _run(task: Task, force: bool) -> TaskResult:
     t0 = time.perf_counter()
     rec = task.record
     acc, dt = rec.acc, rec.dt

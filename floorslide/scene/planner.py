@@ -575,6 +575,8 @@ def _load_set(
             failures.append(f"{label}: {exc}")
             continue
         for set_name, factor, info in scalings:
+            if not _scaled_ok(label, set_name, factor, (acc, vert), failures):
+                continue
             if scaling is not None:
                 scaling.add(rs, set_name, record_id, factor, info)
             out.append(
@@ -591,6 +593,26 @@ def _load_set(
                 )
             )
     return out
+
+
+def _scaled_ok(label: str, set_name: str, factor: float, arrays, failures: list[str]) -> bool:
+    """Whether a record scaled by `factor` (its components `arrays`, None where absent) is one
+    the solvers take: a finite factor, samples finite and within
+    :data:`~floorslide.constants.MAX_ACCELERATION`. If not, the record is a failure of its own
+    (named, with the factor) — never a run on overflowing numbers that reads "no slide"."""
+    from floorslide.inputs import check_amplitude
+
+    try:
+        if not np.isfinite(factor) or factor <= 0:
+            raise RecordError(f"scale factor {factor!r} is not a finite positive number")
+        with np.errstate(over="ignore", invalid="ignore"):
+            peak = max(float(np.abs(a).max()) * factor for a in arrays if a is not None)
+        check_amplitude(peak)
+    except FloorslideError as exc:
+        how = "" if factor == 1.0 else f"scaled by {factor:.4g} ({set_name}), "
+        failures.append(f"{label}: {how}{exc.message}")
+        return False
+    return True
 
 
 def _load_pairs(
@@ -665,6 +687,8 @@ def _load_pairs(
             failures.append(f"{label}: {exc}")
             continue
         for set_name, factor, info in scalings:
+            if not _scaled_ok(label, set_name, factor, (pair.h1, pair.h2, pair.vertical), failures):
+                continue
             if scaling is not None:
                 scaling.add(rs, set_name, record_id, factor, info)
             out.append(
@@ -718,29 +742,30 @@ def _building_key(scene: Scene, base: str) -> str:
     return "buildings"
 
 
-def _check_substeps(scene: Scene, records: list[LoadedRecord]) -> None:
-    """Every building (each direction of a two-way one) steps the coarsest record within
+def _check_buildings(scene: Scene, records: list[LoadedRecord]) -> None:
+    """Every building (each direction of a two-way one) can be built — its matrices finite,
+    not beyond float64's range — and steps the coarsest record within
     :data:`~floorslide.building.exact.MAX_SUBSTEPS` sub-steps per record step and
     :data:`~floorslide.building.exact.MAX_STEP_BYTES` of states (known once the records are
-    read): beyond them a run would exhaust the memory or the user's patience, so it is an
-    invalid scene, one line per building, before anything runs (``--dry-run`` says so too)."""
+    read): otherwise a run would give NaN floors read as "no slide", exhaust the memory or the
+    user's patience, so it is an invalid scene, one line per building, before anything runs
+    (``--dry-run`` says so too)."""
     from floorslide.building.directions import per_direction
     from floorslide.errors import ModelError
 
-    if not records:
-        return
-    coarsest = max(records, key=lambda r: r.dt)
+    coarsest = max(records, key=lambda r: r.dt) if records else None
     problems = []
     for b in scene.buildings:
+        key = f"{_building_key(scene, b.base)} (building {b.id!r}"
         try:
             models = per_direction(b.build_plane()) if b.two_way else (b.build(),)
+            if coarsest is None:
+                continue
+            key += f", under record {coarsest.label}"
             for model in models:
                 model.substeps(coarsest.dt)
         except ModelError as exc:
-            problems.append(
-                f"{_building_key(scene, b.base)} (building {b.id!r}, under record "
-                f"{coarsest.label}): {exc.message}"
-            )
+            problems.append(f"{key}): {exc.message}")
     if problems:
         raise SceneError(problems, scene.path)
 
@@ -768,7 +793,7 @@ def plan(scene: Scene, *, force: bool = False, evaluate: bool = True) -> Plan:
             got = scaling.match_suite(rs, got)
         records += got
     _check_short_periods(scene, records)
-    _check_substeps(scene, records)
+    _check_buildings(scene, records)
     history = scene.report.get("history_record")
     if history is None and records:
         history = records[0].record

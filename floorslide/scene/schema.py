@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from floorslide.constants import MAX_LIST
+from floorslide.constants import MAX_ACCELERATION, MAX_LIST, G
 from floorslide.errors import SceneError
 
 TOP_KEYS = {"scene", "records", "processing", "buildings", "contents", "spectra", "report"}
@@ -122,6 +122,11 @@ SPECTRA_KEYS = {"floors", "damping", "periods", "broadening"}
 REPORT_KEYS = {"periods", "damping", "compare", "history_record"}
 QA_ACTIONS = ("warn", "reject")
 """Values of ``[scene] qa`` (:mod:`floorslide.records.quality`)."""
+
+MAX_SCALE_PGA = MAX_ACCELERATION / G
+"""Largest ``scale_pga`` (g): the most the solvers take
+(:data:`floorslide.constants.MAX_ACCELERATION`)."""
+
 MAX_STORIES = 200
 """Largest building a scene may declare (a 200-storey shear building has 400 states)."""
 
@@ -698,7 +703,7 @@ def _records(value, ck: _Checker, base: Path) -> tuple[tuple[RecordSetSpec, ...]
         elif ids is not None:
             ids += [record_id_of(f) for f in files]
         scale = (
-            ck.numbers(r["scale_pga"], f"{w}.scale_pga", lo=0, lo_open=True)
+            ck.numbers(r["scale_pga"], f"{w}.scale_pga", lo=0, lo_open=True, hi=MAX_SCALE_PGA)
             if "scale_pga" in r
             else ()
         )
@@ -1010,8 +1015,13 @@ def _fixed_model(b: dict, w: str, ck: _Checker):
     stiffnesses = tuple(np.broadcast_to(stiff, (stories,)).tolist()) if stiff else ()
     if stiffnesses:
         from floorslide.building.model import ShearBuilding
+        from floorslide.errors import ModelError
 
-        periods = (float(ShearBuilding(masses, stiffnesses, 0.0).periods[0]),)
+        try:
+            periods = (float(ShearBuilding(masses, stiffnesses, 0.0).periods[0]),)
+        except ModelError as exc:  # matrices beyond float64's range
+            ck.add(f"{w}.stiffness", exc.message)
+            return None
     return stories, masses, stiffnesses, periods, str(profile)
 
 
