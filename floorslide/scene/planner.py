@@ -364,6 +364,38 @@ def _scalings(rs: RecordSetSpec, pga: float, spectrum=None):
         yield (rs.set if sc is None or len(scales) == 1 else f"{rs.set}@{sc:g}g"), factor, info
 
 
+class _ScaleGridError(Exception):
+    """A set's ``scale`` asks for spectra below what its records' dt allows: a scene error
+    (:func:`plan` names the key), not a failure of each record."""
+
+    def __init__(self, key: str, message: str):
+        self.key = key
+        super().__init__(message)
+
+
+def _check_scale_grid(rs: RecordSetSpec, dt: float, label: str) -> None:
+    """Raise :class:`_ScaleGridError` when `rs`'s scaling spectra reach below ``dt/1000``
+    (:data:`floorslide.spectra.core.MIN_PERIOD_STEPS`) of a record of step `dt`."""
+    from floorslide.spectra.core import MIN_PERIOD_STEPS
+
+    sc = rs.scale
+    if sc is None:
+        return
+    lo = float(sc.period_range[0])
+    if lo < dt / MIN_PERIOD_STEPS:
+        # a `period` alone makes the range 0.2·T–2·T (scene.schema._scale)
+        about = sc.period is not None and tuple(sc.period_range) == (
+            0.2 * sc.period,
+            2.0 * sc.period,
+        )
+        how = " (0.2·T)" if about else ""
+        raise _ScaleGridError(
+            "period" if about else "periods",
+            f"the records' spectra would reach down to {lo:g} s{how}, below dt/"
+            f"{MIN_PERIOD_STEPS} = {dt / MIN_PERIOD_STEPS:g} s of record {label} (dt = {dt:g} s)",
+        )
+
+
 def _record_spectrum(rs: RecordSetSpec, acc, dt: float, acc2=None):
     """A callable: the record's spectrum on `rs.scale`'s grid, g — PSA of one component, the
     maximum-direction spectrum RotD100 of a pair (ASCE 7-22 §16.2.3.2)."""
@@ -569,6 +601,7 @@ def _load_set(
         acc = np.asarray(tr.data, dtype=float)
         pga = float(np.abs(acc).max())
         catalog_meta = dict(getattr(tr.stats, "catalog", {}) or {})
+        _check_scale_grid(rs, float(tr.stats.delta), label)
         try:
             scalings = list(_scalings(rs, pga, _record_spectrum(rs, acc, float(tr.stats.delta))))
         except FloorslideError as exc:
@@ -677,6 +710,7 @@ def _load_pairs(
             _rejected(rs, record_id, label, flags, failures, rejected)
             continue
         pga = float(max(np.abs(pair.h1).max(), np.abs(pair.h2).max()))
+        _check_scale_grid(rs, pair.dt, label)
         meta = {k: str(v) for k, v in row["h1"].row.items() if k not in ("file", "comp")}
         meta["files"] = f"{row['h1'].path.name} + {row['h2'].path.name}"
         if pair.notes:
@@ -787,8 +821,11 @@ def plan(scene: Scene, *, force: bool = False, evaluate: bool = True) -> Plan:
     rejected: list[dict] = []
     periods = tuple(scene.spectra.periods) if scene.spectra is not None else ()
     scaling = _Scaling()
-    for rs in scene.records:
-        got = _load_set(rs, scene.processing, failures, periods, scene.qa, rejected, scaling)
+    for i, rs in enumerate(scene.records):
+        try:
+            got = _load_set(rs, scene.processing, failures, periods, scene.qa, rejected, scaling)
+        except _ScaleGridError as exc:
+            raise SceneError(f"records[{i}].scale.{exc.key}: {exc}", scene.path) from None
         if rs.scale is not None and rs.scale.match_suite:
             got = scaling.match_suite(rs, got)
         records += got

@@ -816,6 +816,21 @@ def _increasing_pair(value, where: str, ck: _Checker, what: str) -> tuple[float,
     return lo, hi
 
 
+def _scale_range(rng: tuple[float, float], where: str, ck: _Checker) -> None:
+    """The records' spectra of a ``scale`` are computed over `rng` (``0.2 T … 2 T`` about a
+    ``period``): within what a spectrum takes (:data:`floorslide.spectra.core.MAX_PERIOD`;
+    the lower bound, ``dt/1000``, is checked by the planner once the records' dt is known)."""
+    from floorslide.spectra.core import MAX_PERIOD
+
+    if rng[1] > MAX_PERIOD:
+        how = "" if where.endswith("periods") else " (the fit range 0.2·T–2·T)"
+        ck.add(
+            where,
+            f"the records' spectra would reach {rng[1]:g} s{how}, above {MAX_PERIOD:g} s, "
+            "beyond any structure",
+        )
+
+
 def _scale(value, w: str, ck: _Checker, base: Path) -> ScaleSpec | None:
     """A record set's ``scale`` table (docs/design.md §10e), or None with the problems added."""
     from floorslide.errors import ModelError
@@ -868,6 +883,8 @@ def _scale(value, w: str, ck: _Checker, base: Path) -> ScaleSpec | None:
         ck.add(w, "give periods = [T_lo, T_hi] (fit over a range) or period = T (match at T)")
     if rng is not None and period is not None and not (rng[0] <= period <= rng[1]):
         ck.add(f"{w}.period", f"{period:g} s lies outside periods [{rng[0]:g}, {rng[1]:g}]")
+    elif rng is not None:
+        _scale_range(rng, f"{w}.periods" if "periods" in value else f"{w}.period", ck)
     if target is not None and rng is not None and not target.params:
         lo_t, hi_t = float(target.periods[0]), float(target.periods[-1])
         if rng[0] < lo_t or rng[1] > hi_t:
