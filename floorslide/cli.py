@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import math
 import os
+import signal
 import sys
 import warnings
 
@@ -1116,11 +1117,14 @@ def _spectrum_pair(record, record2, grid, zetas, building, building_h2, floor_no
 
 
 def _print_summary(summary, plan) -> None:
-    """The end of a run: counts, time, where the results are, unreadable records."""
+    """The end of a run: counts, time, where the results are, the flags of finished tasks,
+    unreadable records and failed tasks."""
     click.echo(
         f"{summary.ran} tasks run, {summary.resumed} already done, {summary.tasks} in all, "
         f"in {summary.seconds:.1f} s → {summary.out}"
     )
+    for warning in summary.warnings:
+        click.echo(f"floorslide: warning: {warning}", err=True)
     for failure in summary.failures:
         click.echo(f"floorslide: error: {failure}", err=True)
 
@@ -1144,7 +1148,7 @@ def _print_summary(summary, plan) -> None:
     "--workers",
     type=click.IntRange(min=1),
     metavar="N",
-    help="Local worker processes (default: all cores).",
+    help="Local worker processes (default: all cores; at most one per task and 2 per core).",
 )
 @click.option(
     "--scheduler", metavar="ADDRESS", help="Send the tasks to a running Dask distributed scheduler."
@@ -1163,17 +1167,20 @@ def run(scene, out, dry_run, resume, overwrite, workers, scheduler, scheduler_ti
 
     The planner simulates only what the scene asks for and says what it skipped; results are
     written as tasks finish, so an interrupted run keeps them and --resume continues it.
-    An existing OUT.h5 is never replaced unless --overwrite is given. Unreadable records are
-    reported and the others still run (exit code 3).
+    An existing OUT.h5 is never replaced unless --overwrite is given. Unreadable records and
+    tasks that fail (a solver at its event limit) are reported, left out of OUT.h5 (which
+    stays INCOMPLETE) and the others still run (exit code 3).
 
     Exit codes: 0 done; 1 results could not be written (e.g. a full disk: the finished tasks
     are kept, free space and rerun with --resume) or no Dask worker came; 2 bad usage, an
     invalid scene, or OUT.h5 exists (without --resume or --overwrite) or is foreign; 3 a
-    record could not be read; 130 interrupted.
+    record could not be read or a task failed; 128 + signal when interrupted (130 Ctrl-C,
+    143 SIGTERM, 129 SIGHUP; what finished is kept).
     """
     from pathlib import Path
 
-    from floorslide.run.execute import SCHEDULER_TIMEOUT, execute
+    from floorslide.errors import Interrupted
+    from floorslide.run.execute import SCHEDULER_TIMEOUT, execute, interrupt_signals
     from floorslide.scene.planner import plan as make_plan
     from floorslide.scene.schema import load_scene
 
@@ -1181,36 +1188,62 @@ def run(scene, out, dry_run, resume, overwrite, workers, scheduler, scheduler_ti
         raise click.UsageError("--resume and --overwrite exclude each other")
     if scheduler_timeout is not None and not scheduler:
         raise click.BadParameter("needs --scheduler", param_hint="--scheduler-timeout")
-    sc = load_scene(scene)
-    # the per-object rules need each task's true PFA: the dry run evaluates them to count them;
-    # a real run leaves them to the tasks, so each building is integrated once per record
-    plan = make_plan(sc, force=force, evaluate=dry_run)
-    if dry_run:
-        click.echo(plan.describe())  # lists the scene's warnings
-        sys.exit(EXIT_RECORD if plan.failures else EXIT_OK)
-    for warning in sc.warnings:
-        click.echo(f"floorslide: warning: {scene}: {warning}", err=True)
-    out = out or f"{Path(scene).stem}.h5"
-    summary = execute(
-        plan,
-        out,
-        workers=workers,
-        scheduler=scheduler,
-        resume=resume,
-        overwrite=overwrite,
-        force=force,
-        scheduler_timeout=scheduler_timeout or SCHEDULER_TIMEOUT,
-    )
-    if summary.interrupted:
+    # SIGINT, SIGTERM and SIGHUP stop a run alike, from planning to the last line of its
+    # summary; none is lost (one whose exception was swallowed still counts), and once the run
+    # has begun each ends with the line below and exit 128 + signal (130, 143, 129)
+    with interrupt_signals() as received:
+        sc = load_scene(scene)
+        # the per-object rules need each task's true PFA: the dry run evaluates them to count
+        # them; a real run leaves them to the tasks, so each building is integrated once per
+        # record
+        plan = make_plan(sc, force=force, evaluate=dry_run)
+        if received:
+            raise Interrupted(received[0])
+        if dry_run:
+            click.echo(plan.describe())  # lists the scene's warnings
+            sys.exit(EXIT_RECORD if plan.failures else EXIT_OK)
+        for warning in sc.warnings:
+            click.echo(f"floorslide: warning: {scene}: {warning}", err=True)
+        out = out or f"{Path(scene).stem}.h5"
+        summary = None
+        try:
+            summary = execute(
+                plan,
+                out,
+                workers=workers,
+                scheduler=scheduler,
+                resume=resume,
+                overwrite=overwrite,
+                force=force,
+                scheduler_timeout=scheduler_timeout or SCHEDULER_TIMEOUT,
+                signals=received,
+            )
+            if not summary.interrupted:
+                _print_summary(summary, plan)
+        except KeyboardInterrupt:
+            received.append(signal.SIGINT)  # (an Interrupted has put its signal first)
+    if received or summary.interrupted:
+        signum = received[0] if received else summary.signal
+        kept = summary.kept if summary is not None else _journaled(out)
         click.echo(
-            f"floorslide: interrupted; {summary.ran + summary.resumed} finished tasks are in "
-            f"{out} (continue with --resume)",
+            f"floorslide: interrupted ({signal.Signals(signum).name}); {kept} finished tasks "
+            f"are in {out} (continue with --resume)",
             err=True,
         )
-        sys.exit(130)
-    _print_summary(summary, plan)
+        sys.exit(128 + signum)
     if summary.failures:
         sys.exit(EXIT_RECORD)
+
+
+def _journaled(out: str) -> int:
+    """Finished tasks kept for ``--resume`` of a run interrupted before its summary: the
+    entries of its journal."""
+    from floorslide.run.store import journal_entries
+
+    try:
+        return len(journal_entries(out))
+    except (OSError, ValueError):
+        return 0
 
 
 REPORT_TABLES = (
@@ -1291,8 +1324,20 @@ _FIGURE_WORKERS = click.option(
     "--workers",
     type=click.IntRange(min=1),
     metavar="N",
-    help="Draw the figures in N processes (default: all cores); the files are the same.",
+    help="Draw the figures in N processes (default: all cores; at most 2 per core and one "
+    "per figure); the files are the same.",
 )
+
+
+def _figure_workers(workers: int | None) -> int:
+    """``--workers`` of plot and report capped at the machine (one line when reduced); the
+    figures cap it again at their number."""
+    from floorslide.parallel import worker_count
+
+    n, note = worker_count(workers, sys.maxsize, "figures")
+    if note:
+        click.echo(f"floorslide: warning: {note}", err=True)
+    return n
 
 
 @cli.command(epilog=REPORT_EXIT_CODES)
@@ -1474,7 +1519,7 @@ def plot(result, out, compare, damping, allow_incomplete, as_json, workers):
         compare=list(compare) or None,
         damping=damping,
         allow_incomplete=True,
-        workers=workers or os.cpu_count() or 1,
+        workers=_figure_workers(workers),
     )
     if as_json:
         click.echo(json.dumps([str(p) for p in paths], indent=1))
@@ -1666,7 +1711,7 @@ def report(result, out, allow_incomplete, workers):
         study,
         path,
         allow_incomplete=True,
-        workers=workers or os.cpu_count() or 1,
+        workers=_figure_workers(workers),
     )
     click.echo(str(written))
 
@@ -1720,8 +1765,12 @@ def demo(out_dir, workers):
     click.echo(plan.describe())
     summary = execute(plan, str(h5), workers=workers, overwrite=replace)
     if summary.interrupted:
-        click.echo(f"floorslide: interrupted; finished tasks are in {h5}", err=True)
-        sys.exit(130)
+        click.echo(
+            f"floorslide: interrupted ({signal.Signals(summary.signal).name}); "
+            f"{summary.kept} finished tasks are in {h5}",
+            err=True,
+        )
+        sys.exit(128 + summary.signal)
     study = load_study(h5)  # the result file read once, for the tables and the figures
     tables = design_tables(study)
     csvs = write_csv(tables, out / "tables", inputs=[h5])
@@ -1806,22 +1855,33 @@ def _show_warning(message, category, filename, lineno, file=None, line=None) -> 
 _python_show_warning = warnings.showwarning
 
 
+def _interrupt(signum, frame) -> None:
+    """SIGTERM and SIGHUP end a command as Ctrl-C does (``floorslide: interrupted``, exit
+    128 + signal); a run keeps what finished (:func:`floorslide.run.execute.interrupt_signals`)."""
+    from floorslide.errors import Interrupted
+
+    raise Interrupted(signum)
+
+
 def main() -> None:
     """Entry point of the ``floorslide`` console script."""
     warnings.showwarning = _show_warning
+    for name in ("SIGTERM", "SIGHUP"):
+        if hasattr(signal, name):
+            signal.signal(getattr(signal, name), _interrupt)
     try:
         cli.main(standalone_mode=False)
-    except click.exceptions.Abort:
+    except click.exceptions.Abort as exc:  # click's form of a KeyboardInterrupt
         click.echo("floorslide: interrupted", err=True)
-        sys.exit(130)
+        sys.exit(128 + getattr(exc.__cause__, "signum", signal.SIGINT))
     except click.ClickException as exc:
         exc.show()
         sys.exit(EXIT_USAGE if exc.exit_code in (1, 2) else exc.exit_code)
     except FloorslideError as exc:
         fail(exc)
-    except KeyboardInterrupt:
+    except KeyboardInterrupt as exc:
         click.echo("floorslide: interrupted", err=True)
-        sys.exit(130)
+        sys.exit(128 + getattr(exc, "signum", signal.SIGINT))
     except SystemExit:
         raise
 

@@ -106,6 +106,24 @@ class SolverLimitError(FloorslideError):
     exit_code = 1
 
 
+class NonFiniteError(FloorslideError):
+    """A model or a solver produced NaN or infinite values from finite input (magnitudes
+    beyond float64's range inside it). Rather than return zeros or NaN as a result, it stops,
+    naming the building, record or object (exit code 1; in a run, that task fails alone)."""
+
+    exit_code = 1
+
+
+class Interrupted(KeyboardInterrupt):
+    """A command interrupted by SIGINT, SIGTERM or SIGHUP (``signum`` says which; the command
+    line exits with ``128 + signum``). A :class:`KeyboardInterrupt`, so everything that handles
+    Ctrl-C handles it (:func:`floorslide.run.execute.interrupt_signals`)."""
+
+    def __init__(self, signum: int = 2):
+        super().__init__(signum)
+        self.signum = int(signum)
+
+
 class FloorslideWarning(UserWarning):
     """Base class of the warnings floorslide gives: something was done to the input that the
     caller should know of (the same text is kept in the result's ``notes``)."""

@@ -38,6 +38,7 @@ from typing import Any, Protocol, TypeAlias
 import numpy as np
 from numpy.typing import ArrayLike
 
+from floorslide.constants import MAX_ACCELERATION, G
 from floorslide.errors import ModelError, RecordError, UnitsConversionWarning, UnitsError
 from floorslide.units import FACTORS, SI_UNITS, canonical_units
 
@@ -227,20 +228,36 @@ def unwrap_record(
     return RecordInput(converted, delta, (note,))
 
 
+def check_amplitude(peak: float, name: str = "acc") -> None:
+    """Refuse a record whose largest ``|sample|`` (m/s²) is beyond
+    :data:`~floorslide.constants.MAX_ACCELERATION`, where the solvers' arithmetic would
+    overflow (a ModelError naming `name`)."""
+    if not peak <= MAX_ACCELERATION:
+        raise ModelError(
+            f"its samples reach {peak:.4g} m/s² ({peak / G:.4g} g), beyond the "
+            f"{MAX_ACCELERATION / G:g} g the solvers take (no ground motion comes near; their "
+            "arithmetic would overflow): check the units and the scaling",
+            name,
+        )
+
+
 def check_record(acc: ArrayLike, dt: float | None, name: str = "acc") -> tuple[np.ndarray, float]:
     """A ground record as a finite 1-D float64 array and a positive time step.
 
     Raises
     ------
     ModelError
-        Not a non-empty 1-D array, NaN or infinite samples, no dt, dt ≤ 0.
+        Not a non-empty 1-D array, NaN or infinite samples or samples beyond
+        :data:`~floorslide.constants.MAX_ACCELERATION`, no dt, dt ≤ 0.
     """
     a = np.ascontiguousarray(acc, dtype=float)
     if a.ndim != 1 or a.size == 0:
         raise ModelError(f"{name} must be a non-empty 1-D array of samples", name)
     # min/max propagate NaN and ±inf without an O(n) temporary
-    if not (np.isfinite(a.min()) and np.isfinite(a.max())):
+    lo, hi = a.min(), a.max()
+    if not (np.isfinite(lo) and np.isfinite(hi)):
         raise ModelError(f"{name} has NaN or infinite samples", name)
+    check_amplitude(max(-lo, hi), name)
     if dt is None:
         raise ModelError(
             f"dt (the time step, s) is required when {name} is an array of samples "

@@ -32,6 +32,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from floorslide.errors import ModelError
 from floorslide.numerics.blas import expm
 
 MAX_PHASE = 0.5
@@ -86,6 +87,42 @@ def substeps_for(rate, dt: float):
     (a spectral radius or circular frequency, 1/s) may be an array: one count each, ``int64``."""
     m = np.maximum(1, np.ceil(np.asarray(rate, dtype=float) * dt / MAX_PHASE - 1e-12))
     return int(m) if m.ndim == 0 else m.astype(np.int64)
+
+
+MAX_SUBSTEPS = 1000
+"""Most sub-steps per record step a building model may need: its fastest mode's period down
+to ``dt/80`` (``2π·dt/(MAX_PHASE·MAX_SUBSTEPS)``). Real buildings need a few, a very stiff one
+(T = 0.01 s under dt = 0.02 s) 26; a 200-storey building of period 0.01 s would need 3208 at
+dt = 0.01 s (minutes a record), of 10⁻⁶ s 3·10⁷ (tens of GB: a MemoryError)."""
+
+MAX_STEP_BYTES = 64 * 2**20
+"""Most memory the states of one record step may take, ``(substeps + 1)·n·8`` bytes: the least a
+streamed motion (:mod:`floorslide.building.exact_motion`) holds at once."""
+
+
+def model_substeps(rate: float, dt: float, n_states: int) -> int:
+    """:func:`substeps_for` of a building model with `n_states` states and spectral radius `rate`
+    (1/s), within :data:`MAX_SUBSTEPS` and :data:`MAX_STEP_BYTES`.
+
+    Raises
+    ------
+    ModelError
+        Beyond either limit: one line with the sub-steps and memory it would need, the period
+        of its fastest mode, and what to change (key ``building``; a scene names its own).
+    """
+    m = substeps_for(rate, dt)
+    need = (m + 1) * n_states * 8
+    if m <= MAX_SUBSTEPS and need <= MAX_STEP_BYTES:
+        return m
+    fastest = 2 * math.pi / rate
+    dt_ok = MAX_SUBSTEPS * MAX_PHASE / rate
+    raise ModelError(
+        f"would need {m} sub-steps per record step at dt = {dt:g} s ({need / 2**20:.3g} MiB of "
+        f"states per step, {n_states} states): its fastest time scale 2π/ρ(A) is {fastest:.3g} s; "
+        f"at most {MAX_SUBSTEPS} sub-steps and {MAX_STEP_BYTES // 2**20} MiB are allowed — give "
+        f"it a longer period or fewer stories, or records with dt ≤ {dt_ok:.3g} s",
+        "building",
+    )
 
 
 def taylor_degree(phase: float, tol: float = TAYLOR_TOL) -> int:
@@ -145,11 +182,23 @@ class ExactStepper:
         given)."""
         A = np.asarray(A, dtype=float)
         b = np.asarray(b, dtype=float).reshape(A.shape[0])
+        if not (np.all(np.isfinite(A)) and np.all(np.isfinite(b))):
+            raise ModelError(
+                "the state matrices are not finite (the building's masses and stiffnesses "
+                "overflow float64 in M⁻¹K and M⁻¹C)",
+                "building",
+            )
         rho = spectral_radius(A)
         if substeps is None:
-            substeps = substeps_for(rho, dt)
+            substeps = model_substeps(rho, dt, A.shape[0])
         h = dt / substeps
         phi, g0, g1 = foh_matrices(A, b, h)
+        if not (np.all(np.isfinite(phi)) and np.all(np.isfinite(g0)) and np.all(np.isfinite(g1))):
+            raise ModelError(
+                f"the exact sub-step matrices (h = {h:.3g} s) are not finite: the building's "
+                "matrices are beyond float64's range",
+                "building",
+            )
         return cls(A, b, float(dt), int(substeps), h, phi, g0, g1, taylor_degree(rho * h))
 
     @property

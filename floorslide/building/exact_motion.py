@@ -37,7 +37,7 @@ import numpy as np
 from floorslide.building._kernels import foh_peaks, foh_states, state_outputs
 from floorslide.building.exact import ExactStepper
 from floorslide.building.model import LinearBuilding
-from floorslide.errors import ModelError
+from floorslide.errors import ModelError, NonFiniteError
 from floorslide.inputs import RecordLike, as_record
 
 __all__ = [
@@ -166,6 +166,7 @@ class BuildingMotion:
                 cps.append(x)
             X = buf[: (k1 - k0) * m + 1]
             foh_states(st.phi, p, q, self.acc, k0, k1, m, cps[c], X)
+            _check_states(X, k1 * self.dt)
             x = X[-1].copy()
             X.setflags(write=False)
             yield k0, X
@@ -229,6 +230,10 @@ class BuildingMotion:
         tpk = np.zeros(C.shape[0])
         for k0, X in self.chunks():
             foh_peaks(X, k0, R, beta, self.acc, self.substeps, self.h, peak, tpk)
+        if not np.all(np.isfinite(peak)):
+            raise NonFiniteError(
+                f"the peak {output} of a floor is not finite (it overflows float64)", "building"
+            )
         return peak, tpk
 
 
@@ -382,10 +387,22 @@ def building_motion(
         p, q = st.input_weights()
         X = np.empty((rows, n))
         foh_states(st.phi, p, q, a, 0, steps, m, np.zeros(n), X)
+        _check_states(X, steps * dt)
         X.setflags(write=False)
         return BuildingMotion(building, a, dt, m, st.h, st, max(steps, 1), notes, X, None)
     L = max(1, min(steps, CHUNK_BYTES // (8 * n * m)))
     return BuildingMotion(building, a, dt, m, st.h, st, L, notes, None, [])
+
+
+def _check_states(X: np.ndarray, t_end: float) -> None:
+    """Raise :class:`~floorslide.errors.NonFiniteError` when the building's state at the end of
+    a stretch `X` ending at `t_end` is not finite (a NaN or inf in the exact recurrence stays
+    one, so the last row tells), instead of handing NaN floors to every consumer."""
+    if not np.all(np.isfinite(X[-1])):
+        raise NonFiniteError(
+            f"the building's response is not finite by t = {t_end:.6g} s (it overflows float64)",
+            "building",
+        )
 
 
 def ground_peak(acc: np.ndarray, dt: float) -> tuple[float, float]:

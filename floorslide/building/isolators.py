@@ -25,6 +25,14 @@ period ``T_d = 2π√(M/k_2)`` (``M`` the total mass above the ground, ``W = M g
 ``singleFPBearing`` with constant friction): ``f = (W/R) u_0 + c u_0' + F`` with Coulomb friction
 ``F = mu·W·sign(u_0')`` while sliding; while stuck the mat moves with the ground and
 ``|F| ≤ mu_s·W``. Given as ``radius = R`` or ``period = 2π√(R/g)`` (independent of the mass).
+This is the *small-angle* model (Zayas, Low & Mahin 1990, eq. 1 with ``sin θ ≈ tan θ ≈ θ``):
+on a spherical surface the slider at horizontal displacement ``u`` sits at ``sin θ = u/R`` and
+the surface's restoring force is ``W tan θ = (W/R) u / √(1 − (u/R)²)`` (Almazán, De la Llera &
+Inaudi 1998, the large-displacement formulation), so ``(W/R) u`` is low by
+``1 − √(1 − (u/R)²)``: 0.5 % at ``u = 0.1 R``, 2.0 % at :data:`SMALL_ANGLE_LIMIT` ``= 0.2 R``,
+8 % at ``0.4 R``, and a displacement ``≥ R`` is off the surface altogether. A response beyond
+``0.2 R`` is flagged (``small_angle_exceeded``) unless a displacement ``capacity`` is given —
+then the capacity is the limit the user vouches for, and is flagged when exceeded.
 
 Optional viscous damping ``damping`` is a ratio at the layer's own period (``T_d``, or the
 pendulum period): ``c = 4π M ξ / T``.
@@ -35,6 +43,8 @@ Kelly, J. M. (1996). *Earthquake-Resistant Design with Rubber*, 2nd ed., Springe
 Naeim, F., Kelly, J. M. (1999). *Design of Seismic Isolated Structures*, Wiley.
 Zayas, V. A., Low, S. S., Mahin, S. A. (1990). A simple pendulum technique for achieving
 seismic isolation. *Earthquake Spectra* 6(2), 317–333.
+Almazán, J. L., De la Llera, J. C., Inaudi, J. A. (1998). Modelling aspects of structures
+isolated with the frictional pendulum system. *Earthquake Eng. Struct. Dyn.* 27(8), 845–867.
 """
 
 from __future__ import annotations
@@ -46,6 +56,11 @@ import numpy as np
 
 from floorslide.constants import G
 from floorslide.errors import ModelError
+
+SMALL_ANGLE_LIMIT = 0.2
+"""Largest friction-pendulum displacement, as a fraction of the radius ``R``, that the
+small-angle model ``(W/R)·u`` is trusted to: there it is 2.0 % below the spherical surface's
+``W tan θ`` (``1 − √(1 − 0.2²)``; module notes); beyond it a response is flagged."""
 
 # Branches of the piecewise-linear isolation layer (the kernel's codes).
 LINEAR, ELASTIC, PLASTIC_POS, PLASTIC_NEG, SLIP_POS, SLIP_NEG, STICK = range(7)
@@ -152,7 +167,13 @@ class FrictionPendulum:
         Viscous damping ratio at the pendulum period (default 0).
     capacity
         Displacement capacity of the bearing (m, optional): a response beyond it is reported
-        (the impact with the bearing's rim or the moat wall is not modelled).
+        (the impact with the bearing's rim or the moat wall is not modelled). Without it, a
+        response beyond :attr:`small_angle_limit` (``0.2 R``) is reported instead.
+
+    Notes
+    -----
+    The restoring force is the small-angle ``(W/R)·u`` (Zayas, Low & Mahin 1990): exact for
+    ``u ≪ R``, 2 % below the spherical surface's ``W tan θ`` at ``u = 0.2 R`` (module notes).
     """
 
     mu: float
@@ -195,6 +216,12 @@ class FrictionPendulum:
         """Pendulum period ``2π√(R/g)``, s."""
         return 2 * np.pi * math.sqrt(self.R / G)
 
+    @property
+    def small_angle_limit(self) -> float:
+        """Largest displacement the small-angle model is trusted to, :data:`SMALL_ANGLE_LIMIT`
+        ``· R`` (m)."""
+        return SMALL_ANGLE_LIMIT * self.R
+
     def constants(self, total_mass: float) -> dict:
         """``k (= W/R), mu, mu_s, c, W`` for a building of total mass `total_mass` (kg)."""
         W = total_mass * G
@@ -202,6 +229,36 @@ class FrictionPendulum:
         mu_s = max(mu, float(self.mu_s)) if self.mu_s is not None else mu
         c = 4 * np.pi * total_mass * self.damping / self.T
         return dict(k=W / self.R, mu=mu, mu_s=mu_s, c=c, W=W, R=self.R)
+
+
+def small_angle_exceeded(isolator, peak_displacement: float) -> bool:
+    """Whether a peak isolator displacement is beyond what the layer's model is trusted to:
+    a :class:`FrictionPendulum` without a ``capacity`` beyond its
+    :attr:`~FrictionPendulum.small_angle_limit` (``0.2 R``; with a capacity, the capacity is
+    the limit and is checked instead). Other layers have no such limit (False)."""
+    return (
+        isinstance(isolator, FrictionPendulum)
+        and isolator.capacity is None
+        and peak_displacement > isolator.small_angle_limit
+    )
+
+
+def small_angle_note(peak_displacement: float, R: float) -> str:
+    """One line saying that `peak_displacement` (m) is beyond the small-angle model of a
+    friction pendulum of radius `R` (m)."""
+    exact = R * R - peak_displacement**2
+    error = (
+        f"{100 * (1 - math.sqrt(exact) / R):.2g} % low"
+        if exact > 0
+        else "meaningless (off the spherical surface)"
+    )
+    return (
+        f"isolator displacement {peak_displacement:.4g} m = {peak_displacement / R:.3g}·R is "
+        f"beyond {SMALL_ANGLE_LIMIT:g}·R = {SMALL_ANGLE_LIMIT * R:.4g} m (R = {R:.4g} m), "
+        f"where the friction pendulum's small-angle restoring force (W/R)·u is {error} against "
+        "the spherical surface's W·tan θ (give the bearing's capacity to check against it "
+        "instead)"
+    )
 
 
 def equivalent_linear(isolator, total_mass: float, displacement: float) -> tuple[float, float]:

@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Literal
 
 import numpy as np
 
+from floorslide.building.exact import model_substeps, spectral_radius
 from floorslide.errors import ModelError, ModelWarning
 from floorslide.numerics.blas import eigh
 
@@ -110,6 +111,18 @@ def _ratio(value: float, name: str) -> float:
     return value
 
 
+def _finite(matrix: np.ndarray, what: str, key: str) -> np.ndarray:
+    """`matrix` if every entry is finite, else a ModelError naming `key`: a building whose
+    matrices overflow float64 gives no meaningful response (its floors would read 0)."""
+    if not np.all(np.isfinite(matrix)):
+        raise ModelError(
+            f"the building's {what} is not finite (its entries overflow float64): give masses "
+            "(kg) and stiffnesses (N/m) of a building, e.g. in SI without extreme exponents",
+            key,
+        )
+    return matrix
+
+
 def chain_stiffness(stiffnesses: np.ndarray) -> np.ndarray:
     """Stiffness matrix of a shear chain fixed to the ground at its first spring.
 
@@ -181,6 +194,12 @@ class LinearBuilding:
     dof_floors: tuple[int, ...]
     storey_below: tuple[tuple[int | None, int], ...] = field(repr=False)
     """For every degree of freedom: (index of the DOF below or None for the ground, floor)."""
+
+    def __post_init__(self):
+        # one check for every building: matrices that overflowed give NaN responses
+        _finite(self.mass, "mass matrix", "mass")
+        _finite(self.stiffness_matrix, "stiffness matrix", "stiffness")
+        _finite(self.damping_matrix, "damping matrix", "damping")
 
     # ----------------------------------------------------------------- basic properties
     @property
@@ -276,6 +295,13 @@ class LinearBuilding:
         """Undamped natural periods, s, longest first."""
         return self.modal_properties().periods
 
+    def substeps(self, dt: float) -> int:
+        """Sub-steps per record step of `dt` on which the building is stepped exactly
+        (``ρ(A)·h ≤ 0.5``; :func:`~floorslide.building.exact.model_substeps`: a ModelError
+        beyond its limits — a building too stiff for the records' dt)."""
+        A, _ = self.state_matrices()
+        return model_substeps(spectral_radius(A), dt, A.shape[0])
+
     # ----------------------------------------------------------------- state space
     def state_matrices(self) -> tuple[np.ndarray, np.ndarray]:
         """``A`` (2n × 2n) and ``B`` (2n × 1) of ``x' = A x + B a_g`` with ``x = [u; u']``."""
@@ -283,8 +309,9 @@ class LinearBuilding:
         Minv = 1.0 / self.mass
         A = np.zeros((2 * n, 2 * n))
         A[:n, n:] = np.eye(n)
-        A[n:, :n] = -Minv[:, None] * self.stiffness_matrix
-        A[n:, n:] = -Minv[:, None] * self.damping_matrix
+        with np.errstate(over="ignore", invalid="ignore"):  # overflow: the stepper says so
+            A[n:, :n] = -Minv[:, None] * self.stiffness_matrix
+            A[n:, n:] = -Minv[:, None] * self.damping_matrix
         B = np.zeros((2 * n, 1))
         B[n:, 0] = -1.0
         return A, B
@@ -402,8 +429,9 @@ class ShearBuilding(LinearBuilding):
                 f"masses ({m.size}) and stiffnesses ({k.size}) must have one value per storey",
                 "stiffnesses",
             )
-        K = chain_stiffness(k)
-        C = modal_damping_matrix(np.diag(m), K, damping)
+        with np.errstate(over="ignore", invalid="ignore"):
+            K = _finite(chain_stiffness(k), "stiffness matrix", "stiffnesses")
+            C = modal_damping_matrix(np.diag(m), K, damping)
         n = m.size
         below = tuple((None if i == 0 else i - 1, i + 1) for i in range(n))
         super().__init__(m, C, K, tuple(range(1, n + 1)), below)
@@ -449,7 +477,14 @@ class ShearBuilding(LinearBuilding):
         else:
             raise ModelError(f"profile must be 'uniform' or 'shear', got {profile!r}", "profile")
         w1 = _modes(np.diag(m), chain_stiffness(shape))[0][0]
-        k = shape * (2 * np.pi / period / w1) ** 2
+        with np.errstate(over="ignore", invalid="ignore"):
+            k = shape * (2 * np.pi / period / w1) ** 2
+        if not np.all(np.isfinite(k)):
+            raise ModelError(
+                f"masses up to {m.max():g} kg with a period of {period:g} s need storey "
+                "stiffnesses beyond float64's range: give masses of a building (kg)",
+                "mass",
+            )
         return cls(m, k, damping)
 
 
@@ -511,10 +546,11 @@ class IsolatedBuilding(LinearBuilding):
         if period <= fixed_base:
             warnings.warn(ModelWarning(isolation_period_warning(period, fixed_base)), stacklevel=2)
         ms = superstructure.mass
-        mtot = ms.sum() * (1 + ratio)
-        mb = ratio * ms.sum()
-        ki = mtot * (2 * np.pi / period) ** 2
-        ci = 4 * np.pi * mtot * xi / period
+        with np.errstate(over="ignore", invalid="ignore"):  # overflow: __post_init__ says so
+            mtot = ms.sum() * (1 + ratio)
+            mb = ratio * ms.sum()
+            ki = mtot * (2 * np.pi / period) ** 2
+            ci = 4 * np.pi * mtot * xi / period
         n = ms.size + 1
         iota = np.ones(ms.size)
         Ks, Cs = superstructure.stiffness_matrix, superstructure.damping_matrix
@@ -528,13 +564,9 @@ class IsolatedBuilding(LinearBuilding):
             return out
 
         below = ((None, 0), *tuple((i - 1, i) for i in range(1, n)))
-        super().__init__(
-            np.concatenate([[mb], ms]),
-            assemble(ci, Cs),
-            assemble(ki, Ks),
-            tuple(range(n)),
-            below,
-        )
+        with np.errstate(over="ignore", invalid="ignore"):
+            C, K = assemble(ci, Cs), assemble(ki, Ks)
+        super().__init__(np.concatenate([[mb], ms]), C, K, tuple(range(n)), below)
         for name, value in dict(
             superstructure=superstructure,
             base_mass_ratio=ratio,

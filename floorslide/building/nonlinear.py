@@ -22,7 +22,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from floorslide.building import _nonlinear_kernel as kern
-from floorslide.building.exact import ExactStepper, spectral_radius, substeps_for
+from floorslide.building.exact import (
+    ExactStepper,
+    model_substeps,
+    spectral_radius,
+    substeps_for,
+)
 from floorslide.building.isolators import (
     BRANCH_NAMES,
     ELASTIC,
@@ -33,10 +38,12 @@ from floorslide.building.isolators import (
     STICK,
     BilinearIsolator,
     FrictionPendulum,
+    small_angle_exceeded,
+    small_angle_note,
 )
 from floorslide.building.model import ShearBuilding
 from floorslide.constants import G
-from floorslide.errors import ModelError, SolverLimitError
+from floorslide.errors import ModelError, NonFiniteError, SolverLimitError
 from floorslide.inputs import as_record
 
 MAX_EVENTS_PER_SUBSTEP = 64
@@ -69,8 +76,7 @@ class NonlinearIsolatedBuilding:
         self.superstructure = superstructure
         self.isolator = isolator
         self.base_mass_ratio = ratio
-        self.mass = np.concatenate([[ratio * ms.sum()], ms])
-        n = self.mass.size
+        n = ms.size + 1
         iota = np.ones(ms.size)
 
         def assemble(sup: np.ndarray) -> np.ndarray:
@@ -81,9 +87,20 @@ class NonlinearIsolatedBuilding:
             out[1:, 1:] = sup
             return out
 
-        self.stiffness_matrix = assemble(superstructure.stiffness_matrix)
-        self.damping_matrix = assemble(superstructure.damping_matrix)
-        self.constants = isolator.constants(self.total_mass)
+        with np.errstate(over="ignore", invalid="ignore"):
+            self.mass = np.concatenate([[ratio * ms.sum()], ms])
+            self.stiffness_matrix = assemble(superstructure.stiffness_matrix)
+            self.damping_matrix = assemble(superstructure.damping_matrix)
+            self.constants = isolator.constants(self.total_mass)
+        finite = [self.mass, self.stiffness_matrix, self.damping_matrix]
+        if not all(np.all(np.isfinite(a)) for a in finite) or not all(
+            np.isfinite(v) for v in self.constants.values()
+        ):
+            raise ModelError(
+                "the building's matrices or isolator constants are not finite (they overflow "
+                "float64): give masses (kg) and stiffnesses (N/m) of a building",
+                "base_mass_ratio",
+            )
 
     @property
     def n_dof(self) -> int:
@@ -124,6 +141,14 @@ class NonlinearIsolatedBuilding:
                 f"effective damping {damping:.3g} ≥ 1 at {displacement:g} m", "displacement"
             )
         return IsolatedBuilding(self.superstructure, self.base_mass_ratio, period, damping)
+
+    def substeps(self, dt: float) -> int:
+        """Sub-steps per record step of `dt` on which every branch is stepped exactly
+        (``ρ·h ≤ 0.5`` for the fastest branch; :func:`~floorslide.building.exact.model_substeps`:
+        a ModelError beyond its limits)."""
+        systems = [self.branch_system(b)[0] for b in self.branches()]
+        rho = max(spectral_radius(A) for A in systems)
+        return model_substeps(rho, dt, systems[0].shape[0])
 
     def branches(self) -> tuple[int, ...]:
         """The branches this layer can be on."""
@@ -240,6 +265,10 @@ class IsolatorResponse:
     event_branches: np.ndarray
     capacity_exceeded: bool = False
     """The isolator displacement went beyond the layer's ``capacity`` (when one is given)."""
+    small_angle_exceeded: bool = False
+    """A friction pendulum without a ``capacity`` went beyond
+    :attr:`~floorslide.building.isolators.FrictionPendulum.small_angle_limit` (``0.2 R``),
+    where its small-angle restoring force ``(W/R)·u`` is more than 2 % off."""
     notes: tuple[str, ...] = ()
     block_states: np.ndarray | None = None
     """Final states of the rigid blocks asked for (columns of ``floorslide.contents._kernels``)."""
@@ -487,7 +516,7 @@ def isolator_response(
     systems, rho, mats, outputs, r_f, d_f = _prepared(prep_key, building, floors, oscillator)
     N = next(iter(systems.values()))[0].shape[0]
     oscillators = [] if oscillators is None else list(oscillators)
-    m = substeps_for(rho, dt)
+    m = model_substeps(rho, dt, N)
     from floorslide.contents.oscillator import phase_radius
 
     if flexible is not None:
@@ -631,6 +660,10 @@ def isolator_response(
     h = dt / m
     samples = X
     br = BR
+    if not (np.all(np.isfinite(peak)) and np.all(np.isfinite(samples[-1]))):
+        raise NonFiniteError(
+            "the building's response is not finite (it overflows float64)", "building"
+        )
     if oscillator is None:
         acc_out = np.ascontiguousarray(Yo[:, :-2].T)
         force = Yo[:, -2].copy()
@@ -647,14 +680,19 @@ def isolator_response(
             force[sel] = vals[-2]
     times = ev_row[:n_ev] * h + ev_tau[:n_ev]
     cap_m = building.isolator.capacity
-    exceeded = cap_m is not None and float(peak[-1]) > cap_m
+    # (with `oscillator`, peak holds the oscillator's peaks, not the isolator's)
+    peak_disp = float("nan") if oscillator is not None else float(peak[-1])
+    exceeded = cap_m is not None and peak_disp > cap_m
     notes = ()
     if exceeded:
         notes = (
-            f"isolator displacement {float(peak[-1]):.4g} m exceeds its capacity {cap_m:g} m: "
+            f"isolator displacement {peak_disp:.4g} m exceeds its capacity {cap_m:g} m: "
             "the impact that would follow (moat wall, bearing rim) is not modelled; the response "
             "after it is that of an unlimited layer",
         )
+    small_angle = small_angle_exceeded(building.isolator, peak_disp)
+    if small_angle:
+        notes += (small_angle_note(peak_disp, building.isolator.R),)
     return IsolatorResponse(
         dt=float(dt),
         substeps=int(m),
@@ -663,13 +701,14 @@ def isolator_response(
         pfa=peak.copy() if oscillator is not None else peak[:-2].copy(),
         isolator_displacement=samples[:, 0].copy(),
         isolator_force=force,
-        peak_displacement=float("nan") if oscillator is not None else float(peak[-1]),
+        peak_displacement=peak_disp,
         residual_displacement=float(samples[-1, 0]),
         peak_force_ratio=float("nan") if oscillator is not None else float(peak[-2] / W),
         branch=br.copy(),
         event_times=times,
         event_branches=ev_branch[:n_ev].copy(),
         capacity_exceeded=exceeded,
+        small_angle_exceeded=small_angle,
         notes=notes,
         block_states=bstates[np.argsort(order, kind="stable")] if len(blocks) else None,
         block_slides=hist_u[np.argsort(order, kind="stable")] if block_histories else None,

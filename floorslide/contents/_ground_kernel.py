@@ -74,7 +74,8 @@ SUB = 16
 ground stays within its breakaway level there (the sub-block's extreme samples)."""
 
 NOT_FINITE = 1
-"""Returned by :func:`ground_kernel` when the record holds NaN or infinite samples (nothing is
+"""Returned by :func:`ground_kernel` when the record holds NaN or infinite samples, or samples
+beyond the limit it is given (:data:`floorslide.constants.MAX_ACCELERATION`; nothing is
 computed)."""
 
 LIMIT_REACHED = 2
@@ -299,14 +300,16 @@ def _slip_no_stop(mode, c0, c1, v, u, muk, g, h):
 
 
 @njit(cache=True, inline="always")
-def _not_finite(acc):
-    """Whether `acc` holds a NaN or an infinity (every exponent bit set), by integer
-    operations that vectorise."""
+def _beyond(acc, limit):
+    """Whether `acc` holds a NaN, an infinity or a sample beyond ``±limit[0]``, by integer
+    operations that vectorise: with the sign bit cleared, the bit patterns of doubles order as
+    their magnitudes, infinity and NaN above every finite one (IEEE 754)."""
     bits = acc.view(np.int64)
-    mask = 0x7FF0000000000000
+    top = limit.view(np.int64)[0]
+    mask = 0x7FFFFFFFFFFFFFFF
     bad = 0
     for k in range(bits.size):
-        bad += (bits[k] & mask) == mask
+        bad += (bits[k] & mask) > top
     return bad != 0
 
 
@@ -337,10 +340,11 @@ def ground_kernel(acc, MU, P, states, hist):
         ``(m ≥ 2, n_obj)``: rows 0 and 1 the breakaway ``max(mu_s, mu_k)`` and kinetic friction
         coefficients (further rows are not read).
     P
-        ``[dt, g, allow_pos, allow_neg, max_events, want_hist]``: the record step, gravity, the
-        allowed slip directions (1 or 0), the most events per object and step
-        (:mod:`floorslide.contents.events`), and whether to fill `hist` (one array: a numba
-        call costs per argument).
+        ``[dt, g, allow_pos, allow_neg, max_events, want_hist, max_acc]``: the record step,
+        gravity, the allowed slip directions (1 or 0), the most events per object and step
+        (:mod:`floorslide.contents.events`), whether to fill `hist` (one array: a numba call
+        costs per argument) and the largest ``|sample|`` taken
+        (:data:`floorslide.constants.MAX_ACCELERATION`).
     states
         ``(n_obj, NCOL)`` out, columns :data:`~floorslide.contents._kernels.MODE` …
         :data:`~floorslide.contents._kernels.LIMIT_AT` (the blocks start at rest).
@@ -351,7 +355,8 @@ def ground_kernel(acc, MU, P, states, hist):
     Returns
     -------
     int
-        0; :data:`NOT_FINITE` when `acc` holds NaN or infinite samples (nothing is done);
+        0; :data:`NOT_FINITE` when `acc` holds NaN or infinite samples or samples beyond
+        ``max_acc`` (nothing is done);
         :data:`LIMIT_REACHED` when an object reached the event limit (the caller raises).
 
     Notes
@@ -383,7 +388,7 @@ def ground_kernel(acc, MU, P, states, hist):
     max_events = int(P[4])
     want_hist = P[5] != 0.0
     npts = acc.size
-    if _not_finite(acc):
+    if _beyond(acc, P[6:7]):
         return NOT_FINITE
     nobj = MU.shape[1]
     for i in range(nobj):

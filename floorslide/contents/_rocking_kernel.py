@@ -21,7 +21,9 @@ Events, each located by rigorous root isolation on these polynomials
 (:func:`floorslide.numerics.polynomial.first_rise`):
 
 - uplift from rest, the first instant ``a_f < −g tan α`` (then ``s = +1``) or
-  ``a_f > g tan α`` (``s = −1``) — the exact criterion, for both equations;
+  ``a_f > g tan α`` (``s = −1``) — the exact criterion, for both equations; a rest that
+  begins with the floor already beyond the level (a record that starts there, at t = 0; a rest
+  after an impact) uplifts at once;
 - impact, ``θ`` back to 0: the angular velocity is multiplied by the restitution ``r`` and the
   block goes on about the other corner; a velocity after impact at or below
   :data:`REST_VELOCITY` ``·p·α`` ends the sequence of impacts (the block is at rest, and may
@@ -231,17 +233,26 @@ def _block_on_part(st, par, cs, K, Lq, t_part, g, D, nonlinear, max_events, t, S
                 cw[j] = cs[j]
         mode = st[MODE]
         if mode == 0.0:
-            # uplift: a_f below −g tan α (corner +1) or above g tan α (corner −1)
-            for j in range(K + 1):
-                q[j] = -cw[j]
-            tp = rise_within(q, K, lo, L, level, work)
-            tn = rise_within(cw, K, lo, L, level, work)
+            # uplift: a_f below −g tan α (corner +1) or above g tan α (corner −1); a floor
+            # already beyond the level when the rest begins (a record that starts there, t = 0;
+            # a rest after an impact) lifts the block at once — a crossing search would miss a
+            # floor that starts beyond the level and falls back inside the part
+            a_now = poly_val(cw, K, lo)
             te = -1.0
             side = 0.0
-            if tp >= 0.0:
-                te, side = tp, 1.0
-            if tn >= 0.0 and (te < 0.0 or tn < te):
-                te, side = tn, -1.0
+            if a_now < -level:
+                te, side = lo, 1.0
+            elif a_now > level:
+                te, side = lo, -1.0
+            else:
+                for j in range(K + 1):
+                    q[j] = -cw[j]
+                tp = rise_within(q, K, lo, L, level, work)
+                tn = rise_within(cw, K, lo, L, level, work)
+                if tp >= 0.0:
+                    te, side = tp, 1.0
+                if tn >= 0.0 and (te < 0.0 or tn < te):
+                    te, side = tn, -1.0
             if te < 0.0:
                 return True
             s0 += te

@@ -172,6 +172,14 @@ def solve_ivp_blocks(
         while t < t_end and guard < 100000:
             guard += 1
             if s == 0.0:
+                # a floor already beyond the level when the rest begins (a record that starts
+                # there, t = 0; a rest after an impact) lifts the block at once
+                a_now = a_f(t)
+                if t != t_uplift and abs(a_now) > level:
+                    t_uplift = t
+                    s = -1.0 if a_now > 0 else 1.0
+                    uplifts += 1
+                    continue
                 # at rest until |a_f| exceeds the level: scan the samples, then interpolate (a
                 # block back at rest at once after an uplift waits for the next sample)
                 k0 = int(np.floor(t / dt + 1e-9)) + (1 if t == t_uplift else 0)

@@ -15,13 +15,13 @@ import numpy as np
 
 from floorslide.building.exact_motion import FloorMotion, single_use_motion, unwrap
 from floorslide.building.model import LinearBuilding
-from floorslide.constants import G
+from floorslide.constants import MAX_ACCELERATION, G
 from floorslide.contents import _kernels as cols
 from floorslide.contents._ground_kernel import LIMIT_REACHED, NOT_FINITE, ground_kernel
 from floorslide.contents._kernels import slide_kernel
 from floorslide.contents.events import SLIDE_MAX_EVENTS, check_event_limit
 from floorslide.errors import ModelError
-from floorslide.inputs import DT_RTOL, RecordLike, as_record, is_stream, is_trace
+from floorslide.inputs import DT_RTOL, RecordLike, as_record, check_record, is_stream, is_trace
 
 DIRECTIONS = ("both", "positive", "negative")
 METHODS = ("exact", "slammer", "newmark", "solve_ivp", "reinterpolated")
@@ -390,9 +390,13 @@ def _slide_ground(a, dt, MU, direction, histories) -> SlideResult:
     npts = a.size
     states = np.empty((nobj, cols.NCOL))
     hist = np.empty((3, nobj, npts) if histories else (3, 0, 0))
-    P = np.array([dt, G, allow_pos, allow_neg, SLIDE_MAX_EVENTS, bool(histories)], dtype=float)
+    P = np.array(
+        [dt, G, allow_pos, allow_neg, SLIDE_MAX_EVENTS, bool(histories), MAX_ACCELERATION],
+        dtype=float,
+    )
     code = ground_kernel(a, MU, P, states, hist)
     if code == NOT_FINITE:
+        check_record(a, dt)  # raises: NaN or infinite samples, or beyond MAX_ACCELERATION
         raise ModelError("acc has NaN or infinite samples", "acc")
     hu, hv, ha = hist if histories else (None, None, None)
     return _result(

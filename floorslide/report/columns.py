@@ -283,7 +283,18 @@ COLUMNS: dict[str, tuple[Column, ...]] = {
             "1",
             "records under which the isolator displacement exceeds the capacity",
         ),
-        Column("note", "", "what the numbers do not include (the impact beyond the capacity)"),
+        Column(
+            "n_small_angle_exceeded",
+            "1",
+            "records under which a friction pendulum without a capacity goes beyond 0.2·R, "
+            "where its small-angle model (W/R)·u is more than 2 % off",
+        ),
+        Column(
+            "note",
+            "",
+            "what the numbers do not include (the impact beyond the capacity, the pendulum's "
+            "geometry beyond 0.2·R)",
+        ),
     ),
     "rocking": (
         *_BUILDING,

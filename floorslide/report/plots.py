@@ -195,10 +195,13 @@ def _draw(i: int) -> bytes | None:
 def _render(jobs: list[Callable[[], Figure | None]], workers: int) -> list[bytes | None]:
     """Draw every job's figure as PNG bytes, in order; in `workers` forked processes when more
     than one is asked for and the platform forks (the figures are independent; matplotlib's
-    layout and text rendering, ~0.5 s a figure, is where a report's time goes)."""
+    layout and text rendering, ~0.5 s a figure, is where a report's time goes); never more
+    processes than figures nor than :func:`floorslide.parallel.worker_count` allows."""
     import multiprocessing
 
-    workers = min(int(workers), len(jobs))
+    from floorslide.parallel import worker_count
+
+    workers = worker_count(int(workers), len(jobs))[0]
     if workers <= 1 or "fork" not in multiprocessing.get_all_start_methods():
         return [_png(job()) for job in jobs]
     _JOBS[:] = jobs

@@ -82,6 +82,13 @@ RECORD_COLUMNS: tuple[Column, ...] = (
         "is not modelled); empty (NaN) without nonlinear isolation",
     ),
     Column(
+        "isolator_small_angle_exceeded",
+        "",
+        "a friction pendulum without a capacity went beyond 0.2·R, where its small-angle "
+        "restoring force (W/R)·u is more than 2 % off (False for other layers); empty (NaN) "
+        "without nonlinear isolation",
+    ),
+    Column(
         "rock_peak_ratio",
         "1",
         "peak rotation of the rocking block max|θ|/α (1: it overturned; 0: at rest); NaN where "
@@ -150,7 +157,7 @@ def _modes(c) -> list[str]:
 
 
 def isolator_values(meta: dict) -> dict:
-    """The isolator's results of a task as per-record columns: NaN (all four) for a building
+    """The isolator's results of a task as per-record columns: NaN (all five) for a building
     without nonlinear isolation, and for a task written before they were stored."""
     if "isolator_peak_displacement" not in meta:
         return {
@@ -158,12 +165,14 @@ def isolator_values(meta: dict) -> dict:
             "isolator_residual_disp_m": math.nan,
             "isolator_peak_force_ratio": math.nan,
             "isolator_capacity_exceeded": math.nan,
+            "isolator_small_angle_exceeded": math.nan,
         }
     return {
         "isolator_peak_disp_m": _float(meta["isolator_peak_displacement"]),
         "isolator_residual_disp_m": _float(meta.get("isolator_residual_displacement")),
         "isolator_peak_force_ratio": _float(meta.get("isolator_peak_force_ratio")),
         "isolator_capacity_exceeded": bool(_float(meta.get("isolator_capacity_exceeded"), 0)),
+        "isolator_small_angle_exceeded": bool(_float(meta.get("isolator_small_angle_exceeded"), 0)),
     }
 
 

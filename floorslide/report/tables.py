@@ -328,10 +328,15 @@ IMPACT_NOT_MODELLED = (
 )
 
 
-def _isolator_note(exceeded: int, n: int, capacity: float) -> str:
+def _isolator_note(exceeded: int, n: int, capacity: float, small_angle: int = 0) -> str:
     """The ``note`` of an ``isolators`` row."""
     if exceeded:
         return f"capacity exceeded under {exceeded} of {n} records; {IMPACT_NOT_MODELLED}"
+    if small_angle:
+        return (
+            f"no capacity given; beyond 0.2·R under {small_angle} of {n} records, where the "
+            "pendulum's small-angle restoring force (W/R)·u is more than 2 % off"
+        )
     if math.isnan(capacity):
         return "no capacity given"
     return ""
@@ -354,6 +359,7 @@ def isolator_table(study: Study) -> list[dict]:
                 abs(_float(m.get("isolator_residual_displacement"))),
                 _float(m.get("isolator_peak_force_ratio")),
                 bool(_float(m.get("isolator_capacity_exceeded"), 0)),
+                bool(_float(m.get("isolator_small_angle_exceeded"), 0)),
             )
         )
         layer.setdefault(
@@ -372,6 +378,7 @@ def isolator_table(study: Study) -> list[dict]:
         _, peak_median, peak_p84 = summarize(peak)
         _, force_median, force_p84 = summarize(force)
         exceeded = sum(o[4] for o in obs)
+        small_angle = sum(o[5] for o in obs)
         finite = peak[np.isfinite(peak)]
         row = {
             "record_set": rs,
@@ -390,7 +397,8 @@ def isolator_table(study: Study) -> list[dict]:
             peak_force_ratio_median=force_median,
             peak_force_ratio_p84=force_p84,
             n_capacity_exceeded=exceeded,
-            note=_isolator_note(exceeded, len(obs), row["capacity"]),
+            n_small_angle_exceeded=small_angle,
+            note=_isolator_note(exceeded, len(obs), row["capacity"], small_angle),
         )
         rows.append({c.name: row[c.name] for c in COLUMNS["isolators"]})
     return rows

@@ -11,17 +11,21 @@ from __future__ import annotations
 import multiprocessing
 import os
 import queue
+import signal
 import sys
+import threading
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
-from dataclasses import dataclass
+from contextlib import contextmanager
+from dataclasses import dataclass, field
 
 from tqdm import tqdm
 
-from floorslide.errors import FloorslideError
+from floorslide.errors import FloorslideError, Interrupted
+from floorslide.parallel import worker_count
 from floorslide.run.store import ResultWriter, warn_stderr
-from floorslide.run.task import run_task
+from floorslide.run.task import TaskFailure, attempt_task, task_warnings
 from floorslide.scene.planner import Plan
 
 
@@ -34,8 +38,49 @@ class RunSummary:
     ran: int
     resumed: int
     failures: list[str]
+    """Unreadable records (the plan's) and tasks that failed (:class:`~floorslide.run.task.
+    TaskFailure`: left out of the result file, which then stays INCOMPLETE), one line each."""
     seconds: float
     interrupted: bool = False
+    warnings: list[str] = field(default_factory=list)
+    """One line per flag of a finished task a user should not miss
+    (:func:`~floorslide.run.task.task_warnings`)."""
+    signal: int = 0
+    """The signal that interrupted the run (``signal.SIGINT``, ``SIGTERM`` or ``SIGHUP``; 0 when
+    it was not interrupted)."""
+    kept: int = 0
+    """Finished tasks in the result file (those resumed and those run now)."""
+
+
+INTERRUPT_SIGNALS = tuple(
+    getattr(signal, name) for name in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, name)
+)
+"""The signals that interrupt a run (Ctrl-C, ``kill``, a closed terminal): each keeps what
+finished, like the others, and the command exits with ``128 + signal`` (130, 143, 129)."""
+
+
+@contextmanager
+def interrupt_signals(received: list[int] | None = None) -> Iterator[list[int]]:
+    """While inside, :data:`INTERRUPT_SIGNALS` raise :class:`Interrupted` in the main thread
+    and are appended to the list yielded (`received`, or a new one) — so a signal whose
+    exception was swallowed (raised inside a finaliser, which Python only reports) is still
+    known. Nested, the inner context shares the outer's list when given it. Elsewhere than
+    in the main thread (where handlers cannot be set) nothing changes."""
+    got = [] if received is None else received
+    if threading.current_thread() is not threading.main_thread():
+        yield got
+        return
+
+    def handler(signum, frame):
+        got.append(signum)
+        raise Interrupted(signum)
+
+    previous = {sig: signal.signal(sig, handler) for sig in INTERRUPT_SIGNALS}
+    try:
+        yield got
+    finally:
+        for sig, old in previous.items():
+            signal.signal(sig, old)
 
 
 def _worker_init() -> None:
@@ -48,9 +93,14 @@ def _worker_init() -> None:
     from threadpoolctl import threadpool_limits
 
     threadpool_limits(limits=1)
+    # the main process alone decides about interruptions (and stops its pool): a worker that
+    # took Ctrl-C itself (sent to the whole process group) could die holding the task queue's
+    # lock and leave the others, and the run's exit, waiting on it for ever
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    for sig in INTERRUPT_SIGNALS[1:]:
+        signal.signal(sig, signal.SIG_DFL)
     if sys.platform.startswith("linux"):
         import ctypes
-        import signal
 
         try:
             libc = ctypes.CDLL("libc.so.6", use_errno=True)
@@ -61,10 +111,19 @@ def _worker_init() -> None:
             os._exit(1)
 
 
-def _run_local(todo, workers: int, force: bool, on_result: Callable) -> None:
+def _run_local(
+    todo, workers: int, force: bool, on_result: Callable, received: list[int] | None = None
+) -> None:
+    """Run `todo` here (one worker) or in a pool of forked worker processes, calling
+    `on_result` as each finishes. An interruption (`received`: the list of an enclosing
+    :func:`interrupt_signals`) is taken while a task computes or the pool is waited on; the
+    pool's own bookkeeping (starting a worker, handing out a task, shutting down) is finished
+    first (:func:`_deferred`): interrupted half-way it left a dead pipe that Python's exit then
+    tripped over. On the way out, the tasks in flight finish (unwritten) and the pool stops."""
+    received = [] if received is None else received
     if workers <= 1:
         for task in todo:
-            on_result(run_task(task, force))
+            on_result(attempt_task(task, force))
         return
     # the first task here: the compiled kernels it needs are then loaded (or compiled, on a
     # fresh install) once, in this process, and every forked worker inherits them
@@ -75,39 +134,75 @@ def _run_local(todo, workers: int, force: bool, on_result: Callable) -> None:
 
         first = warmup.family(todo[0])
         warming = warmup.start(sorted({warmup.family(t) for t in todo} - {first}))
-        on_result(run_task(todo[0], force))
+        on_result(attempt_task(todo[0], force))
         warmup.finish(warming)
         todo = todo[1:]
+    workers = min(workers, len(todo))  # no process without a task
+    if workers <= 1:
+        for task in todo:
+            on_result(attempt_task(task, force))
+        return
     ctx = multiprocessing.get_context("fork" if sys.platform != "win32" else "spawn")
-    with ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_worker_init) as pool:
-        pending = set()
-        queue = iter(todo)
-        try:
+    pool = ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_worker_init)
+    pending = set()
+    queue = iter(todo)
+    try:
+        with _deferred(received):
             for _ in range(2 * workers):
                 task = next(queue, None)
                 if task is None:
                     break
-                pending.add(pool.submit(run_task, task, force))
-            while pending:
-                done, pending = wait(pending, return_when=FIRST_COMPLETED)
-                for fut in done:
-                    on_result(fut.result())
-                    task = next(queue, None)
-                    if task is not None:
-                        pending.add(pool.submit(run_task, task, force))
-        except BaseException:
+                pending.add(pool.submit(attempt_task, task, force))
+        while pending:
+            done, pending = wait(pending, return_when=FIRST_COMPLETED)
+            for fut in done:
+                on_result(fut.result())
+                task = next(queue, None)
+                if task is not None:
+                    with _deferred(received):
+                        pending.add(pool.submit(attempt_task, task, force))
+    except BaseException:
+        # the tasks not started are cancelled; those in flight finish (killing their workers
+        # could leave the pool's feeder thread blocked on a pipe nobody reads, and Python's
+        # exit waiting on it for ever), unwritten; a second signal meanwhile is only recorded
+        with _deferred(received, stop=False):
             for fut in pending:
                 fut.cancel()
-            pool.shutdown(wait=False, cancel_futures=True)
-            raise
+            pool.shutdown(wait=True, cancel_futures=True)
+        raise
+    with _deferred(received):
+        pool.shutdown(wait=True)
+
+
+@contextmanager
+def _deferred(received: list[int], stop: bool = True) -> Iterator[None]:
+    """Inside, the :data:`INTERRUPT_SIGNALS` are only recorded in `received` (the main
+    thread's handlers swapped for one that appends), so the section completes; right after
+    it, with `stop`, a recorded signal raises :class:`Interrupted`. Outside the main thread,
+    nothing changes."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def record(signum, frame):
+        received.append(signum)
+
+    previous = {sig: signal.signal(sig, record) for sig in INTERRUPT_SIGNALS}
+    try:
+        yield
+    finally:
+        for sig, old in previous.items():
+            signal.signal(sig, old)
+    if stop and received:
+        raise Interrupted(received[0])
 
 
 def _run_task_single_blas(task, force):
-    """run_task on a Dask worker with one BLAS thread."""
+    """attempt_task on a Dask worker with one BLAS thread."""
     from threadpoolctl import threadpool_limits
 
     with threadpool_limits(limits=1):
-        return run_task(task, force)
+        return attempt_task(task, force)
 
 
 SCHEDULER_TIMEOUT = 60.0
@@ -221,6 +316,7 @@ def execute(
     progress: bool | None = None,
     scheduler_timeout: float = SCHEDULER_TIMEOUT,
     warn: Callable[[str], None] = warn_stderr,
+    signals: list[int] | None = None,
 ) -> RunSummary:
     """Run every task of `plan` not already done in `out` and write the results.
 
@@ -231,7 +327,9 @@ def execute(
     out
         Result file (HDF5).
     workers
-        Local worker processes (default: all cores; 1 runs in this process).
+        Local worker processes (default: one per usable core; 1 runs in this process), at most
+        one per task to run and :data:`~floorslide.parallel.PER_CORE` per core (a request
+        reduced is said in one line through `warn`).
     scheduler
         Address of a running ``dask.distributed`` scheduler to send the tasks to instead.
     resume
@@ -247,7 +345,12 @@ def execute(
         With `scheduler`: seconds to wait while no Dask worker is connected before giving up.
     warn
         Called with one line for each warning: entries refused or tasks rebuilt on resume, a
-        scheduler without workers (default: printed on stderr).
+        scheduler without workers, a `workers` request reduced (default: printed on stderr).
+    signals
+        The list of an enclosing :func:`interrupt_signals` (the command line's, which also
+        covers the summary after the run); without it the run sets up its own. SIGINT, SIGTERM
+        and SIGHUP then interrupt the run alike: what finished is kept, the file is left for
+        ``--resume`` and the summary says ``interrupted`` and which ``signal``.
 
     Raises
     ------
@@ -286,39 +389,60 @@ def execute(
         dynamic_ncols=True,
     )
     ran = 0
+    failed: list[str] = []
+    flagged: list[str] = []
 
     def on_result(result):
         nonlocal ran
-        writer.write(result)
-        ran += 1
-        bar.update()
+        if received:  # a signal whose exception was swallowed (in a finaliser): stop here
+            raise Interrupted(received[0])
+        # a result is written whole, then the run stops if a signal came meanwhile
+        with _deferred(received):
+            if isinstance(result, TaskFailure):
+                failed.append(result.message)  # left out of the file: it stays INCOMPLETE
+            else:
+                writer.write(result)
+                ran += 1
+                flagged.extend(task_warnings(result))
+            bar.update()
 
-    interrupted = False
     from threadpoolctl import threadpool_limits
 
-    try:
-        if scheduler:
-            _run_dask(todo, scheduler, force, on_result, scheduler_timeout, warn)
-        else:
-            with threadpool_limits(limits=1):
-                _run_local(todo, workers or os.cpu_count() or 1, force, on_result)
-    except KeyboardInterrupt:
-        interrupted = True
-    except Exception:
-        writer.abandon()
-        raise
-    finally:
-        bar.close()
-        if interrupted or len(writer.done) != len(plan.tasks):
-            writer.close()  # the journal stays for --resume
-    if not interrupted and len(writer.done) == len(plan.tasks):
-        writer.finish()
+    signum = 0
+    with interrupt_signals(signals) as received:
+        try:
+            try:
+                if scheduler:
+                    _run_dask(todo, scheduler, force, on_result, scheduler_timeout, warn)
+                else:
+                    n, note = worker_count(workers, len(todo))
+                    if note:
+                        warn(note)
+                    with threadpool_limits(limits=1):
+                        _run_local(todo, n, force, on_result, received)
+            except Exception:
+                writer.abandon()
+                raise
+            finally:
+                bar.close()
+            if not received and len(writer.done) == len(plan.tasks):
+                with _deferred(received):
+                    writer.finish()
+        except KeyboardInterrupt as exc:
+            signum = getattr(exc, "signum", signal.SIGINT)
+        finally:
+            writer.close()  # unlocks; the journal stays for --resume unless finished
+        # a signal is never lost: one whose exception was swallowed still interrupts
+        signum = signum or (received[0] if received else 0)
     return RunSummary(
         str(out),
         len(plan.tasks),
-        ran,
+        len(writer.done) - resumed if signum else ran,
         resumed,
-        list(plan.failures),
+        list(plan.failures) + failed,
         time.perf_counter() - t0,
-        interrupted,
+        bool(signum),
+        flagged,
+        int(signum),
+        len(writer.done),
     )

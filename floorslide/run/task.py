@@ -8,13 +8,17 @@ a Dask worker, and gives the same numbers bit for bit.
 from __future__ import annotations
 
 import time
+from contextlib import contextmanager
+from dataclasses import dataclass
 
 import numpy as np
 
 from floorslide.building.exact_motion import building_motion
+from floorslide.building.isolators import small_angle_note
 from floorslide.contents.oscillator import slide_oscillator
 from floorslide.contents.rocking_block import rock as rock_blocks
 from floorslide.contents.sliding import slide
+from floorslide.errors import FloorslideError, NonFiniteError
 from floorslide.run.results import ContentResult, Histories, SpectrumResult, TaskResult
 from floorslide.scene.planner import Task, decide
 from floorslide.spectra.core import broaden, response_spectrum
@@ -81,6 +85,64 @@ def isolator_parameters(model) -> dict[str, float]:
             isolator_mu_s=float(c["mu_s"]),
             isolator_radius=float(c["R"]),
         )
+    return out
+
+
+@dataclass(frozen=True)
+class TaskFailure:
+    """A task that could not be computed (a solver at its event limit, a non-finite state):
+    what a run reports instead of its result — the task is left out of the result file (which
+    stays INCOMPLETE) and the run goes on with the others (docs/design.md §9)."""
+
+    task_id: str
+    message: str
+    """One line naming the record, the building and, where one is at fault, the object."""
+
+
+def task_label(task: Task) -> str:
+    """``record NAME (SET) on building ID``: how warnings and failures name a task."""
+    return f"record {task.record.record} ({task.record.set}) on building {task.building.id}"
+
+
+@contextmanager
+def _naming(what: str):
+    """Prefix `what` (the object or layer being computed) to a floorslide error raised inside,
+    so that a task's failure says which object it was."""
+    try:
+        yield
+    except FloorslideError as exc:
+        exc.args = (f"{what}: {exc}",)
+        raise
+
+
+def attempt_task(task: Task, force: bool = False) -> TaskResult | TaskFailure:
+    """:func:`run_task`, with an error a user can act on (a :class:`~floorslide.errors.
+    FloorslideError`: a solver's event limit, a non-finite state) turned into a
+    :class:`TaskFailure` naming the task, so that one task never stops a study."""
+    try:
+        return run_task(task, force)
+    except FloorslideError as exc:
+        return TaskFailure(task.task_id, f"{task_label(task)}: {exc}")
+
+
+def task_warnings(result: TaskResult) -> list[str]:
+    """One line per thing a user should not miss in a finished task, naming its record and
+    building: an isolator beyond its capacity, or a friction pendulum beyond its small-angle
+    model (:func:`floorslide.building.isolators.small_angle_exceeded`). The same flags are
+    stored in the task's attributes and listed by the tables."""
+    m = result.meta
+    if "isolator_peak_displacement" not in m:
+        return []
+    where = f"record {m['record']} ({m['record_set']}) on building {m['building']}"
+    peak = float(m["isolator_peak_displacement"])
+    out = []
+    if m.get("isolator_capacity_exceeded"):
+        out.append(
+            f"{where}: isolator displacement {peak:.4g} m exceeds its capacity "
+            f"{float(m['isolator_capacity']):g} m (the impact that would follow is not modelled)"
+        )
+    if m.get("isolator_small_angle_exceeded"):
+        out.append(f"{where}: {small_angle_note(peak, float(m['isolator_radius']))}")
     return out
 
 
@@ -190,7 +252,42 @@ def _content_result(content, floor, modes, reasons, mu, mu_s, arrays, **extra) -
 
 
 def run_task(task: Task, force: bool = False) -> TaskResult:
-    """Compute everything `task` asks for (see the planner for the skip rules)."""
+    """Compute everything `task` asks for (see the planner for the skip rules).
+
+    Raises
+    ------
+    NonFiniteError
+        A result that must be a number (a floor's PFA, a spectrum, an isolator's peak, a slide
+        or rotation) is NaN or infinite: the solvers overflowed (docs/design.md §9).
+    """
+    result = _run(task, force)
+    _check_finite(result)
+    return result
+
+
+def _check_finite(result: TaskResult) -> None:
+    """Every number a task computes is finite — except the NaN that mean "not this kind of
+    result" (a rocker's slide, a slider's rotation, an oscillator's deformation on a rigid
+    block, no overturning): the PFA, spectra and isolator peaks are finite, and no array holds
+    an infinity. A solver that overflowed says so instead of writing NaN or zeros."""
+    bad = []
+    if not np.all(np.isfinite(result.pfa)):
+        bad.append("the floors' PFA")
+    for key in ("isolator_peak_displacement", "isolator_peak_force_ratio"):
+        if key in result.meta and not np.isfinite(result.meta[key]):
+            bad.append(key)
+    for sp in result.spectra:
+        if not all(np.all(np.isfinite(getattr(sp, k))) for k in ("psa", "sd")):
+            bad.append(f"the floor spectrum of floor {sp.floor}")
+    for c in result.contents:
+        for name, value in vars(c).items():
+            if isinstance(value, np.ndarray) and value.dtype.kind == "f" and np.isinf(value).any():
+                bad.append(f"{name} of content {c.content} on floor {c.floor}")
+    if bad:
+        raise NonFiniteError(f"not finite (the solvers overflowed): {', '.join(bad)}", "task")
+
+
+def _run(task: Task, force: bool) -> TaskResult:
     t0 = time.perf_counter()
     rec = task.record
     acc, dt = rec.acc, rec.dt
@@ -208,94 +305,104 @@ def run_task(task: Task, force: bool = False) -> TaskResult:
     result = TaskResult(task.task_id, _meta(task), floors, np.asarray(pfa, dtype=float))
     hist_slides, hist_mu, hist_deform, hist_top, hist_rock = {}, {}, {}, {}, {}
     for content, floor in task.contents:
-        mu, mu_s = _frictions(content)
-        modes, integrate, reasons = decide(content, pfa_of[floor], force)
-        n = mu.size
-        arrays = _slide_arrays(n, pfa_of[floor], modes)
-        peak, resid, acc_obj, frac, slips, rocks = arrays
-        deform = top = None
-        idx = np.nonzero(integrate)[0]
-        fm = motion.floor(floor)
-        if content.model == "oscillator":
-            deform = np.full(n, np.nan)
-            top = np.full(n, np.nan)
-            if idx.size:
-                r = slide_oscillator(
-                    fm,
-                    None,
-                    mu[idx],
-                    content.frequency,
-                    content.damping,
-                    content.mass_ratio,
-                    mu_s=mu_s[idx],
-                )
+        with _naming(f"content {content.id} on floor {floor}"):
+            mu, mu_s = _frictions(content)
+            modes, integrate, reasons = decide(content, pfa_of[floor], force)
+            n = mu.size
+            arrays = _slide_arrays(n, pfa_of[floor], modes)
+            peak, resid, acc_obj, frac, slips, rocks = arrays
+            deform = top = None
+            idx = np.nonzero(integrate)[0]
+            fm = motion.floor(floor)
+            if content.model == "oscillator":
+                deform = np.full(n, np.nan)
+                top = np.full(n, np.nan)
+                if idx.size:
+                    r = slide_oscillator(
+                        fm,
+                        None,
+                        mu[idx],
+                        content.frequency,
+                        content.damping,
+                        content.mass_ratio,
+                        mu_s=mu_s[idx],
+                    )
+                    peak[idx], resid[idx] = r.peak_slide, r.residual_slide
+                    acc_obj[idx], frac[idx], slips[idx] = (
+                        r.peak_base_accel,
+                        r.slide_fraction,
+                        r.slip_phases,
+                    )
+                    deform[idx], top[idx] = r.peak_deformation, r.peak_top_accel
+            elif idx.size:
+                vert = rec.vertical if content.vertical else None
+                r = slide(fm, None, mu[idx], mu_s[idx], vertical=vert, direction=content.direction)
                 peak[idx], resid[idx] = r.peak_slide, r.residual_slide
                 acc_obj[idx], frac[idx], slips[idx] = (
-                    r.peak_base_accel,
+                    r.peak_abs_accel,
                     r.slide_fraction,
                     r.slip_phases,
                 )
-                deform[idx], top[idx] = r.peak_deformation, r.peak_top_accel
-        elif idx.size:
-            vert = rec.vertical if content.vertical else None
-            r = slide(fm, None, mu[idx], mu_s[idx], vertical=vert, direction=content.direction)
-            peak[idx], resid[idx] = r.peak_slide, r.residual_slide
-            acc_obj[idx], frac[idx], slips[idx] = r.peak_abs_accel, r.slide_fraction, r.slip_phases
-        rocking = rocking_results(
-            content,
-            modes,
-            lambda fm=fm, content=content: rock_blocks(
-                fm,
-                width=content.width,
-                height=content.height,
-                restitution=content.restitution,
-                method=content.rocking,
-                histories=task.histories,
-            ),
-        )
-        rock_result = rocking.pop("result", None)
-        extra = dict(peak_deformation=deform, peak_top_accel=top, **rocking)
-        result.contents.append(
-            _content_result(content, floor, modes, reasons, mu, mu_s, arrays, **extra)
-        )
-        if task.histories and rock_result is not None:
-            hist_rock[f"{content.id}/floor_{floor}"] = rock_result.theta[0] / rock_result.alpha[0]
-        if task.histories:
-            pick = np.unique(np.linspace(0, n - 1, min(HISTORY_MU, n)).round().astype(int))
-            key = f"{content.id}/floor_{floor}"
-            if content.model == "oscillator":
-                r = slide_oscillator(
+            rocking = rocking_results(
+                content,
+                modes,
+                lambda fm=fm, content=content: rock_blocks(
                     fm,
-                    None,
-                    mu[pick],
-                    content.frequency,
-                    content.damping,
-                    content.mass_ratio,
-                    mu_s=mu_s[pick],
-                    histories=True,
+                    width=content.width,
+                    height=content.height,
+                    restitution=content.restitution,
+                    method=content.rocking,
+                    histories=task.histories,
+                ),
+            )
+            rock_result = rocking.pop("result", None)
+            extra = dict(peak_deformation=deform, peak_top_accel=top, **rocking)
+            result.contents.append(
+                _content_result(content, floor, modes, reasons, mu, mu_s, arrays, **extra)
+            )
+            if task.histories and rock_result is not None:
+                hist_rock[f"{content.id}/floor_{floor}"] = (
+                    rock_result.theta[0] / rock_result.alpha[0]
                 )
-                hist_deform[key], hist_top[key] = r.z, r.top_accel
-            else:
-                r = slide(
-                    fm,
-                    None,
-                    mu[pick],
-                    mu_s[pick],
-                    histories=True,
-                    direction=content.direction,
-                    vertical=rec.vertical if content.vertical else None,
-                )
-            hist_slides[key], hist_mu[key] = r.u, mu[pick]
-            # an object that rocks is not a slider: no slide history is drawn for it
-            for arr in (hist_slides.get(key), hist_deform.get(key), hist_top.get(key)):
-                if arr is not None:
-                    arr[rocks[pick]] = np.nan
+            if task.histories:
+                pick = np.unique(np.linspace(0, n - 1, min(HISTORY_MU, n)).round().astype(int))
+                key = f"{content.id}/floor_{floor}"
+                if content.model == "oscillator":
+                    r = slide_oscillator(
+                        fm,
+                        None,
+                        mu[pick],
+                        content.frequency,
+                        content.damping,
+                        content.mass_ratio,
+                        mu_s=mu_s[pick],
+                        histories=True,
+                    )
+                    hist_deform[key], hist_top[key] = r.z, r.top_accel
+                else:
+                    r = slide(
+                        fm,
+                        None,
+                        mu[pick],
+                        mu_s[pick],
+                        histories=True,
+                        direction=content.direction,
+                        vertical=rec.vertical if content.vertical else None,
+                    )
+                hist_slides[key], hist_mu[key] = r.u, mu[pick]
+                # an object that rocks is not a slider: no slide history is drawn for it
+                for arr in (hist_slides.get(key), hist_deform.get(key), hist_top.get(key)):
+                    if arr is not None:
+                        arr[rocks[pick]] = np.nan
     sc = task.spectra
     for floor in task.spectra_floors:
-        sp = response_spectrum(motion.floor(floor), None, np.asarray(sc.periods), list(sc.damping))
-        out = SpectrumResult(floor, sp.periods, sp.damping, sp.psa, sp.sa, sp.sv, sp.sd)
-        _broadened(out, sp, sc.broadening)
-        result.spectra.append(out)
+        with _naming(f"floor spectrum of floor {floor}"):
+            sp = response_spectrum(
+                motion.floor(floor), None, np.asarray(sc.periods), list(sc.damping)
+            )
+            out = SpectrumResult(floor, sp.periods, sp.damping, sp.psa, sp.sa, sp.sv, sp.sd)
+            _broadened(out, sp, sc.broadening)
+            result.spectra.append(out)
     if task.histories:
         fl = np.array(task.floors, dtype=np.int64)
         motions = motion.samples(list(task.floors)) if fl.size else np.zeros((0, acc.size))
@@ -330,6 +437,7 @@ def _run_nonlinear(task: Task, model, force: bool, t0: float) -> TaskResult:
         isolator_residual_displacement=base.residual_displacement,
         isolator_peak_force_ratio=base.peak_force_ratio,
         isolator_capacity_exceeded=int(base.capacity_exceeded),
+        isolator_small_angle_exceeded=int(base.small_angle_exceeded),
     )
     result = TaskResult(
         task.task_id, meta, np.array(floors, dtype=np.int64), np.asarray(base.pfa, dtype=float)
@@ -338,34 +446,43 @@ def _run_nonlinear(task: Task, model, force: bool, t0: float) -> TaskResult:
     blocks = []
     flex_results = {}
     for content, floor in task.contents:
-        mu, mu_s = _frictions(content)
-        modes, integrate, reasons = decide(content, pfa_of[floor], force)
-        idx = np.nonzero(integrate)[0]
-        if content.model == "oscillator":
-            if idx.size:
-                flex_results[(content.id, floor)] = slide_oscillator_on_isolation(
-                    model, acc, dt, mu[idx], content.frequency, content.damping,
-                    content.mass_ratio, mu_s=mu_s[idx], floor=floor,
-                )  # fmt: skip
-            plans.append((content, floor, mu, mu_s, modes, reasons, idx, -1))
-            continue
-        first = len(blocks)
-        blocks += [(floor, max(mu_s[i], mu[i]), mu[i], content.direction) for i in idx]
-        plans.append((content, floor, mu, mu_s, modes, reasons, idx, first))
+        with _naming(f"content {content.id} on floor {floor}"):
+            mu, mu_s = _frictions(content)
+            modes, integrate, reasons = decide(content, pfa_of[floor], force)
+            idx = np.nonzero(integrate)[0]
+            if content.model == "oscillator":
+                if idx.size:
+                    flex_results[(content.id, floor)] = slide_oscillator_on_isolation(
+                        model, acc, dt, mu[idx], content.frequency, content.damping,
+                        content.mass_ratio, mu_s=mu_s[idx], floor=floor,
+                    )  # fmt: skip
+                plans.append((content, floor, mu, mu_s, modes, reasons, idx, -1))
+                continue
+            first = len(blocks)
+            blocks += [(floor, max(mu_s[i], mu[i]), mu[i], content.direction) for i in idx]
+            plans.append((content, floor, mu, mu_s, modes, reasons, idx, first))
     by_direction: dict[str, list[int]] = {}
     for j, b in enumerate(blocks):
         by_direction.setdefault(b[3], []).append(j)
     states = [None] * len(blocks)
     slides = [None] * len(blocks)
-    for _direction, js in by_direction.items():
-        r = isolator_response(
-            model,
-            acc,
-            dt,
-            floors=floors,
-            blocks=[blocks[j] for j in js],
-            block_histories=task.histories,
+    for direction, js in by_direction.items():
+        riding = sorted(
+            {
+                f"{p[0].id} on floor {p[1]}"
+                for p in plans
+                if p[7] >= 0 and p[6].size and p[0].direction == direction
+            }
         )
+        with _naming(f"content {', '.join(riding)} (rigid blocks riding along)"):
+            r = isolator_response(
+                model,
+                acc,
+                dt,
+                floors=floors,
+                blocks=[blocks[j] for j in js],
+                block_histories=task.histories,
+            )
         for k, j in enumerate(js):
             states[j] = r.block_states[k]
             slides[j] = None if r.block_slides is None else r.block_slides[k]
@@ -374,82 +491,86 @@ def _run_nonlinear(task: Task, model, force: bool, t0: float) -> TaskResult:
     duration = (acc.size - 1) * dt
     hist_slides, hist_mu, hist_deform, hist_top, hist_rock = {}, {}, {}, {}, {}
     for content, floor, mu, mu_s, modes, reasons, idx, first in plans:
-        n = mu.size
-        arrays = _slide_arrays(n, pfa_of[floor], modes)
-        peak, resid, acc_obj, frac, slips, rocks = arrays
-        deform = top = None
-        if first < 0:  # 2-DOF oscillators
-            deform = np.full(n, np.nan)
-            top = np.full(n, np.nan)
-            fr = flex_results.get((content.id, floor))
-            if fr is not None:
-                peak[idx], resid[idx] = fr.peak_slide, fr.residual_slide
-                acc_obj[idx], frac[idx], slips[idx] = (
-                    fr.peak_base_accel,
-                    fr.slide_fraction,
-                    fr.slip_phases,
+        with _naming(f"content {content.id} on floor {floor}"):
+            n = mu.size
+            arrays = _slide_arrays(n, pfa_of[floor], modes)
+            peak, resid, acc_obj, frac, slips, rocks = arrays
+            deform = top = None
+            if first < 0:  # 2-DOF oscillators
+                deform = np.full(n, np.nan)
+                top = np.full(n, np.nan)
+                fr = flex_results.get((content.id, floor))
+                if fr is not None:
+                    peak[idx], resid[idx] = fr.peak_slide, fr.residual_slide
+                    acc_obj[idx], frac[idx], slips[idx] = (
+                        fr.peak_base_accel,
+                        fr.slide_fraction,
+                        fr.slip_phases,
+                    )
+                    deform[idx], top[idx] = fr.peak_deformation, fr.peak_top_accel
+            for k, i in enumerate(idx if first >= 0 else ()):
+                st = states[first + k]
+                peak[i], resid[i], acc_obj[i] = st[PEAK_DISP], st[DISP], st[PEAK_ACC]
+                frac[i] = st[SLIDE_TIME] / duration if duration > 0 else 0.0
+                slips[i] = int(st[SLIPS])
+            # rocking blocks ride along in the building's own integration (fs.rock on it)
+            rocking = rocking_results(
+                content,
+                modes,
+                lambda floor=floor, content=content: rock_blocks(
+                    acc,
+                    dt,
+                    width=content.width,
+                    height=content.height,
+                    restitution=content.restitution,
+                    method=content.rocking,
+                    histories=task.histories,
+                    building=model,
+                    floor=floor,
+                ),
+            )
+            rock_result = rocking.pop("result", None)
+            if task.histories and rock_result is not None:
+                hist_rock[f"{content.id}/floor_{floor}"] = (
+                    rock_result.theta[0] / rock_result.alpha[0]
                 )
-                deform[idx], top[idx] = fr.peak_deformation, fr.peak_top_accel
-        for k, i in enumerate(idx if first >= 0 else ()):
-            st = states[first + k]
-            peak[i], resid[i], acc_obj[i] = st[PEAK_DISP], st[DISP], st[PEAK_ACC]
-            frac[i] = st[SLIDE_TIME] / duration if duration > 0 else 0.0
-            slips[i] = int(st[SLIPS])
-        # rocking blocks ride along in the building's own integration (fs.rock on it)
-        rocking = rocking_results(
-            content,
-            modes,
-            lambda floor=floor, content=content: rock_blocks(
-                acc,
-                dt,
-                width=content.width,
-                height=content.height,
-                restitution=content.restitution,
-                method=content.rocking,
-                histories=task.histories,
-                building=model,
-                floor=floor,
-            ),
-        )
-        rock_result = rocking.pop("result", None)
-        if task.histories and rock_result is not None:
-            hist_rock[f"{content.id}/floor_{floor}"] = rock_result.theta[0] / rock_result.alpha[0]
-        extra = dict(peak_deformation=deform, peak_top_accel=top, **rocking)
-        result.contents.append(
-            _content_result(content, floor, modes, reasons, mu, mu_s, arrays, **extra)
-        )
-        if task.histories and first < 0:
-            # 2-DOF oscillators: their histories from a run of the picked friction values
-            pick = np.unique(np.linspace(0, n - 1, min(HISTORY_MU, n)).round().astype(int))
-            key = f"{content.id}/floor_{floor}"
-            rh = slide_oscillator_on_isolation(
-                model, acc, dt, mu[pick], content.frequency, content.damping,
-                content.mass_ratio, mu_s=mu_s[pick], floor=floor, histories=True,
-            )  # fmt: skip
-            hist_slides[key], hist_mu[key] = rh.u, mu[pick]
-            hist_deform[key], hist_top[key] = rh.z, rh.top_accel
-            # an object that rocks is not a slider: no slide history is drawn for it
-            for arr in (rh.u, rh.z, rh.top_accel):
-                arr[rocks[pick]] = np.nan
-        if task.histories and first >= 0:
-            pick = np.unique(np.linspace(0, n - 1, min(HISTORY_MU, n)).round().astype(int))
-            key = f"{content.id}/floor_{floor}"
-            u = np.zeros((pick.size, acc.size))
-            where = {int(i): first + k for k, i in enumerate(idx)}
-            for row, i in enumerate(pick):
-                if int(i) in where and slides[where[int(i)]] is not None:
-                    u[row] = slides[where[int(i)]]
-                if rocks[i]:
-                    u[row] = np.nan
-            hist_slides[key], hist_mu[key] = u, mu[pick]
+            extra = dict(peak_deformation=deform, peak_top_accel=top, **rocking)
+            result.contents.append(
+                _content_result(content, floor, modes, reasons, mu, mu_s, arrays, **extra)
+            )
+            if task.histories and first < 0:
+                # 2-DOF oscillators: their histories from a run of the picked friction values
+                pick = np.unique(np.linspace(0, n - 1, min(HISTORY_MU, n)).round().astype(int))
+                key = f"{content.id}/floor_{floor}"
+                rh = slide_oscillator_on_isolation(
+                    model, acc, dt, mu[pick], content.frequency, content.damping,
+                    content.mass_ratio, mu_s=mu_s[pick], floor=floor, histories=True,
+                )  # fmt: skip
+                hist_slides[key], hist_mu[key] = rh.u, mu[pick]
+                hist_deform[key], hist_top[key] = rh.z, rh.top_accel
+                # an object that rocks is not a slider: no slide history is drawn for it
+                for arr in (rh.u, rh.z, rh.top_accel):
+                    arr[rocks[pick]] = np.nan
+            if task.histories and first >= 0:
+                pick = np.unique(np.linspace(0, n - 1, min(HISTORY_MU, n)).round().astype(int))
+                key = f"{content.id}/floor_{floor}"
+                u = np.zeros((pick.size, acc.size))
+                where = {int(i): first + k for k, i in enumerate(idx)}
+                for row, i in enumerate(pick):
+                    if int(i) in where and slides[where[int(i)]] is not None:
+                        u[row] = slides[where[int(i)]]
+                    if rocks[i]:
+                        u[row] = np.nan
+                hist_slides[key], hist_mu[key] = u, mu[pick]
     sc = task.spectra
     for floor in task.spectra_floors:
-        sp = floor_spectrum_on_isolation(
-            model, acc, dt, np.asarray(sc.periods), list(sc.damping), floor=floor
-        )
-        out = SpectrumResult(floor, sp.periods, sp.damping, sp.psa, sp.sa, sp.sv, sp.sd)
-        _broadened(out, sp, sc.broadening)
-        result.spectra.append(out)
+        with _naming(f"floor spectrum of floor {floor}"):
+            sp = floor_spectrum_on_isolation(
+                model, acc, dt, np.asarray(sc.periods), list(sc.damping), floor=floor
+            )
+            out = SpectrumResult(floor, sp.periods, sp.damping, sp.psa, sp.sa, sp.sv, sp.sd)
+            _broadened(out, sp, sc.broadening)
+            result.spectra.append(out)
     if task.histories:
         fl = np.array(floors, dtype=np.int64)
         result.histories = Histories(
@@ -500,77 +621,82 @@ def _run_pair(task: Task, force: bool, t0: float) -> TaskResult:
     result.pfa_components = per_dir
     hist_slides, hist_mu, hist_plane, hist_rock = {}, {}, {}, {}
     for content, floor in task.contents:
-        mu, mu_s = _frictions(content)
-        modes, integrate, reasons = decide(content, pfa_of[floor], force)
-        n = mu.size
-        arrays = _slide_arrays(n, pfa_of[floor], modes)
-        peak, resid, acc_obj, frac, slips, rocks = arrays
-        angle, r1, r2 = np.full(n, np.nan), np.zeros(n), np.zeros(n)
-        one_d = np.zeros((n, 2))
-        ratio = np.full(n, np.nan)
-        for arr in (r1, r2, one_d):
-            arr[rocks] = np.nan
-        idx = np.nonzero(integrate)[0]
-        fm1, fm2 = motions[floor]
-        vert = rec.vertical if content.vertical else None
-        if idx.size:
-            r = slide_plane((rec.acc, rec.acc2), dt, mu[idx], mu_s[idx], building=model,
-                            floor=floor if model is not None else None, vertical=vert)  # fmt: skip
-            peak[idx], frac[idx], slips[idx] = r.peak_slide, r.slide_fraction, r.slip_phases
-            resid[idx] = np.hypot(r.residual[:, 0], r.residual[:, 1])
-            r1[idx], r2[idx] = r.residual[:, 0], r.residual[:, 1]
-            angle[idx] = r.peak_angle
-            one_d[idx] = r.peak_slide_1d
-            ratio[idx] = r.ratio_2d_1d
-            # a block in the plane is stuck while |a| ≤ mu_b g and slides at mu_k g ≤ mu_b g:
-            # once it has broken away its peak acceleration is the breakaway level (with
-            # vertical shaking the friction limit varies: not known in closed form, NaN)
-            slid = r.slip_phases > 0
-            acc_obj[idx[slid]] = np.minimum(pfa_of[floor], np.maximum(mu[idx], mu_s[idx])[slid] * G)
-            if vert is not None:
-                acc_obj[idx[slid]] = np.nan
+        with _naming(f"content {content.id} on floor {floor}"):
+            mu, mu_s = _frictions(content)
+            modes, integrate, reasons = decide(content, pfa_of[floor], force)
+            n = mu.size
+            arrays = _slide_arrays(n, pfa_of[floor], modes)
+            peak, resid, acc_obj, frac, slips, rocks = arrays
+            angle, r1, r2 = np.full(n, np.nan), np.zeros(n), np.zeros(n)
+            one_d = np.zeros((n, 2))
+            ratio = np.full(n, np.nan)
+            for arr in (r1, r2, one_d):
+                arr[rocks] = np.nan
+            idx = np.nonzero(integrate)[0]
+            fm1, fm2 = motions[floor]
+            vert = rec.vertical if content.vertical else None
+            if idx.size:
+                r = slide_plane((rec.acc, rec.acc2), dt, mu[idx], mu_s[idx], building=model,
+                                floor=floor if model is not None else None,
+                                vertical=vert)  # fmt: skip
+                peak[idx], frac[idx], slips[idx] = r.peak_slide, r.slide_fraction, r.slip_phases
+                resid[idx] = np.hypot(r.residual[:, 0], r.residual[:, 1])
+                r1[idx], r2[idx] = r.residual[:, 0], r.residual[:, 1]
+                angle[idx] = r.peak_angle
+                one_d[idx] = r.peak_slide_1d
+                ratio[idx] = r.ratio_2d_1d
+                # a block in the plane is stuck while |a| ≤ mu_b g and slides at mu_k g ≤ mu_b g:
+                # once it has broken away its peak acceleration is the breakaway level (with
+                # vertical shaking the friction limit varies: not known in closed form, NaN)
+                slid = r.slip_phases > 0
+                acc_obj[idx[slid]] = np.minimum(
+                    pfa_of[floor], np.maximum(mu[idx], mu_s[idx])[slid] * G
+                )
+                if vert is not None:
+                    acc_obj[idx[slid]] = np.nan
 
-        def rocker(fm1=fm1, fm2=fm2, content=content):
-            kw = dict(width=content.width, height=content.height,
-                      restitution=content.restitution, method=content.rocking,
-                      histories=task.histories)  # fmt: skip
-            return _worse_rocking(rock_blocks(fm1, **kw), rock_blocks(fm2, **kw))
+            def rocker(fm1=fm1, fm2=fm2, content=content):
+                kw = dict(width=content.width, height=content.height,
+                          restitution=content.restitution, method=content.rocking,
+                          histories=task.histories)  # fmt: skip
+                return _worse_rocking(rock_blocks(fm1, **kw), rock_blocks(fm2, **kw))
 
-        rocking = rocking_results(content, modes, rocker)
-        rock_result = rocking.pop("result", None)
-        result.contents.append(
-            _content_result(
-                content,
-                floor,
-                modes,
-                reasons,
-                mu,
-                mu_s,
-                arrays,
-                peak_angle=angle,
-                residual_h1=r1,
-                residual_h2=r2,
-                peak_slide_h1=one_d[:, 0].copy(),
-                peak_slide_h2=one_d[:, 1].copy(),
-                ratio_2d_1d=ratio,
-                **rocking,
+            rocking = rocking_results(content, modes, rocker)
+            rock_result = rocking.pop("result", None)
+            result.contents.append(
+                _content_result(
+                    content,
+                    floor,
+                    modes,
+                    reasons,
+                    mu,
+                    mu_s,
+                    arrays,
+                    peak_angle=angle,
+                    residual_h1=r1,
+                    residual_h2=r2,
+                    peak_slide_h1=one_d[:, 0].copy(),
+                    peak_slide_h2=one_d[:, 1].copy(),
+                    ratio_2d_1d=ratio,
+                    **rocking,
+                )
             )
-        )
-        key = f"{content.id}/floor_{floor}"
-        if task.histories and rock_result is not None:
-            hist_rock[key] = rock_result.theta[0] / rock_result.alpha[0]
-        if task.histories:
-            pick = np.unique(np.linspace(0, n - 1, min(HISTORY_MU, n)).round().astype(int))
-            r = slide_plane((rec.acc, rec.acc2), dt, mu[pick], mu_s[pick], building=model,
-                            floor=floor if model is not None else None, histories=True,
-                            compare_1d=False, vertical=vert)  # fmt: skip
-            u = r.u
-            u[rocks[pick]] = np.nan
-            hist_plane[key] = u
-            hist_slides[key] = np.hypot(u[:, :, 0], u[:, :, 1])
-            hist_mu[key] = mu[pick]
+            key = f"{content.id}/floor_{floor}"
+            if task.histories and rock_result is not None:
+                hist_rock[key] = rock_result.theta[0] / rock_result.alpha[0]
+            if task.histories:
+                pick = np.unique(np.linspace(0, n - 1, min(HISTORY_MU, n)).round().astype(int))
+                r = slide_plane((rec.acc, rec.acc2), dt, mu[pick], mu_s[pick], building=model,
+                                floor=floor if model is not None else None, histories=True,
+                                compare_1d=False, vertical=vert)  # fmt: skip
+                u = r.u
+                u[rocks[pick]] = np.nan
+                hist_plane[key] = u
+                hist_slides[key] = np.hypot(u[:, :, 0], u[:, :, 1])
+                hist_mu[key] = mu[pick]
     for floor in task.spectra_floors:
-        result.spectra.append(_pair_spectrum(task, model, floor))
+        with _naming(f"floor spectrum of floor {floor}"):
+            result.spectra.append(_pair_spectrum(task, model, floor))
     if task.histories:
         fl = np.array(floors, dtype=np.int64)
         acc1 = np.array([motions[f][0].samples() for f in floors]).reshape(-1, rec.acc.size)

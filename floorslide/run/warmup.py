@@ -82,10 +82,23 @@ def start(families) -> list:
     procs = []
     for family in families:
         if not _loaded(family):
-            p = ctx.Process(target=target[family], daemon=True)
+            p = ctx.Process(target=_quietly, args=(target[family],), daemon=True)
             p.start()
             procs.append(p)
     return procs
+
+
+def _quietly(target) -> None:
+    """Run `target` in a side process that leaves interruptions to its parent: Ctrl-C (sent to
+    the whole process group) is ignored here rather than printed as a traceback, and SIGTERM
+    (the parent ending its daemon children) ends it at once."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    for name in ("SIGTERM", "SIGHUP"):
+        if hasattr(signal, name):
+            signal.signal(getattr(signal, name), signal.SIG_DFL)
+    target()
 
 
 def finish(procs) -> None:

@@ -378,6 +378,38 @@ def _scalings(rs: RecordSetSpec, pga: float, spectrum=None):
         yield (rs.set if sc is None or len(scales) == 1 else f"{rs.set}@{sc:g}g"), factor, info
 
 
+class _ScaleGridError(Exception):
+    """A set's ``scale`` asks for spectra below what its records' dt allows: a scene error
+    (:func:`plan` names the key), not a failure of each record."""
+
+    def __init__(self, key: str, message: str):
+        self.key = key
+        super().__init__(message)
+
+
+def _check_scale_grid(rs: RecordSetSpec, dt: float, label: str) -> None:
+    """Raise :class:`_ScaleGridError` when `rs`'s scaling spectra reach below ``dt/1000``
+    (:data:`floorslide.spectra.core.MIN_PERIOD_STEPS`) of a record of step `dt`."""
+    from floorslide.spectra.core import MIN_PERIOD_STEPS
+
+    sc = rs.scale
+    if sc is None:
+        return
+    lo = float(sc.period_range[0])
+    if lo < dt / MIN_PERIOD_STEPS:
+        # a `period` alone makes the range 0.2·T–2·T (scene.schema._scale)
+        about = sc.period is not None and tuple(sc.period_range) == (
+            0.2 * sc.period,
+            2.0 * sc.period,
+        )
+        how = " (0.2·T)" if about else ""
+        raise _ScaleGridError(
+            "period" if about else "periods",
+            f"the records' spectra would reach down to {lo:g} s{how}, below dt/"
+            f"{MIN_PERIOD_STEPS} = {dt / MIN_PERIOD_STEPS:g} s of record {label} (dt = {dt:g} s)",
+        )
+
+
 def _record_spectrum(rs: RecordSetSpec, acc, dt: float, acc2=None):
     """A callable: the record's spectrum on `rs.scale`'s grid, g — PSA of one component, the
     maximum-direction spectrum RotD100 of a pair (ASCE 7-22 §16.2.3.2)."""
@@ -583,12 +615,15 @@ def _load_set(
         acc = np.asarray(tr.data, dtype=float)
         pga = float(np.abs(acc).max())
         catalog_meta = dict(getattr(tr.stats, "catalog", {}) or {})
+        _check_scale_grid(rs, float(tr.stats.delta), label)
         try:
             scalings = list(_scalings(rs, pga, _record_spectrum(rs, acc, float(tr.stats.delta))))
         except FloorslideError as exc:
             failures.append(f"{label}: {exc}")
             continue
         for set_name, factor, info in scalings:
+            if not _scaled_ok(label, set_name, factor, (acc, vert), failures):
+                continue
             if scaling is not None:
                 scaling.add(rs, set_name, record_id, factor, info)
             out.append(
@@ -605,6 +640,26 @@ def _load_set(
                 )
             )
     return out
+
+
+def _scaled_ok(label: str, set_name: str, factor: float, arrays, failures: list[str]) -> bool:
+    """Whether a record scaled by `factor` (its components `arrays`, None where absent) is one
+    the solvers take: a finite factor, samples finite and within
+    :data:`~floorslide.constants.MAX_ACCELERATION`. If not, the record is a failure of its own
+    (named, with the factor) — never a run on overflowing numbers that reads "no slide"."""
+    from floorslide.inputs import check_amplitude
+
+    try:
+        if not np.isfinite(factor) or factor <= 0:
+            raise RecordError(f"scale factor {factor!r} is not a finite positive number")
+        with np.errstate(over="ignore", invalid="ignore"):
+            peak = max(float(np.abs(a).max()) * factor for a in arrays if a is not None)
+        check_amplitude(peak)
+    except FloorslideError as exc:
+        how = "" if factor == 1.0 else f"scaled by {factor:.4g} ({set_name}), "
+        failures.append(f"{label}: {how}{exc.message}")
+        return False
+    return True
 
 
 def _load_pairs(
@@ -672,6 +727,7 @@ def _load_pairs(
             _rejected(rs, record_id, label, flags, failures, rejected)
             continue
         pga = float(max(np.abs(pair.h1).max(), np.abs(pair.h2).max()))
+        _check_scale_grid(rs, pair.dt, label)
         meta = {k: str(v) for k, v in row["h1"].row.items() if k not in ("file", "comp")}
         meta["files"] = f"{row['h1'].path.name} + {row['h2'].path.name}"
         if pair.notes:
@@ -682,6 +738,8 @@ def _load_pairs(
             failures.append(f"{label}: {exc}")
             continue
         for set_name, factor, info in scalings:
+            if not _scaled_ok(label, set_name, factor, (pair.h1, pair.h2, pair.vertical), failures):
+                continue
             if scaling is not None:
                 scaling.add(rs, set_name, record_id, factor, info)
             out.append(
@@ -721,6 +779,48 @@ def _check_short_periods(scene: Scene, records: list[LoadedRecord]) -> None:
         )
 
 
+def _building_key(scene: Scene, base: str) -> str:
+    """The key path ``buildings[i]`` of the scene's building table with id `base`."""
+    import tomllib
+
+    try:
+        tables = tomllib.loads(scene.text).get("buildings", [])
+    except (tomllib.TOMLDecodeError, AttributeError, TypeError):
+        tables = []
+    for i, b in enumerate(tables if isinstance(tables, list) else []):
+        if isinstance(b, dict) and b.get("id") == base:
+            return f"buildings[{i}]"
+    return "buildings"
+
+
+def _check_buildings(scene: Scene, records: list[LoadedRecord]) -> None:
+    """Every building (each direction of a two-way one) can be built — its matrices finite,
+    not beyond float64's range — and steps the coarsest record within
+    :data:`~floorslide.building.exact.MAX_SUBSTEPS` sub-steps per record step and
+    :data:`~floorslide.building.exact.MAX_STEP_BYTES` of states (known once the records are
+    read): otherwise a run would give NaN floors read as "no slide", exhaust the memory or the
+    user's patience, so it is an invalid scene, one line per building, before anything runs
+    (``--dry-run`` says so too)."""
+    from floorslide.building.directions import per_direction
+    from floorslide.errors import ModelError
+
+    coarsest = max(records, key=lambda r: r.dt) if records else None
+    problems = []
+    for b in scene.buildings:
+        key = f"{_building_key(scene, b.base)} (building {b.id!r}"
+        try:
+            models = per_direction(b.build_plane()) if b.two_way else (b.build(),)
+            if coarsest is None:
+                continue
+            key += f", under record {coarsest.label}"
+            for model in models:
+                model.substeps(coarsest.dt)
+        except ModelError as exc:
+            problems.append(f"{key}): {exc.message}")
+    if problems:
+        raise SceneError(problems, scene.path)
+
+
 def plan(scene: Scene, *, force: bool = False, evaluate: bool = True) -> Plan:
     """Turn a scene into tasks.
 
@@ -738,12 +838,16 @@ def plan(scene: Scene, *, force: bool = False, evaluate: bool = True) -> Plan:
     rejected: list[dict] = []
     periods = tuple(scene.spectra.periods) if scene.spectra is not None else ()
     scaling = _Scaling()
-    for rs in scene.records:
-        got = _load_set(rs, scene.processing, failures, periods, scene.qa, rejected, scaling)
+    for i, rs in enumerate(scene.records):
+        try:
+            got = _load_set(rs, scene.processing, failures, periods, scene.qa, rejected, scaling)
+        except _ScaleGridError as exc:
+            raise SceneError(f"records[{i}].scale.{exc.key}: {exc}", scene.path) from None
         if rs.scale is not None and rs.scale.match_suite:
             got = scaling.match_suite(rs, got)
         records += got
     _check_short_periods(scene, records)
+    _check_buildings(scene, records)
     history = scene.report.get("history_record")
     if history is None and records:
         history = records[0].record

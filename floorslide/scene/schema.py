@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from floorslide.constants import MAX_LIST
+from floorslide.constants import MAX_ACCELERATION, MAX_LIST, G
 from floorslide.errors import SceneError
 
 TOP_KEYS = {"scene", "records", "processing", "buildings", "contents", "spectra", "report"}
@@ -133,6 +133,11 @@ ID_RULE = (
 """What :func:`id_problem` allows, as the error messages say it."""
 QA_ACTIONS = ("warn", "reject")
 """Values of ``[scene] qa`` (:mod:`floorslide.records.quality`)."""
+
+MAX_SCALE_PGA = MAX_ACCELERATION / G
+"""Largest ``scale_pga`` (g): the most the solvers take
+(:data:`floorslide.constants.MAX_ACCELERATION`)."""
+
 MAX_STORIES = 200
 """Largest building a scene may declare (a 200-storey shear building has 400 states)."""
 
@@ -781,7 +786,7 @@ def _records(value, ck: _Checker, base: Path) -> tuple[tuple[RecordSetSpec, ...]
         elif ids is not None:
             ids += [record_id_of(f) for f in files]
         scale = (
-            ck.numbers(r["scale_pga"], f"{w}.scale_pga", lo=0, lo_open=True)
+            ck.numbers(r["scale_pga"], f"{w}.scale_pga", lo=0, lo_open=True, hi=MAX_SCALE_PGA)
             if "scale_pga" in r
             else ()
         )
@@ -855,6 +860,21 @@ def _increasing_pair(value, where: str, ck: _Checker, what: str) -> tuple[float,
     return lo, hi
 
 
+def _scale_range(rng: tuple[float, float], where: str, ck: _Checker) -> None:
+    """The records' spectra of a ``scale`` are computed over `rng` (``0.2 T … 2 T`` about a
+    ``period``): within what a spectrum takes (:data:`floorslide.spectra.core.MAX_PERIOD`;
+    the lower bound, ``dt/1000``, is checked by the planner once the records' dt is known)."""
+    from floorslide.spectra.core import MAX_PERIOD
+
+    if rng[1] > MAX_PERIOD:
+        how = "" if where.endswith("periods") else " (the fit range 0.2·T–2·T)"
+        ck.add(
+            where,
+            f"the records' spectra would reach {rng[1]:g} s{how}, above {MAX_PERIOD:g} s, "
+            "beyond any structure",
+        )
+
+
 def _scale(value, w: str, ck: _Checker, base: Path) -> ScaleSpec | None:
     """A record set's ``scale`` table (docs/design.md §10e), or None with the problems added."""
     from floorslide.errors import ModelError
@@ -907,6 +927,8 @@ def _scale(value, w: str, ck: _Checker, base: Path) -> ScaleSpec | None:
         ck.add(w, "give periods = [T_lo, T_hi] (fit over a range) or period = T (match at T)")
     if rng is not None and period is not None and not (rng[0] <= period <= rng[1]):
         ck.add(f"{w}.period", f"{period:g} s lies outside periods [{rng[0]:g}, {rng[1]:g}]")
+    elif rng is not None:
+        _scale_range(rng, f"{w}.periods" if "periods" in value else f"{w}.period", ck)
     if target is not None and rng is not None and not target.params:
         lo_t, hi_t = float(target.periods[0]), float(target.periods[-1])
         if rng[0] < lo_t or rng[1] > hi_t:
@@ -1054,8 +1076,13 @@ def _fixed_model(b: dict, w: str, ck: _Checker):
     stiffnesses = tuple(np.broadcast_to(stiff, (stories,)).tolist()) if stiff else ()
     if stiffnesses:
         from floorslide.building.model import ShearBuilding
+        from floorslide.errors import ModelError
 
-        periods = (float(ShearBuilding(masses, stiffnesses, 0.0).periods[0]),)
+        try:
+            periods = (float(ShearBuilding(masses, stiffnesses, 0.0).periods[0]),)
+        except ModelError as exc:  # matrices beyond float64's range
+            ck.add(f"{w}.stiffness", exc.message)
+            return None
     return stories, masses, stiffnesses, periods, str(profile)
 
 
