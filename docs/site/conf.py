@@ -1,0 +1,51 @@
+"""Sphinx configuration of floorslide's documentation site.
+
+Build it (warnings are errors, as CI builds it)::
+
+    pip install -e ".[docs]"
+    sphinx-build -W --keep-going -b html docs/site docs/_build/html
+"""
+
+from __future__ import annotations
+
+import sys
+from importlib.metadata import version as _version
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT))
+
+project = "floorslide"
+author = "floorslide developers"
+copyright = "floorslide developers"
+release = _version("floorslide")
+version = release
+
+extensions = [
+    "myst_parser",
+    "sphinx.ext.autodoc",
+    "sphinx.ext.autosummary",
+    "sphinx.ext.napoleon",
+    "sphinx.ext.mathjax",
+    "sphinx.ext.viewcode",
+]
+
+source_suffix = {".md": "markdown", ".rst": "restructuredtext"}
+root_doc = "index"
+exclude_patterns = ["_build"]
+
+myst_enable_extensions = ["colon_fence", "deflist", "dollarmath"]
+myst_heading_anchors = 3
+
+# The API reference: numpydoc docstrings through napoleon; every name of floorslide.__all__.
+autosummary_generate = True
+autodoc_default_options = {"members": True, "show-inheritance": False}
+autodoc_member_order = "bysource"
+autodoc_typehints = "none"
+napoleon_google_docstring = False
+napoleon_numpy_docstring = True
+napoleon_use_rtype = False
+
+html_theme = "furo"
+html_title = f"floorslide {release}"
+html_static_path: list[str] = []
