@@ -49,3 +49,23 @@ napoleon_use_rtype = False
 html_theme = "furo"
 html_title = f"floorslide {release}"
 html_static_path: list[str] = []
+
+
+def _reexported_data_docs(app, what, name, obj, options, lines):
+    """A constant re-exported by ``floorslide`` (``G``) carries the docstring written where it
+    is defined (autodoc would show the docstring of its type, ``float``)."""
+    if what != "data" or not name.startswith("floorslide."):
+        return
+    import floorslide
+    from sphinx.pycode import ModuleAnalyzer
+
+    attr = name.rsplit(".", 1)[1]
+    module = floorslide._SOURCE.get(attr)
+    if module:
+        docs = ModuleAnalyzer.for_module(module).find_attr_docs().get(("", attr))
+        if docs:
+            lines[:] = list(docs)
+
+
+def setup(app):
+    app.connect("autodoc-process-docstring", _reexported_data_docs)
