@@ -56,8 +56,9 @@ def _reexported_data_docs(app, what, name, obj, options, lines):
     is defined (autodoc would show the docstring of its type, ``float``)."""
     if what != "data" or not name.startswith("floorslide."):
         return
-    import floorslide
     from sphinx.pycode import ModuleAnalyzer
+
+    import floorslide
 
     attr = name.rsplit(".", 1)[1]
     module = floorslide._SOURCE.get(attr)
