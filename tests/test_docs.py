@@ -163,3 +163,19 @@ def test_no_issue_numbers_in_help():
         out = runner.invoke(cli, [name, "--help"] if name else ["--help"])
         assert out.exit_code == 0, name
         assert not re.search(r"(?i)\bissues? \d+", out.output), name
+
+
+def test_first_study_scene_plans(tmp_path):
+    """The scene of "Your first study in five steps" is valid and plans, on the bundled PEER
+    records as its ``records/`` folder."""
+    text = (SITE / "getting-started.md").read_text(encoding="utf-8")
+    part = text[text.index("## Your first study") :]
+    scene = textwrap.dedent(re.search(r"```toml\n(.*?)```", part, flags=re.S).group(1))
+    (tmp_path / "records").symlink_to(ROOT / "data" / "records" / "pairs")
+    (tmp_path / "my-study.toml").write_text(scene, encoding="utf-8")
+    out = subprocess.run(
+        [sys.executable, "-m", "floorslide.cli", "run", "my-study.toml", "--dry-run"],
+        capture_output=True, text=True, cwd=tmp_path, env=_env(), timeout=900,
+    )  # fmt: skip
+    assert out.returncode == 0, out.stderr[-2000:]
+    assert "20 records × 4 buildings = 80 tasks" in out.stdout, out.stdout
