@@ -10,7 +10,8 @@ calls :func:`prepare` with the *families* it needs before it computes anything:
   nothing noticeable);
 - otherwise one line on stderr says ``compiling numerical kernels (first run only, ~N s)``, the
   missing families compile in processes of their own, as many at once as there are cores, and
-  their progress follows (one line per family; on a terminal also a running clock), then the
+  their progress follows (one line per family, and meanwhile a running clock on a terminal or a
+  line every 30 s in a log), then the
   command runs on the cached kernels. stdout is untouched (``--json`` stays machine-readable).
 
 A kernel compiled outside the families (a call with argument types no family made) is still
@@ -27,6 +28,7 @@ import hashlib
 import os
 import subprocess
 import sys
+import tempfile
 import time
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
@@ -38,6 +40,9 @@ __all__ = ["FAMILIES", "Family", "compile_families", "missing", "prepare"]
 
 NOTICE = "compiling numerical kernels (first run only"
 """The start of the line that announces a compilation (tests look for it)."""
+
+HEARTBEAT = 30.0
+"""Seconds between the progress lines written when stderr is not a terminal (a log)."""
 
 
 def _record() -> np.ndarray:
@@ -249,13 +254,22 @@ def _workers(requested: int | None) -> int:
         return max(1, os.cpu_count() or 1)
 
 
-def estimate(names: Iterable[str], workers: int) -> float:
-    """Wall time to compile `names` on `workers` processes, longest first, s (the families'
-    measured compile times; a loaded machine takes longer)."""
+def estimate(names: Iterable[str], workers: int, load: float = 0.0) -> float:
+    """Wall time to compile `names` on `workers` processes, longest first, s: the families'
+    measured compile times, stretched when the machine's `load` (processes already running,
+    e.g. the 1-minute load average) and the workers together exceed its cores."""
     lanes = [0.0] * max(1, workers)
     for name in sorted(names, key=lambda n: -FAMILIES[n].seconds):
         lanes[lanes.index(min(lanes))] += FAMILIES[name].seconds
-    return max(lanes)
+    cores = _workers(None)
+    return max(lanes) * max(1.0, (load + min(workers, cores)) / cores)
+
+
+def _load() -> float:
+    try:
+        return os.getloadavg()[0]
+    except (AttributeError, OSError):  # pragma: no cover - not Unix
+        return 0.0
 
 
 def _say(line: str) -> None:
@@ -267,7 +281,8 @@ def compile_families(
 ) -> dict[str, float]:
     """Compile the families `names` (the ones compiled already are skipped), each in a process
     of its own, at most `workers` at once (default: the cores this process may use), saying
-    what happens through `say` (one line per family; a running clock on a terminal).
+    what happens through `say`: one line per family as it is done, and meanwhile a running
+    clock on a terminal, or a line every :data:`HEARTBEAT` seconds in a log.
 
     Returns
     -------
@@ -279,52 +294,58 @@ def compile_families(
     if not todo:
         return {}
     workers = min(_workers(workers), len(todo))
-    total = estimate(todo, workers)
+    total = estimate(todo, workers, _load())
     say(
         f"{NOTICE}, ~{max(1, round(total))} s): "
         + ", ".join(FAMILIES[n].title for n in todo)
         + (f"; {workers} at once" if workers > 1 else "")
     )
     queue = sorted(todo, key=lambda n: -FAMILIES[n].seconds)
-    running: dict[str, tuple[subprocess.Popen, float]] = {}
+    running: dict[str, tuple[subprocess.Popen, float, object]] = {}
     done: dict[str, float] = {}
-    start = time.monotonic()
+    finished = 0
+    start = beat = time.monotonic()
     clock = sys.stderr.isatty()
     env = dict(os.environ, PYTHONWARNINGS="ignore")
     while queue or running:
         while queue and len(running) < workers:
             name = queue.pop(0)
+            err = tempfile.TemporaryFile()  # a file, not a pipe: a chatty child never blocks
             proc = subprocess.Popen(
                 [sys.executable, "-m", "floorslide.firstrun", name],
                 stdin=subprocess.DEVNULL,
                 stdout=subprocess.DEVNULL,
-                stderr=subprocess.PIPE,
+                stderr=err,
                 env=env,
             )
-            running[name] = (proc, time.monotonic())
+            running[name] = (proc, time.monotonic(), err)
         time.sleep(0.2)
-        for name, (proc, began) in list(running.items()):
+        for name, (proc, began, err) in list(running.items()):
             if proc.poll() is None:
                 continue
             del running[name]
-            err = proc.stderr.read().decode(errors="replace").strip() if proc.stderr else ""
+            finished += 1
             if proc.returncode == 0:
                 done[name] = time.monotonic() - began
                 line = f"  {FAMILIES[name].title}: compiled in {done[name]:.0f} s"
             else:
-                last = err.splitlines()[-1] if err else f"exit code {proc.returncode}"
+                err.seek(0)
+                text = err.read().decode(errors="replace").strip().splitlines()
+                last = text[-1] if text else f"exit code {proc.returncode}"
                 line = f"  {FAMILIES[name].title}: not compiled ahead ({last}); compiled when used"
+            err.close()
             if clock:
                 print("\r\033[K", end="", file=sys.stderr)
-            say(f"{line} ({len(done) + (proc.returncode != 0)}/{len(todo)})")
-        if clock and running:
-            print(
-                f"\r\033[Kfloorslide:   {time.monotonic() - start:.0f} s … "
-                + ", ".join(FAMILIES[n].title for n in running),
-                end="",
-                file=sys.stderr,
-                flush=True,
-            )
+            say(f"{line} ({finished}/{len(todo)})")
+        now = time.monotonic()
+        if running and (clock or now - beat >= HEARTBEAT):
+            beat = now
+            still = ", ".join(FAMILIES[n].title for n in running)
+            if clock:  # a running clock on one line
+                print(f"\r\033[Kfloorslide:   {now - start:.0f} s … {still}", end="",
+                      file=sys.stderr, flush=True)  # fmt: skip
+            else:  # a line now and then in a log
+                say(f"  {now - start:.0f} s, compiling: {still}")
     if done:
         say(
             f"kernels compiled in {time.monotonic() - start:.0f} s; later runs load them "
