@@ -50,6 +50,65 @@ def _record() -> np.ndarray:
     return np.sin(np.linspace(0.0, 6.0, 61)) * 4.0
 
 
+_STUDY = """
+[[records]]
+set = "s"
+catalog = "{catalog}"
+where = {{ {where} }}
+
+[[buildings]]
+id = "fixed"
+kind = "fixed"
+stories = 2
+period = 0.3
+{buildings}
+
+[[contents]]
+id = "c"
+floors = "all"
+mu = [0.05, 0.3, 1.0]
+{content}
+
+[spectra]
+floors = "all"
+periods = {{ min = 0.05, max = 2.0, n = 4 }}
+
+[report]
+history_record = "{history}"
+"""
+"""A study of one record, as small as a study gets: its tasks run what a real study's run."""
+
+
+def _study(buildings: str = "", content: str = "width = 0.3\nheight = 1.0", pairs=False) -> None:
+    """Plan a one-record study (the dry run's evaluation included) and run its tasks here,
+    as ``floorslide run`` does: the kernels get the argument types of a real study (records
+    read from files are read-only arrays, for one)."""
+    import importlib.resources
+    import tempfile as tf
+
+    from floorslide.run.task import run_task
+    from floorslide.scene.planner import plan
+    from floorslide.scene.schema import load_scene
+
+    records = importlib.resources.files("floorslide.data") / "records"
+    with importlib.resources.as_file(records) as folder, tf.TemporaryDirectory() as tmp:
+        if pairs:
+            catalog, where, history = (
+                folder / "pairs" / "index.csv",
+                'rsn = "511"',
+                "RSN511_PALMSPR_ARM",
+            )
+        else:
+            catalog, where = folder / "slammer" / "index.csv", 'station_id = "PET-090"'
+            history = "CapeMendocino_1992_PET-090"
+        text = _STUDY.format(catalog=catalog.as_posix(), where=where, buildings=buildings,
+                             content=content, history=history)  # fmt: skip
+        path = Path(tmp) / "study.toml"
+        path.write_text(text, encoding="utf-8")
+        for task in plan(load_scene(path), evaluate=True).tasks:
+            run_task(task)
+
+
 def _ground() -> None:
     """``floorslide slide RECORD`` and ``fs.slide`` on the ground: rigid blocks, both ways and
     one way."""
@@ -73,6 +132,10 @@ def _floors() -> None:
     from floorslide.spectra.core import response_spectrum
 
     warmup._linear_tasks()  # what a study's tasks run
+    _study(
+        'damping = 0.02\n\n[[buildings]]\nid = "iso"\nkind = "isolated"\n'
+        'superstructure = "fixed"\nperiod = 2.0'
+    )
     fixed = ShearBuilding.from_period(stories=1, period=0.2, damping=0.02)
     for building, floor in ((None, None), (fixed, 1)):  # as the one-record commands call them
         fm = floor_motion(building, _record(), floor, 0.01)
@@ -87,6 +150,7 @@ def _oscillator() -> None:
     """Flexible (2-DOF) equipment, on the ground and on a floor."""
     import floorslide as fs
 
+    _study(content='model = "oscillator"\nfrequency = 6.0')
     fb = fs.ShearBuilding.from_period(stories=1, period=0.2, damping=0.02)
     for building, floor in ((None, None), (fb, 1)):
         fs.slide_oscillator(
@@ -101,6 +165,12 @@ def _nonlinear() -> None:
     from floorslide.run import warmup
 
     warmup._nonlinear_tasks()
+    for isolator in ('{ model = "friction_pendulum", mu = 0.06 }',
+                     '{ model = "bilinear", q_ratio = 0.06, yield_disp = 0.02 }'):  # fmt: skip
+        _study(
+            '\n[[buildings]]\nid = "iso"\nkind = "isolated"\nsuperstructure = "fixed"\n'
+            f"period = 3.0\nisolator = {isolator}"
+        )
 
 
 def _plane() -> None:
@@ -112,6 +182,8 @@ def _plane() -> None:
 
     ag = _record()
     pair = make_pair(ag, 0.6 * ag[::-1].copy(), 0.01)
+    _study('period_h2 = 0.4\n\n[[buildings]]\nid = "iso"\nkind = "isolated"\n'
+           'superstructure = "fixed"\nperiod = 2.0', pairs=True)  # fmt: skip
     fb = fs.ShearBuilding.from_period(stories=1, period=0.2, damping=0.02)
     two = fs.BuildingPair(fb, fs.ShearBuilding.from_period(stories=1, period=0.3, damping=0.02))
     for building, floor in ((None, None), (fb, 1), (two, 0), (two, 1)):
