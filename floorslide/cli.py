@@ -34,6 +34,14 @@ def fail(error: FloorslideError) -> None:
     sys.exit(error.exit_code)
 
 
+def _kernels(*families: str, workers: int | None = None) -> None:
+    """Compile the kernel families a command needs, once per installation, saying so on stderr
+    (floorslide.firstrun); silent when they are compiled already."""
+    from floorslide.firstrun import prepare
+
+    prepare(families, workers=workers)
+
+
 @click.group(context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(package_name="floorslide")
 def cli() -> None:
@@ -736,7 +744,9 @@ def slide(
     mus_s = _floats(mu_s, "--mu-s") if mu_s else None
     building, floor_no, where = _building(building_spec, floor)
     processing = _processing(detrend, taper, highpass, lowpass)
-    if record2 is not None or as_pair:
+    pair = record2 is not None or as_pair
+    _kernels("plane" if pair else "ground" if building is None else "floors")
+    if pair:
         if direction != "both":
             raise click.BadParameter(
                 "one-way sliding is 1-D; in the plane a block slides both ways",
@@ -843,6 +853,7 @@ def rock(
     heights = _floats(height, "--height")
     building, floor_no, where = _building(building_spec, floor)
     processing = _processing(detrend, taper, highpass, lowpass)
+    _kernels("floors")
     tr, quality, fm = _record_on_floor(record, (fmt, units, dt, component), processing,
                                        scale_pga, building, floor_no)  # fmt: skip
     try:
@@ -978,6 +989,7 @@ def spectrum(
 
     grid, zetas = _spectrum_grid(periods, damping)
     building, floor_no, where = _building(building_spec, floor)
+    _kernels("plane" if record2 is not None or as_pair else "floors")
     if record2 is not None or as_pair:
         if record2 is not None and as_pair:
             raise click.BadParameter("give RECORD2 or --pair, not both", param_hint="--pair")
@@ -1193,6 +1205,9 @@ def run(scene, out, dry_run, resume, overwrite, workers, scheduler, scheduler_ti
     # has begun each ends with the line below and exit 128 + signal (130, 143, 129)
     with interrupt_signals() as received:
         sc = load_scene(scene)
+        from floorslide.firstrun import scene_families
+
+        _kernels(*scene_families(sc), workers=workers)
         # the per-object rules need each task's true PFA: the dry run evaluates them to count
         # them; a real run leaves them to the tasks, so each building is integrated once per
         # record
@@ -1761,6 +1776,9 @@ def demo(out_dir, workers):
     with importlib.resources.as_file(scene_path) as path:
         sc = load_scene(path)
         replace = _demo_may_replace(h5, sc.text)  # before the work: a refusal comes at once
+        from floorslide.firstrun import scene_families
+
+        _kernels(*scene_families(sc), workers=workers)
         plan = make_plan(sc)
     click.echo(plan.describe())
     summary = execute(plan, str(h5), workers=workers, overwrite=replace)
@@ -1820,7 +1838,9 @@ def bench(quick, as_json, out):
     """
     from floorslide.bench import run_bench, to_json, to_markdown, write_outputs
     from floorslide.bench.compile import fresh_compile_times
+    from floorslide.firstrun import FAMILIES
 
+    _kernels(*FAMILIES)
     show = sys.stderr.isatty()
 
     def progress(message: str) -> None:
@@ -1839,6 +1859,44 @@ def bench(quick, as_json, out):
         return
     click.echo(to_markdown(result, compile_rows))
     click.echo(f"{len(paths)} files written to {out}")
+
+
+@cli.command()
+@click.argument("families", nargs=-1, metavar="[FAMILY]...")
+@click.option(
+    "--workers",
+    type=click.IntRange(min=1),
+    metavar="N",
+    help="Compile N families at once (default: one per core).",
+)
+def warmup(families, workers):
+    """Compile the numerical kernels now, once per installation, instead of on first use.
+
+    floorslide's kernels are compiled by numba when first called and kept in a disk cache, so
+    the first run of a fresh install (or after an upgrade) spends up to a few minutes
+    compiling; every command that needs kernels says so on stderr ("compiling numerical
+    kernels (first run only, ~N s)") and compiles what it needs. This command compiles them
+    all in advance, several families at once where cores allow, and prints nothing to compile
+    when they are cached already. FAMILY (default: all but bench): ground (rigid blocks on the
+    ground), floors (linear buildings, blocks, rocking and spectra on floors), oscillator
+    (2-DOF equipment), nonlinear (nonlinear isolation), plane (two horizontal components),
+    bench (the approximate methods of floorslide bench).
+    """
+    from floorslide.firstrun import FAMILIES, USER_FAMILIES, compile_families, missing
+
+    unknown = [f for f in families if f not in FAMILIES]
+    if unknown:
+        raise click.BadParameter(
+            f"unknown family {unknown[0]!r}; families: {', '.join(FAMILIES)}",
+            param_hint="FAMILY",
+        )
+    names = list(families) or list(USER_FAMILIES)
+    todo = missing(names)
+    if todo:
+        done = compile_families(todo, workers=workers)
+        if len(done) < len(todo):
+            sys.exit(EXIT_UNEXPECTED)
+    click.echo(f"kernels compiled: {', '.join(names)}" + ("" if todo else " (already)"))
 
 
 def _show_warning(message, category, filename, lineno, file=None, line=None) -> None:

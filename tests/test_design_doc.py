@@ -1,5 +1,6 @@
 """The project's own design document exists, and every "docs/design.md §n" reference in code,
-help texts, README and CHANGELOG points to a section of it (none to a file users do not have)."""
+help texts, README, the documentation site and CHANGELOG points to a section of it (none to a
+file users do not have)."""
 
 from __future__ import annotations
 
@@ -8,7 +9,12 @@ import re
 from tests.conftest import ROOT
 
 DOC = ROOT / "docs" / "design.md"
-SOURCES = [ROOT / "README.md", ROOT / "CHANGELOG.md", *sorted((ROOT / "floorslide").rglob("*.py"))]
+SOURCES = [
+    ROOT / "README.md",
+    ROOT / "CHANGELOG.md",
+    *sorted((ROOT / "docs" / "site").rglob("*.md")),
+    *sorted((ROOT / "floorslide").rglob("*.py")),
+]
 
 
 def sections() -> set[int]:

@@ -76,3 +76,25 @@ def test_tour_python(index):
         timeout=600,
     )
     assert out.returncode == 0, out.stderr[-2000:]
+
+
+def test_readme_is_a_landing_page():
+    """What it is, the two set-up commands, a picture, a table, a tour, links into the docs —
+    the rest is in the documentation site."""
+    text = README.read_text(encoding="utf-8")
+    assert len(text.splitlines()) <= 250
+    assert "pip install . && floorslide demo" in text
+    assert "](docs/site/getting-started.md" in text and "![" in text and "\n|---|" in text
+
+
+def test_ci_runs_the_readme_commands():
+    """.ci/run runs the README's two set-up commands exactly as written."""
+    text = README.read_text(encoding="utf-8")
+    ci = (ROOT / ".ci" / "run").read_text(encoding="utf-8")
+    commands = re.findall(r"```console\n(pip install [^\n]*)\n```", text)[:2]
+    assert commands == [
+        "pip install . && floorslide demo",
+        'pip install -e ".[test]" && python -m pytest -q',
+    ], commands
+    for command in commands:
+        assert f"\n{command}\n" in ci, command

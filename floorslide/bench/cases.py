@@ -485,7 +485,7 @@ def _blocks(building: LinearBuilding | None, floor: int):
 
 
 def rocking_solver(ladder: Ladder) -> Solver:
-    """Rocking blocks on the ground (issue 15): the full equation solved exactly to rounding
+    """Rocking blocks on the ground: the full equation solved exactly to rounding
     (the reference), the linearised equation solved exactly (its error is the linearisation's),
     fixed-step RK4 at ``dt/k`` with interpolated events, and SciPy's RK45 at ``rtol``
     (:mod:`floorslide.contents.rocking_approx`)."""

@@ -293,8 +293,8 @@ def test_plot_compare_that_draws_nothing_is_an_error(monkeypatch, capsys, study,
 
 
 def test_help_and_readme_state_the_exit_codes(monkeypatch, capsys):
-    """Item 6: a missing or foreign result file is bad usage (2) in code, --help and README;
-    an incomplete one is 4."""
+    """Item 6: a missing or foreign result file is bad usage (2) in code, --help and the docs
+    (the result file's page, where the README's reference moved); an incomplete one is 4."""
     from tests.conftest import ROOT
 
     for command in ("table", "plot"):
@@ -304,7 +304,8 @@ def test_help_and_readme_state_the_exit_codes(monkeypatch, capsys):
         assert "2 bad usage, or OUT.h5 missing, corrupt or not a floorslide result file" in flat
         assert "4 OUT.h5 is incomplete" in flat
         assert "a task in it fails its integrity check" in flat  # issue 19 item 4
-    readme = " ".join((ROOT / "README.md").read_text().split())
+    page = ROOT / "docs" / "site" / "guide" / "result-file.md"
+    readme = " ".join(page.read_text(encoding="utf-8").split())
     assert "(exit code 1); a malformed" not in readme
     assert "or one with a task that fails its integrity check (each such task named;" in readme
     assert "is one line naming the file (exit code 2)" in readme

@@ -1,0 +1,95 @@
+"""The first run says what it does: a command that compiles kernels on an empty cache announces
+it on stderr with an estimate and its progress; with the kernels cached it says nothing, and
+stdout stays machine-readable either way. ``floorslide warmup`` compiles in advance."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+
+import pytest
+
+from floorslide import firstrun
+from tests.conftest import ROOT
+
+RECORD = "data/records/slammer/ImperialValley_1940_ELC-180.txt"
+
+
+def cli(*args: str, cache) -> subprocess.CompletedProcess:
+    """``floorslide ARGS`` in a fresh process whose kernel cache is the folder `cache`."""
+    env = dict(os.environ, PYTHONPATH=str(ROOT), NUMBA_CACHE_DIR=str(cache))
+    env.pop("FLOORSLIDE_CACHE_DIR", None)
+    return subprocess.run(
+        [sys.executable, "-m", "floorslide.cli", *args],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+        env=env,
+        timeout=900,
+    )
+
+
+def test_first_run_announces_compiling_then_is_silent(tmp_path):
+    """One small family (rigid blocks on the ground) on an empty cache: the notice with its
+    estimate and progress on stderr, the JSON on stdout untouched; then nothing to say."""
+    first = cli("slide", RECORD, "--mu", "0.1", "--json", cache=tmp_path)
+    assert first.returncode == 0, first.stderr
+    assert "floorslide: compiling numerical kernels (first run only, ~" in first.stderr
+    assert "rigid blocks on the ground: compiled in" in first.stderr  # progress
+    assert "kernels compiled in" in first.stderr
+    assert "compiling" not in first.stdout
+    rows = json.loads(first.stdout)
+    assert rows[0]["mu_k"] == 0.1 and rows[0]["peak_slide"] > 0
+
+    again = cli("slide", RECORD, "--mu", "0.1", "--json", cache=tmp_path)
+    assert again.returncode == 0, again.stderr
+    assert "compil" not in again.stderr
+    assert json.loads(again.stdout) == rows
+
+    warm = cli("warmup", "ground", cache=tmp_path)
+    assert warm.returncode == 0, warm.stderr
+    assert warm.stdout.strip() == "kernels compiled: ground (already)"
+    assert "compil" not in warm.stderr
+
+
+def test_warmup_refuses_an_unknown_family(tmp_path):
+    out = cli("warmup", "everything", cache=tmp_path)
+    assert out.returncode == 2
+    assert "unknown family 'everything'" in out.stderr and "ground" in out.stderr
+
+
+def test_a_family_that_fails_is_said_and_left_to_first_use(tmp_path, monkeypatch):
+    """A side process that fails does not fail the command: one line says so."""
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))
+    monkeypatch.setattr("numba.core.config.CACHE_DIR", str(tmp_path))
+    fake = firstrun.Family("no-such", "a family the side process does not know", 1.0, print)
+    monkeypatch.setitem(firstrun.FAMILIES, "no-such", fake)
+    monkeypatch.setattr(firstrun, "_load", lambda: 0.0)  # the estimate as measured
+    lines: list[str] = []
+    done = firstrun.compile_families(["no-such"], say=lines.append)
+    assert done == {}
+    assert lines[0].startswith("compiling numerical kernels (first run only, ~1 s)")
+    assert "not compiled ahead" in lines[1] and "compiled when used" in lines[1]
+    assert firstrun.missing(["no-such"]) == ["no-such"]  # no marker for it
+
+
+def test_estimate_packs_families_on_the_cores():
+    f = firstrun.FAMILIES
+    names = ["nonlinear", "floors", "ground"]
+    assert firstrun.estimate(names, 1) == pytest.approx(sum(f[n].seconds for n in names))
+    two = firstrun.estimate(names, 2)
+    if firstrun._workers(None) >= 2:
+        assert max(f[n].seconds for n in names) <= two < sum(f[n].seconds for n in names)
+    assert firstrun.estimate(names, 1, load=8.0) > firstrun.estimate(names, 1)  # a busy machine
+
+
+def test_scene_families():
+    from floorslide.scene.schema import load_scene
+
+    assert firstrun.scene_families(load_scene(ROOT / "data/scenes/demo.toml")) == [
+        "floors",
+        "nonlinear",
+    ]
+    assert "plane" in firstrun.scene_families(load_scene(ROOT / "data/scenes/pairs.toml"))
