@@ -37,6 +37,7 @@ import numpy as np
 from floorslide.building._kernels import foh_peaks, foh_states, state_outputs
 from floorslide.building.exact import ExactStepper
 from floorslide.building.model import LinearBuilding
+from floorslide.building.nonlinear_motion import NonlinearFloorMotion
 from floorslide.errors import ModelError, NonFiniteError
 from floorslide.inputs import RecordLike, as_record
 
@@ -365,6 +366,8 @@ def building_motion(
     -------
     BuildingMotion
     """
+    if getattr(building, "segmented", False):  # on nonlinear isolation: its segments
+        return building.motion(ground_acc, dt, max_bytes=max_bytes)
     a, dt, notes = as_record(ground_acc, dt, "ground_acc")
     if copy:
         a = np.array(a, dtype=float)
@@ -437,7 +440,7 @@ def unwrap(acc, dt, building, floor, name: str = "acc"):
     """What a solver was given, as ``(FloorMotion or None, samples, dt, notes)``: a FloorMotion
     passed as the record (then `building`/`floor` must not be given, and `dt`, if given, must be
     its own), or a record with an optional building and floor."""
-    if isinstance(acc, FloorMotion):
+    if isinstance(acc, FloorMotion | NonlinearFloorMotion):
         if building is not None or floor is not None:
             raise ModelError(
                 f"{name} is a FloorMotion: give building= and floor= when building it, not here",
