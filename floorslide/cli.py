@@ -493,8 +493,10 @@ BUILDING_HELP = (
     "Put the object on a floor of this building, KIND:key=value,... e.g. "
     "'fixed:period=0.4,stories=3,damping=0.05', "
     "'isolated:period=2.5,damping=0.1,super_period=0.4,stories=3' or "
-    "'fixed:masses=2e5/2e5/1.5e5,stiffnesses=3e8/3e8/2e8' (keys as in a scene's "
-    "[[buildings]]; lists separated by '/'). Default: the ground."
+    "'fixed:masses=2e5/2e5/1.5e5,stiffnesses=3e8/3e8/2e8'; on nonlinear isolation "
+    "'fps:period=3,mu=0.06,super_period=0.4,stories=3' (friction pendulums) or "
+    "'lrb:q_ratio=0.06,period=2.5,yield_disp=0.02,super_period=0.4,stories=3' (lead-rubber) "
+    "(keys as in a scene's [[buildings]]; lists separated by '/'). Default: the ground."
 )
 
 

@@ -221,6 +221,11 @@ class NonlinearIsolatedBuilding:
             out.append(f)
         return out
 
+    def dof_of(self, floor: int) -> int:
+        """The degree of freedom of `floor` (every floor is one; 0 is the base mat)."""
+        (floor,) = self.check_floors([floor])
+        return floor
+
     def motion(self, acc, dt: float | None = None, *, floors=None, **options):
         """The building's exact motion under a record, for every consumer
         (:func:`nonlinear_motion`)."""

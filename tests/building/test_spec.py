@@ -5,7 +5,14 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from floorslide.building import IsolatedBuilding, Rayleigh, ShearBuilding
+from floorslide.building import (
+    BilinearIsolator,
+    FrictionPendulum,
+    IsolatedBuilding,
+    NonlinearIsolatedBuilding,
+    Rayleigh,
+    ShearBuilding,
+)
 from floorslide.building.spec import describe_building, parse_building
 from floorslide.errors import ModelError
 
@@ -78,6 +85,21 @@ def test_defaults_are_the_scene_defaults():
         ("isolated:period=2,super_period=0", "super_period", "> 0"),
         ("isolated:period=2,super_period=0.4,damping=-1", "damping", "[0, 1)"),
         ("hotel:period=1", "kind", "unknown kind 'hotel'"),
+        ("isolated:period=3,mu=0.05,super_period=0.4", "mu", "isolator=friction_pendulum"),
+        ("fps:period=3,super_period=0.4", "mu", "mu is missing"),
+        ("fps:mu=0.05,super_period=0.4", "period", "period (s) or radius (m)"),
+        ("fps:period=3,radius=2,mu=0.05,super_period=0.4", "radius", "one of radius and period"),
+        ("fps:period=3,mu=-0.1,super_period=0.4", "mu", "≥ 0"),
+        ("fps:period=3,mu=0.05,q_ratio=0.1,super_period=0.4", "q_ratio", "an fps building"),
+        ("lrb:period=2.5,super_period=0.4", "q_ratio", "q_ratio is missing"),
+        ("lrb:q_ratio=0.06,period=2.5,super_period=0.4", "yield_disp", "yield_disp and alpha"),
+        ("isolated:period=2,isolator=rubber,super_period=0.4", "isolator", "unknown isolator"),
+        (
+            "isolated:period=2,isolator=bilinear,mu=0.1,q_ratio=0.1,yield_disp=0.01,"
+            "super_period=0.4",
+            "mu",
+            "not a key of a bilinear layer",
+        ),
     ],
 )
 def test_mistakes_name_the_key(spec, where, text):
@@ -96,3 +118,44 @@ def test_description():
     assert text.endswith("superstructure fixed-base, 1 storey, T1 = 0.2 s, ξ = 0.05")
     rayleigh = ShearBuilding([1, 1], [100, 100], Rayleigh(0.05))
     assert "Rayleigh ξ = 0.05" in describe_building(rayleigh)
+
+
+def _nonlinear_same(a, b) -> None:
+    assert type(a) is NonlinearIsolatedBuilding and type(b) is NonlinearIsolatedBuilding
+    np.testing.assert_array_equal(a.mass, b.mass)
+    np.testing.assert_array_equal(a.stiffness_matrix, b.stiffness_matrix)
+    np.testing.assert_array_equal(a.damping_matrix, b.damping_matrix)
+    assert a.isolator == b.isolator
+
+
+@pytest.mark.parametrize(
+    ("spec", "isolator"),
+    [
+        (
+            "fps:period=3,mu=0.06,super_period=0.4,stories=3",
+            FrictionPendulum(mu=0.06, period=3.0),
+        ),
+        (
+            "isolated:isolator=friction_pendulum,radius=2.2,mu=0.05,mu_s=0.08,capacity=0.4,"
+            "super_period=0.4,stories=3",
+            FrictionPendulum(mu=0.05, radius=2.2, mu_s=0.08, capacity=0.4),
+        ),
+        (
+            "lrb:q_ratio=0.06,period=2.5,yield_disp=0.02,super_period=0.4,stories=3",
+            BilinearIsolator(q_ratio=0.06, period=2.5, yield_disp=0.02),
+        ),
+        (
+            "isolated:isolator=bilinear,q_ratio=0.05,period=2.5,alpha=0.1,damping=0.02,"
+            "super_period=0.4,stories=3",
+            BilinearIsolator(q_ratio=0.05, period=2.5, alpha=0.1, damping=0.02),
+        ),
+    ],
+)
+def test_nonlinear_isolation_in_one_line(spec, isolator):
+    """``fps:``/``lrb:`` or ``isolator=`` put the superstructure on a nonlinear layer with the
+    keys of a scene's ``isolator`` table."""
+    got = parse_building(spec)
+    ref = NonlinearIsolatedBuilding(ShearBuilding.from_period(3, 0.4, 0.05), 1.0, isolator)
+    _nonlinear_same(got, ref)
+    text = describe_building(got)
+    assert text.startswith("isolated on ") and "superstructure fixed-base, 3 storeys" in text
