@@ -436,10 +436,33 @@ def floor_motion(
     return building_motion(building, ground_acc, dt).floor(0 if building is None else floor)
 
 
+def check_building(building, consumer: str = "this function"):
+    """Refuse, in one line naming ``building``, what is not one building model: a
+    :class:`~floorslide.BuildingPair` (one model per direction: its consumers take two
+    components) or anything else."""
+    if building is None or isinstance(building, LinearBuilding):
+        return
+    if getattr(building, "segmented", False):
+        return
+    if hasattr(building, "h1") and hasattr(building, "h2"):
+        raise ModelError(
+            f"a BuildingPair (one model per direction) needs two horizontal components: use "
+            f"slide_plane or rotd_spectrum with a record pair, or give {consumer} one of its "
+            "models (pair.h1 or pair.h2)",
+            "building",
+        )
+    raise ModelError(
+        f"expected a ShearBuilding, IsolatedBuilding or NonlinearIsolatedBuilding, got "
+        f"{type(building).__name__}",
+        "building",
+    )
+
+
 def unwrap(acc, dt, building, floor, name: str = "acc"):
     """What a solver was given, as ``(FloorMotion or None, samples, dt, notes)``: a FloorMotion
     passed as the record (then `building`/`floor` must not be given, and `dt`, if given, must be
     its own), or a record with an optional building and floor."""
+    check_building(building)
     if isinstance(acc, FloorMotion | NonlinearFloorMotion):
         if building is not None or floor is not None:
             raise ModelError(

@@ -15,7 +15,7 @@ import numpy as np
 from floorslide._jit import njit
 from floorslide.building._kernels import foh_outputs
 from floorslide.building.exact import foh_matrices
-from floorslide.building.exact_motion import building_motion, ground_peak, stepper
+from floorslide.building.exact_motion import building_motion, check_building, ground_peak, stepper
 from floorslide.building.model import LinearBuilding
 from floorslide.errors import ModelError
 from floorslide.inputs import RecordLike, as_record, check_record
@@ -72,6 +72,12 @@ def floor_motions(
     ----------
     Van Loan (1978); Chopra (2012), §5.4 (Newmark's method).
     """
+    if building is None:
+        raise ModelError(
+            "floor_motions needs a building (on the ground the motion is the record itself)",
+            "building",
+        )
+    check_building(building, "floor_motions")
     a, dt, _ = as_record(ground_acc, dt, "ground_acc")
     if method not in METHODS:
         raise ModelError(f"unknown method {method!r}; expected one of {', '.join(METHODS)}")
@@ -175,6 +181,7 @@ def peak_floor_acceleration(
     Peaks
         With the unit conversion of a Trace, if any, in ``notes``.
     """
+    check_building(building, "peak_floor_acceleration")
     a, dt, notes = as_record(ground_acc, dt, "ground_acc")
     if building is None:
         peak, t = ground_peak(a, dt)
