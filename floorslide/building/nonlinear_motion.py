@@ -105,9 +105,8 @@ class NonlinearMotion:
     notes: tuple[str, ...] = ()
     _whole: tuple | None = field(default=None, repr=False)
     _checkpoints: list | None = field(default=None, repr=False)
-    _x0: np.ndarray | None = field(default=None, repr=False)
-    _carry0: np.ndarray | None = field(default=None, repr=False)
     _samples: tuple | None = field(default=None, repr=False)
+    _start: tuple | None = field(default=None, repr=False)
 
     @property
     def npts(self) -> int:
@@ -125,6 +124,17 @@ class NonlinearMotion:
             yield self._whole
             return
         steps = self.npts - 1
+        if self._checkpoints is None:
+            # built without its segments (keep_segments=False): integrated again from the start,
+            # chunk after chunk, carrying the state
+            x, carry = self._start[0].copy(), self._start[1].copy()
+            chunk = max(1, CHUNK_BYTES // (segment_bytes(self.kernel.N) * self.substeps))
+            for k0 in range(0, steps, chunk):
+                k1 = min(k0 + chunk, steps)
+                cap = (k1 - k0) * self.substeps + (k1 - k0) // 4 + 64
+                *segments, x, carry = _run_chunk(self, k0, k1, x, carry, cap, scratch=True)
+                yield tuple(segments)
+            return
         for c, k0 in enumerate(range(0, steps, self.chunk_steps)):
             k1 = min(k0 + self.chunk_steps, steps)
             x, carry, cap = self._checkpoints[c]
@@ -327,6 +337,7 @@ def integrate(motion: NonlinearMotion, x0, branch0, keep_segments: bool, max_byt
     events = tuple(a[:n_ev].copy() for a in ev)
     motion._whole = whole
     motion._checkpoints = checkpoints if (keep_segments and whole is None) else None
+    motion._start = (np.array(x0, dtype=float), np.array([branch0, 0, 0], dtype=np.int64))
     motion._samples = (peak, t_peak, (X, BR, Yo, ev, peak, t_peak))
     if not (np.all(np.isfinite(peak)) and np.all(np.isfinite(X[-1]))):
         raise NonFiniteError(

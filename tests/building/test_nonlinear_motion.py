@@ -59,11 +59,14 @@ def test_a_streamed_motion_gives_every_consumer_the_same_bits(kobe, isolator, mo
     streamed = b.motion(kobe, 0.01, floors=[0, 3], max_bytes=0)
     assert whole.kept_whole and not streamed.kept_whole and len(streamed._checkpoints) > 20
     assert whole.response.event_times.size > 20  # the isolator does change branch
+    bare = b.motion(kobe, 0.01, floors=[0, 3], keep_segments=False)  # integrated again per pass
     np.testing.assert_array_equal(whole.states, streamed.states)
     for floor in (0, 3):
-        a, c = _consumers(whole.floor(floor)), _consumers(streamed.floor(floor))
-        for key in a:
-            np.testing.assert_array_equal(a[key], c[key], err_msg=key)
+        a = _consumers(whole.floor(floor))
+        for other in (streamed, bare):
+            c = _consumers(other.floor(floor))
+            for key in a:
+                np.testing.assert_array_equal(a[key], c[key], err_msg=key)
 
 
 def test_one_motion_equals_each_consumers_own_call(kobe):
