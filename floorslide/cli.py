@@ -551,6 +551,12 @@ def _building(spec: str | None, floor: str | None):
     return building, number, f"on {name} of: {describe_building(building)}"
 
 
+def _family_of(building) -> str:
+    """The kernel family a single-record command on `building` needs (the first-run notice):
+    ``nonlinear`` on nonlinear isolation, else ``floors``."""
+    return "nonlinear" if getattr(building, "segmented", False) else "floors"
+
+
 def _record_on_floor(record, reading, processing, scale_pga, building, floor_no):
     """The single-object commands' input: RECORD read (``reading`` = format, units, dt,
     component) and processed, its quality flags warned about on stderr, scaled to
@@ -747,7 +753,7 @@ def slide(
     building, floor_no, where = _building(building_spec, floor)
     processing = _processing(detrend, taper, highpass, lowpass)
     pair = record2 is not None or as_pair
-    _kernels("plane" if pair else "ground" if building is None else "floors")
+    _kernels("plane" if pair else "ground" if building is None else _family_of(building))
     if pair:
         if direction != "both":
             raise click.BadParameter(
@@ -855,7 +861,7 @@ def rock(
     heights = _floats(height, "--height")
     building, floor_no, where = _building(building_spec, floor)
     processing = _processing(detrend, taper, highpass, lowpass)
-    _kernels("floors")
+    _kernels(_family_of(building))
     tr, quality, fm = _record_on_floor(record, (fmt, units, dt, component), processing,
                                        scale_pga, building, floor_no)  # fmt: skip
     try:
@@ -991,7 +997,7 @@ def spectrum(
 
     grid, zetas = _spectrum_grid(periods, damping)
     building, floor_no, where = _building(building_spec, floor)
-    _kernels("plane" if record2 is not None or as_pair else "floors")
+    _kernels("plane" if record2 is not None or as_pair else _family_of(building))
     if record2 is not None or as_pair:
         if record2 is not None and as_pair:
             raise click.BadParameter("give RECORD2 or --pair, not both", param_hint="--pair")
