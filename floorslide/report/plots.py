@@ -91,8 +91,16 @@ from floorslide.run.store import ResultFile
 MAX_PANELS = 12
 """At most this many panels per figure (floors or content × floor, evenly picked)."""
 
-MAX_COLUMNS = 4
-"""At most this many buildings side by side in the history figure."""
+MAX_COLUMNS = 2
+"""At most this many buildings side by side in the history figure (more go to further rows:
+the figure stays readable at a page's width)."""
+
+MAX_BUILDING_PANELS = 4
+"""At most this many buildings (one panel each) in the hysteresis and rocking figures."""
+
+MAX_HISTORY_BUILDINGS = 8
+"""At most this many buildings in the history figure (evenly picked beyond; its title says
+how many of how many)."""
 
 SLIDE_LINTHRESH = 1e-3
 """Peak-slide axes are symmetric-log, linear below this slide (m) so that zero shows."""
@@ -228,15 +236,46 @@ def _history_curves(h, key: str, kind: str) -> np.ndarray | None:
     return np.atleast_2d(source[key]) if key in source else None
 
 
+def _stored_friction(study: Study, tasks: Sequence[TaskResult], keys: Sequence[str]) -> str:
+    """What the history figure says of its friction values: for each content and floor whose
+    histories hold fewer friction values than it has (the result file keeps those of
+    :data:`floorslide.run.task.HISTORY_MU`), which of how many; ``""`` when all are drawn."""
+    parts = []
+    for k in keys:
+        content, floor = k.rsplit("/floor_", 1)
+        drawn = sorted(
+            {float(m) for t in tasks for m in np.atleast_1d(t.histories.mu_k.get(k, []))}
+        )
+        every = sorted(
+            {
+                float(m)
+                for t in tasks
+                for c in t.contents
+                if c.content == content and int(c.floor) == int(floor)
+                for m in np.atleast_1d(c.mu_k)
+            }
+        )
+        if drawn and len(drawn) < len(every):
+            shown = ", ".join(f"{m:g}" for m in drawn)
+            parts.append(
+                f"{content} on floor {floor}: slide histories of {len(drawn)} of its "
+                f"{len(every)} friction values (mu = {shown}; the file stores these)"
+            )
+    return "; ".join(parts)
+
+
 def figure_histories(study: Study, record_set: str) -> Figure | None:
     """Floor accelerations and sliding histories of the set's history task(s), or None.
 
-    Columns: buildings that stored histories (at most :data:`MAX_COLUMNS`); row 1: the
-    absolute acceleration of every output floor (m/s²); next rows: the slide ``u`` (m,
-    relative to the floor; of the sliding base for an oscillator) of each content on each
-    floor, one curve per stored friction value, and for 2-DOF oscillators also the spring
-    deformation and the top mass's absolute acceleration. A friction value under which the
-    object rocks has no curve (it is not simulated as a slider): its legend entry says so.
+    One column per building that stored histories, at most :data:`MAX_COLUMNS` side by side
+    (more go to further rows) and at most :data:`MAX_HISTORY_BUILDINGS` (evenly picked; the
+    title says how many of how many); row 1: the absolute acceleration of every output floor
+    (m/s²); next rows: the slide ``u`` (m, relative to the floor; of the sliding base for an
+    oscillator) of each content on each floor, one curve per stored friction value — the
+    title says which of the content's friction values the file stores histories of — and for
+    2-DOF oscillators also the spring deformation and the top mass's absolute acceleration. A
+    friction value under which the object rocks has no curve (it is not simulated as a
+    slider): its legend entry says so.
     """
     order = list(study.buildings)
     tasks = sorted(
@@ -245,7 +284,8 @@ def figure_histories(study: Study, record_set: str) -> Figure | None:
     )
     if not tasks:
         return None
-    tasks, _ = _pick(tasks, MAX_COLUMNS)
+    n_buildings = len(tasks)
+    tasks, building_cut = _pick(tasks, MAX_HISTORY_BUILDINGS)
     keys: list[str] = []
     oscillators: set[str] = set()
     for t in tasks:
@@ -262,22 +302,38 @@ def figure_histories(study: Study, record_set: str) -> Figure | None:
     keys = sorted(keys, key=key_order)
     keys, cut = _pick(keys, 6)
     rows = [(k, kind) for k in keys for kind in (("u", "z", "top") if k in oscillators else ("u",))]
-    nrows, ncols = 1 + len(rows), len(tasks)
+    per_block = 1 + len(rows)
+    ncols = min(MAX_COLUMNS, len(tasks))
+    blocks = math.ceil(len(tasks) / ncols)
+    nrows = blocks * per_block
     fig = Figure(figsize=(5.6 * ncols + 1.0, 2.6 * nrows + 1.0), layout="constrained")
-    axes = fig.subplots(nrows, ncols, squeeze=False, sharex="col")
+    grid = fig.subplots(nrows, ncols, squeeze=False, sharex=True)
+    for j in range(len(tasks), blocks * ncols):  # the empty end of the last row of buildings
+        for i in range(per_block):
+            grid[(blocks - 1) * per_block + i][j % ncols].set_visible(False)
     from matplotlib import colormaps
 
     records = sorted({str(t.meta["record"]) for t in tasks})
+    said = []
+    if building_cut:
+        shown = ", ".join(str(t.meta["building"]) for t in tasks)
+        said.append(f"{len(tasks)} of the {n_buildings} buildings (evenly picked: {shown})")
+    friction = _stored_friction(study, tasks, keys)
+    if friction:
+        said.append(friction)
     _suptitle(
         fig,
         study,
         f"Floor motions and sliding — record {', '.join(records)}, set {record_set}"
-        + (" (some panels left out)" if cut else ""),
+        + (" (some panels left out)" if cut else "")
+        + ("\n" + "; ".join(said) if said else ""),
     )
     for j, t in enumerate(tasks):
+        top, col = (j // ncols) * per_block, j % ncols
+        axes = [grid[top + i][col] for i in range(per_block)]
         h = t.histories
         time = np.arange(h.floor_acceleration.shape[-1]) * h.dt
-        ax = axes[0][j]
+        ax = axes[0]
         floors = np.asarray(h.floors).tolist()
         cmap = colormaps["plasma"]
         pair = getattr(h, "floor_acceleration_h2", None) is not None
@@ -296,7 +352,7 @@ def figure_histories(study: Study, record_set: str) -> Figure | None:
         if floors:
             ax.legend(fontsize="small", loc="upper right")
         for i, (k, kind) in enumerate(rows, start=1):
-            ax = axes[i][j]
+            ax = axes[i]
             content, floor = k.rsplit("/floor_", 1)
             curves = _history_curves(h, k, kind)
             if curves is None:
@@ -321,7 +377,8 @@ def figure_histories(study: Study, record_set: str) -> Figure | None:
             ax.set_ylabel(ylabel)
             ax.grid(alpha=0.3)
             ax.legend(fontsize="small", loc="upper left")
-        axes[-1][j].set_xlabel("time (s)")
+        axes[-1].set_xlabel("time (s)")
+        axes[-1].xaxis.set_tick_params(labelbottom=True)
     return fig
 
 
@@ -516,15 +573,15 @@ def figure_hysteresis(study: Study, record_set: str) -> Figure | None:
     """Hysteresis loops of the set's history task(s) on nonlinear isolation, or None.
 
     One panel per building on nonlinear isolation that stored its loop (at most
-    :data:`MAX_COLUMNS`): the isolation layer's force over the total weight (V/W) against the
-    isolator displacement (mm) at the samples, the true peak displacement (found inside
+    :data:`MAX_BUILDING_PANELS`): the isolation layer's force over the total weight (V/W)
+    against the isolator displacement (mm) at the samples, the true peak displacement (found inside
     steps) as dashed lines and the layer's capacity, when given, dotted (red when exceeded:
     the impact that would follow is not modelled).
     """
     tasks = _hysteresis_tasks(study, record_set)
     if not tasks:
         return None
-    tasks, cut = _pick(tasks, MAX_COLUMNS)
+    tasks, cut = _pick(tasks, MAX_BUILDING_PANELS)
     fig, axes = _new_figure(len(tasks))
     records = sorted({str(t.meta["record"]) for t in tasks})
     _suptitle(
@@ -621,8 +678,8 @@ def _rocking_panel(ax, t: TaskResult, curves: list) -> None:
 
 def figure_rocking(study: Study, record_set: str) -> Figure | None:
     """Rocking histories θ/α of the contents that rock under the set's history record, one
-    panel per building (at most :data:`MAX_COLUMNS`), or None when none rocks (or the file holds
-    no rocking histories).
+    panel per building (at most :data:`MAX_BUILDING_PANELS`), or None when none rocks (or the
+    file holds no rocking histories).
 
     θ is the block's rotation, α = atan(B/H) its slenderness: the block overturns when |θ/α|
     reaches 1 (the dotted lines); the history ends there (NaN) and the overturning is marked.
@@ -638,7 +695,7 @@ def figure_rocking(study: Study, record_set: str) -> Figure | None:
             panels.append((t, curves))
     if not panels:
         return None
-    panels, cut = _pick(panels, MAX_COLUMNS)
+    panels, cut = _pick(panels, MAX_BUILDING_PANELS)
     fig, axes = _new_figure(len(panels))
     records = sorted({str(t.meta["record"]) for t, _ in panels})
     _suptitle(
@@ -753,10 +810,21 @@ def _median_spectrum(
     return grid, np.nanmedian(np.array(stack), axis=0), len(stack)
 
 
+MARKERS = ("o", "s", "^", "D", "v", "P", "X", "<", ">", "*")
+"""A marker per building in the spectra figure, beside its colour: neighbouring isolation
+periods have close colours, their markers tell them apart."""
+
+
+SPREAD = 4.0
+"""A spectra panel whose curves' peaks differ by more than this factor has a log PSA axis (a
+fixed-base floor's peak otherwise flattens the isolated floors' curves into one band)."""
+
+
 def figure_frs(study: Study, record_set: str, damping: float) -> Figure | None:
     """Median floor response spectra (PSA, g) of the set per building, one panel per floor
-    (log period axis): unbroadened (solid) and, when stored, broadened (dashed); or None when
-    the set has no spectra."""
+    (log period axis): unbroadened (solid) and, when stored, broadened (dashed), each building
+    with its colour and its marker (:data:`MARKERS`), on a log PSA axis where the peaks differ
+    by more than :data:`SPREAD` times; or None when the set has no spectra."""
     tasks = study.set_tasks(record_set)
     by_building: dict[str, list[TaskResult]] = defaultdict(list)
     for t in tasks:
@@ -798,12 +866,29 @@ def figure_frs(study: Study, record_set: str, damping: float) -> Figure | None:
                 if bid not in present:
                     present.append(bid)
                 pos = grid > 0
-                (line,) = ax.plot(grid[pos], median[pos] / G, style, color=colors[bid], lw=1.4)
+                k = list(study.buildings).index(bid)
+                (line,) = ax.plot(
+                    grid[pos],
+                    median[pos] / G,
+                    style,
+                    color=colors[bid],
+                    lw=1.4,
+                    marker=MARKERS[k % len(MARKERS)],
+                    ms=4.5,
+                    mfc="white" if k // len(MARKERS) % 2 else colors[bid],
+                    # markers a few points apart, shifted per building so that they interleave
+                    markevery=(k % 5, 5),
+                )
                 if not broadened:
                     handles.setdefault(bid, (line, f"{bid} ({n} records)"))
         ax.set_xscale("log")
         ax.set_xlabel("period T (s)")
-        ax.set_ylabel("median PSA (g)")
+        peaks = [np.nanmax(ln.get_ydata()) for ln in ax.get_lines() if len(ln.get_ydata())]
+        if peaks and min(peaks) > 0 and max(peaks) / min(peaks) > SPREAD:
+            ax.set_yscale("log")  # the curves of a stiff and an isolated building apart
+            ax.set_ylabel("median PSA (g, log scale)")
+        else:
+            ax.set_ylabel("median PSA (g)")
         ax.set_title(_floor_label(study, floor, present))
         ax.grid(alpha=0.3, which="both")
     labels = [lab for _, lab in handles.values()]
@@ -873,6 +958,18 @@ def _one_position(ax, x: float) -> None:
     half = 0.5 * abs(x) if x else 0.5
     ax.set_xlim(x - half, x + half)
     ax.set_xticks([x], [f"{x:g}"])
+
+
+def _mu_axis(ax, mus: Sequence[float]) -> None:
+    """The friction axis over every stored mu_k — also those at which every building rocks,
+    which have no slide to draw (matplotlib would leave them off the axis, and their marks in
+    the 'rock' strip with them) — with matplotlib's usual 5 % margins; a single value centred
+    (:func:`_one_position`)."""
+    if len(mus) == 1:
+        _one_position(ax, mus[0])
+        return
+    pad = 0.05 * (mus[-1] - mus[0])
+    ax.set_xlim(mus[0] - pad, mus[-1] + pad)
 
 
 def _dodge(x: float, k: int, n: int) -> float:
@@ -957,8 +1054,7 @@ def figure_slide_vs_mu(study: Study, tables: DesignTables, record_set: str) -> F
                 used.append(bid)
             dx = _dodge(mus[0], k, len(present)) if len(mus) == 1 else 0.0
             rocks += _statistic_panel(ax, sel, "peak_slide", colors[bid], dx=dx)
-        if len(mus) == 1:
-            _one_position(ax, mus[0])
+        _mu_axis(ax, mus)
         ax.set_yscale("symlog", linthresh=SLIDE_LINTHRESH)
         top = ax.get_ylim()[1]  # room above the top marker, not cut by the frame
         ax.set_ylim(0, 1.6 * top if top > SLIDE_LINTHRESH else top)
@@ -1031,8 +1127,7 @@ def figure_oscillators(study: Study, tables: DesignTables, record_set: str) -> F
                 used.append(bid)
             dx = _dodge(mus[0], k, len(present)) if len(mus) == 1 else 0.0
             rocks += _statistic_panel(ax, sel, quantity, colors[bid], scale, dx=dx)
-        if len(mus) == 1:
-            _one_position(ax, mus[0])
+        _mu_axis(ax, mus)
         ax.set_ylim(bottom=0)
         ax.set_xlabel("kinetic friction coefficient mu_k (–)")
         if quantity == "peak_deformation":
@@ -1599,6 +1694,7 @@ def figure_fragility(study: Study, tables: DesignTables, record_set: str) -> Fig
         lo, hi = float(levels_all.min()), float(levels_all.max())
         left, right = lo / 1.3, hi * 1.3
         handles, labels = [], []
+        extrapolated = unresolved = False
         counts = {tuple(r["n_records"]) for r in sel}
         shared = len(counts) == 1 and len({tuple(r["levels"]) for r in sel}) == 1
         for j, r in enumerate(sel):
@@ -1616,9 +1712,20 @@ def figure_fragility(study: Study, tables: DesignTables, record_set: str) -> Fig
                     np.geomspace(a / 1.3, b * 1.3, 200), [median] if a <= median <= b else []
                 )
                 left, right = min(left, xs[0]), max(right, xs[-1])
-                ax.plot(xs, norm.cdf(np.log(xs / median) / beta), "-", color=c, lw=1.5)
+                p = norm.cdf(np.log(xs / median) / beta)
+                inside = (xs >= x.min()) & (xs <= x.max())  # between this row's stripes
+                ax.plot(np.where(inside, xs, np.nan), p, "-", color=c, lw=1.5)
+                ax.plot(np.where(inside, np.nan, xs), p, ":", color=c, lw=1.3)
+                extrapolated = extrapolated or not inside.all()
                 handles.append(Line2D([], [], color=c, lw=1.5, marker="o", ms=5))
                 labels.append(f"{r['state']}: θ = {median:.3g}, β = {beta:.2f}")
+                partial = int(np.sum((frac > 0) & (frac < 1)))
+                if partial < 2:  # the rise lies between two stripes: any steeper β fits
+                    unresolved = True
+                    labels[-1] = (
+                        f"{r['state']}: θ = {median:.3g}, β = {beta:.2g}?\n"
+                        f"  β unresolved: {partial} of {len(x)} stripes between 0 and 1"
+                    )
             else:
                 # the note's first clause; the whole note is in the fragility table
                 note = str(r.get("note", "")).split(";")[0].split(":")[0] or "no fit"
@@ -1662,11 +1769,19 @@ def figure_fragility(study: Study, tables: DesignTables, record_set: str) -> Fig
         ax.set_xlabel(" / ".join(ims))
         ax.set_ylabel("P(exceed)")
         ax.grid(alpha=0.3, which="both")
+        if extrapolated:
+            handles.append(Line2D([], [], color="0.3", ls=":", lw=1.3))
+            labels.append("fit beyond the stripes (extrapolated)")
+        if unresolved:
+            handles.append(Line2D([], [], ls="none"))
+            labels.append("?: the stripes do not resolve β (its rise lies between two stripes)")
+        # below the panel, never over the curves and markers
         ax.legend(
             handles,
             labels,
             fontsize="x-small",
-            loc="upper left",
+            loc="upper center",
+            bbox_to_anchor=(0.5, -0.2),
             title="state",
             title_fontsize="x-small",
         )

@@ -1,0 +1,129 @@
+"""Figures that were easy to misread: each case drawn from the synthetic study, changed where
+needed to hold it, and checked on the matplotlib objects."""
+
+from __future__ import annotations
+
+import copy
+import dataclasses
+
+import numpy as np
+import pytest
+
+from floorslide.report import design_tables, plots
+from floorslide.report.columns import ROCK
+from floorslide.report.study import load_study
+
+
+def _strip_marks(ax) -> list[float]:
+    """The x of every mark in the 'rock' strip above `ax`."""
+    xs = []
+    for child in ax.child_axes:
+        for line in child.get_lines():
+            xs += list(np.asarray(line.get_xdata(), dtype=float))
+    return xs
+
+
+def test_slide_vs_mu_keeps_a_friction_value_at_which_every_building_rocks(study):
+    """At the largest mu every building rocks: that mu stays on the axis, its marks in the
+    strip (matplotlib's autoscale left it off: the strip was empty)."""
+    tables = design_tables(study.path)
+    rows = [
+        dict(
+            r,
+            median_outcome=ROCK,
+            p84_outcome=ROCK,
+            peak_slide_median=np.nan,
+            peak_slide_p84=np.nan,
+            n_rock=r["n_records"],
+        )
+        if r["mu_k"] == 0.2 and r["record_set"] == "broad-band"
+        else r
+        for r in tables["slides"]
+    ]
+    rocked = dataclasses.replace(tables, tables={**tables.tables, "slides": rows})
+    st = load_study(study.path)
+    fig = plots.figure_slide_vs_mu(st, rocked, "broad-band")
+    ax = fig.axes[0]
+    lo, hi = ax.get_xlim()
+    assert lo < 0.05 and hi > 0.2
+    marks = _strip_marks(ax)
+    assert marks and all(lo <= x <= hi for x in marks)
+    assert sum(abs(x - 0.2) < 0.02 for x in marks) == 2 * 3  # median and p84, 3 buildings
+
+
+@pytest.fixture
+def histories_everywhere(study):
+    """The study with the history record stored on every building, of 2 of the cabinet's 3
+    friction values."""
+    st = load_study(study.path)
+    fixed = next(t for t in st.tasks if t.meta["record"] == "bb1" and t.meta["building"] == "fixed")
+    h = copy.deepcopy(fixed.histories)
+    h.slides["cabinet/floor_1"] = h.slides["cabinet/floor_1"][[0, 2]]
+    h.mu_k["cabinet/floor_1"] = np.array([0.05, 0.2])
+    for t in st.tasks:
+        if t.meta["record"] == "bb1":
+            t.histories = h
+    return st
+
+
+def test_the_histories_figure_says_what_it_leaves_out(histories_everywhere, monkeypatch):
+    monkeypatch.setattr(plots, "MAX_HISTORY_BUILDINGS", 2)
+    fig = plots.figure_histories(histories_everywhere, "broad-band")
+    title = " ".join(fig.get_suptitle().split())
+    assert "slide histories of 2 of its 3 friction values (mu = 0.05, 0.2" in title
+    assert "2 of the 3 buildings (evenly picked: fixed, isolated@T=2.5)" in title
+
+
+def test_the_histories_figure_fits_a_page(histories_everywhere):
+    """Three buildings: two side by side, the third below (it was 3 columns: 1.7 pages wide)."""
+    fig = plots.figure_histories(histories_everywhere, "broad-band")
+    assert fig.get_figwidth() * plots.DPI <= 1400
+    titles = [ax.get_title() for ax in fig.axes if ax.get_visible()]
+    assert sum(t.endswith("floor absolute acceleration") for t in titles) == 3
+
+
+def _fragility_tables(study):
+    tables = design_tables(study.path)
+    base = dict(record_set="bb", building="fixed", floor=1, content="cabinet", mu_k=0.1,
+                mu_s=0.1, im="multiple of the target spectrum", levels=(0.5, 1.0, 1.5),
+                n_records=(10, 10, 10), note="")  # fmt: skip
+    rows = [  # a near-jump from three stripes, and a gradual rise
+        dict(base, state="slide > 0.05 m", n_exceed=(0, 1, 10), median=1.03, beta=0.055),
+        dict(base, state="slide > 0.1 m", n_exceed=(1, 4, 7), median=1.1, beta=0.6),
+    ]
+    return dataclasses.replace(tables, tables={**tables.tables, "fragility": rows})
+
+
+def test_fragility_says_when_the_stripes_do_not_resolve_beta(study):
+    fig = plots.figure_fragility(load_study(study.path), _fragility_tables(study), "bb")
+    labels = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+    jump = next(t for t in labels if t.startswith("slide > 0.05 m"))
+    assert "β unresolved: 1 of 3 stripes between 0 and 1" in jump
+    gradual = next(t for t in labels if t.startswith("slide > 0.1 m"))
+    assert gradual == "slide > 0.1 m: θ = 1.1, β = 0.60"
+
+
+def test_fragility_draws_extrapolation_dotted_and_its_legend_off_the_curves(study):
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    fig = plots.figure_fragility(load_study(study.path), _fragility_tables(study), "bb")
+    ax = fig.axes[0]
+    solid = [ln for ln in ax.get_lines() if ln.get_linestyle() == "-"]
+    dotted = [ln for ln in ax.get_lines() if ln.get_linestyle() == ":"]
+    for ln in solid:  # the fit is drawn solid between the stripes only
+        x = np.asarray(ln.get_xdata(), dtype=float)
+        assert np.nanmin(x) >= 0.5 and np.nanmax(x) <= 1.5
+    assert len(dotted) == 2 and all(np.isfinite(ln.get_xdata()).any() for ln in dotted)
+    assert "fit beyond the stripes (extrapolated)" in [
+        t.get_text() for t in ax.get_legend().get_texts()
+    ]
+    FigureCanvasAgg(fig).draw()
+    legend, panel = ax.get_legend().get_window_extent(), ax.get_window_extent()
+    assert not legend.overlaps(panel), "the legend covers the curves"
+
+
+def test_every_building_of_the_spectra_figure_has_its_own_marker(study):
+    fig = plots.figure_frs(load_study(study.path), "broad-band", 0.05)
+    ax = fig.axes[0]
+    markers = [ln.get_marker() for ln in ax.get_lines()]
+    assert len(markers) == 3 and len(set(markers)) == 3 and "None" not in markers
