@@ -214,7 +214,7 @@ SECTIONS = (
     ("rocking", "Rocking and overturning", ("rocking",), ("rocking", "overturning")),
     ("isolators", "Nonlinear isolators", ("isolators",), ("hysteresis",)),
     ("plane", "Sliding in the plane (record pairs)", ("plane",), ("plane_path", "plane_ratio")),
-    ("practice", "Design practice",
+    ("practice", "Design practice: scaling, exceedance, fragility",
      ("scaling", "suite", "exceedance", "fragility"), ("fragility",)),
 )  # fmt: skip
 """The report's sections after the results: ``(anchor, heading, tables, figure kinds)``; a
@@ -349,7 +349,7 @@ def report_html(
             and not any(by_kind.get(k) for k in sec[3])
         ]
         sections = [sec for sec in sections if sec not in empty]
-        toc = [("results", "Results")] + [(a, h) for a, h, _, _ in sections]
+        toc = [("results", "Results")] + [(a, h.split(":")[0]) for a, h, _, _ in sections]
         if by_kind.get(""):
             toc.append(("figures", "Other figures"))
         if empty:

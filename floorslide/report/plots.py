@@ -1475,6 +1475,34 @@ def _median_pair(rows: Sequence[dict]) -> tuple[float, float]:
     return same[(len(same) - 1) // 2]
 
 
+def _ecdf_pair(rows: Sequence[dict], mu: float | None) -> tuple[float, float, str]:
+    """The friction pair of an ECDF panel and how it was chosen: the stored mu_k nearest to
+    `mu` when given; else the median (:func:`_median_pair`) of the pairs under which the
+    object slides or rests under at least half the records on every building — a pair under
+    which it mostly rocks has little curve to show — or of all pairs when there is none; how
+    is ``""`` for the plain median of the stored values."""
+    if mu is not None:
+        pairs = sorted({(float(r["mu_k"]), float(r["mu_s"])) for r in rows})
+        mu_k = min((k for k, _ in pairs), key=lambda k: (abs(k - mu), k))
+        same = [p for p in pairs if p[0] == mu_k]
+        pick = same[(len(same) - 1) // 2]
+        how = "as asked" if abs(mu_k - mu) <= 1e-12 else f"the stored value nearest {mu:g}"
+        return (*pick, how)
+    groups: dict = defaultdict(list)
+    for r in rows:
+        groups[(float(r["mu_k"]), float(r["mu_s"]), r["building"])].append(r)
+    rocky = {
+        (k, s)
+        for (k, s, _), g in groups.items()
+        if 2 * sum(r["outcome"] == ROCK for r in g) > len(g)
+    }
+    slides = [r for r in rows if (float(r["mu_k"]), float(r["mu_s"])) not in rocky]
+    if not slides:
+        return (*_median_pair(rows), "the median stored value: it rocks under most records")
+    how = "" if not rocky else "the median value at which it slides"
+    return (*_median_pair(slides), how)
+
+
 def _ecdf_points(rows: Sequence[dict]) -> tuple[np.ndarray, np.ndarray, int, int]:
     """The empirical CDF of the peak slide over `rows` (one per record): the sorted slides of
     the records where the object slides or rests, their fractions ``i/n`` of all ``n`` records
@@ -1493,10 +1521,14 @@ def _ecdf_points(rows: Sequence[dict]) -> tuple[np.ndarray, np.ndarray, int, int
     return slides, np.arange(1, slides.size + 1) / max(n, 1), n, n - slides.size
 
 
-def figure_slide_ecdf(study: Study, tables: DesignTables, record_set: str) -> Figure | None:
+def figure_slide_ecdf(
+    study: Study, tables: DesignTables, record_set: str, mu: float | None = None
+) -> Figure | None:
     """The empirical distribution of the peak slide over the set's records, one panel per
-    content and floor, one step curve per building, for one friction value per panel (the
-    content's median stored mu_k); or None when the set has no slide results.
+    content and floor, one step curve per building, for one friction value per panel — the
+    stored mu_k nearest `mu`, else the median of the content's stored values at which it
+    slides rather than rocks (:func:`_ecdf_pair`; the panel's title says which and why); or
+    None when the set has no slide results.
 
     ``F(x)`` is the fraction of all ``n`` records whose peak slide is at most ``x``. A record
     under which the object rocks (not simulated as a slider) has no slide: it is never ≤ any
@@ -1519,14 +1551,14 @@ def figure_slide_ecdf(study: Study, tables: DesignTables, record_set: str) -> Fi
         fig,
         study,
         f"Peak slide over the records (empirical CDF) — set {record_set}, {n_all} records\n"
-        "one friction value per panel (the content's median stored mu_k); records where the "
+        "one friction value per panel (in its title); records where the "
         "object rocks are never ≤ any slide: a curve ends at the fraction that slides or rests"
         + (" (some panels left out)" if cut else ""),
     )
     any_allowable = False
     for ax, (floor, content) in zip(axes, panels, strict=True):
         prow = [r for r in rows if r["floor"] == floor and r["content"] == content]
-        mu_k, mu_s = _median_pair(prow)
+        mu_k, mu_s, how = _ecdf_pair(prow, mu)
         prow = [r for r in prow if r["mu_k"] == mu_k and r["mu_s"] == mu_s]
         bids = [b for b in study.buildings if any(r["building"] == b for r in prow)]
         curves = {b: _ecdf_points([r for r in prow if r["building"] == b]) for b in bids}
@@ -1590,8 +1622,8 @@ def figure_slide_ecdf(study: Study, tables: DesignTables, record_set: str) -> Fi
             ax.set_ylim(-0.02, 1.05)
             ax.set_ylabel(f"fraction of the records ≤ x (of {max(c[2] for c in curves.values())})")
         same = abs(mu_k - mu_s) <= 1e-12
-        mu = f"mu_k = {mu_k:g}" + ("" if same else f", mu_s = {mu_s:g}")
-        ax.set_title(f"{content} on floor {floor}, {mu}")
+        label = f"mu_k = {mu_k:g}" + ("" if same else f", mu_s = {mu_s:g}")
+        ax.set_title(f"{content} on floor {floor}, {label}" + (f" ({how})" if how else ""))
         ax.grid(alpha=0.3, which="both")
         ax.legend(fontsize="x-small", loc="best", title="building", title_fontsize="x-small")
     if any_allowable:
@@ -1712,11 +1744,17 @@ def figure_fragility(study: Study, tables: DesignTables, record_set: str) -> Fig
                     np.geomspace(a / 1.3, b * 1.3, 200), [median] if a <= median <= b else []
                 )
                 left, right = min(left, xs[0]), max(right, xs[-1])
-                p = norm.cdf(np.log(xs / median) / beta)
-                inside = (xs >= x.min()) & (xs <= x.max())  # between this row's stripes
-                ax.plot(np.where(inside, xs, np.nan), p, "-", color=c, lw=1.5)
-                ax.plot(np.where(inside, np.nan, xs), p, ":", color=c, lw=1.3)
-                extrapolated = extrapolated or not inside.all()
+                # solid between this row's stripes (where it is fitted), dotted beyond
+                lo_x, hi_x = float(x.min()), float(x.max())
+                for seg, style, lw in (
+                    (np.union1d(xs[(xs > lo_x) & (xs < hi_x)], [lo_x, hi_x]), "-", 1.5),
+                    (np.union1d(xs[xs < lo_x], [lo_x]), ":", 1.3),
+                    (np.union1d(xs[xs > hi_x], [hi_x]), ":", 1.3),
+                ):
+                    if seg.size > 1:
+                        cdf = norm.cdf(np.log(seg / median) / beta)
+                        ax.plot(seg, cdf, style, color=c, lw=lw)
+                        extrapolated = extrapolated or style == ":"
                 handles.append(Line2D([], [], color=c, lw=1.5, marker="o", ms=5))
                 labels.append(f"{r['state']}: θ = {median:.3g}, β = {beta:.2f}")
                 partial = int(np.sum((frac > 0) & (frac < 1)))
@@ -1800,6 +1838,7 @@ def plot_figures(
     *,
     allow_incomplete: bool = False,
     workers: int = 1,
+    ecdf_mu: float | None = None,
 ) -> list[Path]:
     """Write the figures of a result file as PNG files into `directory` (created).
 
@@ -1821,6 +1860,9 @@ def plot_figures(
     workers
         Draw the figures in this many processes (forked; where the platform cannot fork, one).
         The files are the same bytes whatever the number.
+    ecdf_mu
+        The friction value of the peak-slide ECDF figure (the stored mu_k nearest to it; by
+        default the median of each content's values at which it slides rather than rocks).
 
     Returns
     -------
@@ -1900,7 +1942,10 @@ def plot_figures(
             )
         jobs += [
             (f"pfa_profile_{s}", functools.partial(figure_pfa_profile, study, tables, rs)),
-            (f"slide_ecdf_{s}", functools.partial(figure_slide_ecdf, study, tables, rs)),
+            (
+                f"slide_ecdf_{s}",
+                functools.partial(figure_slide_ecdf, study, tables, rs, ecdf_mu),
+            ),
         ]
     families = sorted({str(r["record_set"]) for r in tables.tables.get("fragility", [])})
     for family in families:

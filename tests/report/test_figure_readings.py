@@ -110,10 +110,14 @@ def test_fragility_draws_extrapolation_dotted_and_its_legend_off_the_curves(stud
     ax = fig.axes[0]
     solid = [ln for ln in ax.get_lines() if ln.get_linestyle() == "-"]
     dotted = [ln for ln in ax.get_lines() if ln.get_linestyle() == ":"]
+    assert len(solid) == 2
     for ln in solid:  # the fit is drawn solid between the stripes only
         x = np.asarray(ln.get_xdata(), dtype=float)
-        assert np.nanmin(x) >= 0.5 and np.nanmax(x) <= 1.5
-    assert len(dotted) == 2 and all(np.isfinite(ln.get_xdata()).any() for ln in dotted)
+        assert x.min() == 0.5 and x.max() == 1.5
+    assert dotted  # and dotted beyond them
+    for ln in dotted:
+        x = np.asarray(ln.get_xdata(), dtype=float)
+        assert x.max() <= 0.5 or x.min() >= 1.5
     assert "fit beyond the stripes (extrapolated)" in [
         t.get_text() for t in ax.get_legend().get_texts()
     ]
@@ -127,3 +131,26 @@ def test_every_building_of_the_spectra_figure_has_its_own_marker(study):
     ax = fig.axes[0]
     markers = [ln.get_marker() for ln in ax.get_lines()]
     assert len(markers) == 3 and len(set(markers)) == 3 and "None" not in markers
+
+
+def test_the_ecdf_avoids_a_friction_value_at_which_the_object_rocks(study, monkeypatch):
+    """At the median stored mu (0.1) the object rocks under every record: the panel takes
+    the median of the values at which it slides, and any value can be asked for."""
+    from floorslide.report import records
+
+    real = records.record_rows
+
+    def rocking_at_01(st):
+        return [
+            dict(r, outcome=ROCK, peak_slide=np.nan) if r["mu_k"] == 0.1 else r for r in real(st)
+        ]
+
+    monkeypatch.setattr(records, "record_rows", rocking_at_01)
+    st = load_study(study.path)
+    tables = design_tables(study.path)
+    title = plots.figure_slide_ecdf(st, tables, "broad-band").axes[0].get_title()
+    assert "mu_k = 0.05 (the median value at which it slides)" in title
+    title = plots.figure_slide_ecdf(st, tables, "broad-band", mu=0.2).axes[0].get_title()
+    assert "mu_k = 0.2 (as asked)" in title
+    title = plots.figure_slide_ecdf(st, tables, "broad-band", mu=0.12).axes[0].get_title()
+    assert "mu_k = 0.1 (the stored value nearest 0.12)" in title
