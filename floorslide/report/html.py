@@ -215,7 +215,7 @@ SECTIONS = (
     ("isolators", "Nonlinear isolators", ("isolators",), ("hysteresis",)),
     ("plane", "Sliding in the plane (record pairs)", ("plane",), ("plane_path", "plane_ratio")),
     ("practice", "Design practice: scaling, exceedance, fragility",
-     ("scaling", "suite", "exceedance", "fragility"), ("fragility",)),
+     ("scaling", "suite", "exceedance", "fragility"), ("scaled_spectra", "fragility")),
 )  # fmt: skip
 """The report's sections after the results: ``(anchor, heading, tables, figure kinds)``; a
 figure goes to the section of its kind (the start of its file name), next to its tables."""

@@ -33,6 +33,10 @@ One figure per kind and record set, with one panel per floor or per content on a
     median peak-slide ratio A / B versus the isolation period of A (or of B when A is
     fixed-base; building pairs side by side when neither is isolated), one curve per friction
     coefficient, per comparison (as in the design tables);
+``scaled_spectra_<set>.png``
+    sets scaled to a target spectrum whose file holds floor-0 spectra of a fixed-base
+    building at the scaling's damping: each record's scaled PSA, their mean, the target times
+    the set's level and 90 % of it, the fitting range, the suite check in the title;
 ``pfa_profile_<set>.png``
     PFA/PGA up the height (floor on the y axis), median and 84th percentile per building, one
     panel per building kind, beside the ASCE 7-22 §13.3.1 floor amplification ``H_f`` (Eq.
@@ -904,6 +908,128 @@ def figure_frs(study: Study, record_set: str, damping: float) -> Figure | None:
         title="building",
         fontsize="small",
     )
+    return fig
+
+
+def _scale_target(study: Study, entry: dict):
+    """The target spectrum of a scaled set (:class:`floorslide.practice.target.TargetSpectrum`)
+    from the stored scene's ``[[records]] scale.target``, and ``""``; or None and why not (a
+    target CSV that is no longer where the scene said)."""
+    from floorslide.errors import FloorslideError
+    from floorslide.practice.target import TargetSpectrum, read_target_csv
+
+    spec = next(
+        (
+            r.get("scale", {}).get("target")
+            for r in study.scene.get("records", [])
+            if r.get("set") == entry.get("family")
+        ),
+        None,
+    )
+    if isinstance(spec, dict):
+        return TargetSpectrum.two_point(spec["sds"], spec["sd1"], spec["tl"]), ""
+    if isinstance(spec, str):
+        path = Path(spec)
+        if not path.is_absolute():
+            path = Path(study.scene_path).parent / path
+        try:
+            return read_target_csv(path), ""
+        except (FloorslideError, OSError):
+            return None, f"target not drawn: its file {path} is not readable here"
+    return None, "target not drawn: not in the stored scene"
+
+
+def figure_scaled_spectra(study: Study, record_set: str) -> Figure | None:
+    """The records of a set scaled to a target spectrum (``[[records]] scale``) against it:
+    each record's scaled PSA (g) at the scaling's damping (thin grey), their mean (black), the
+    target times the set's level (red) and 90 % of it (red dashed: ASCE 7-22 §16.2.3), the
+    fitting range shaded (or the period ``T*`` matched), log–log, with the suite check's lowest
+    ratio in the title. The records' spectra are the stored spectra of floor 0 of a
+    fixed-base building (the ground, scaled as the tasks ran it), so the figure is drawn only
+    when ``[spectra]`` holds floor 0 and that damping; None otherwise, for a set not scaled to
+    a target, and for a set of record pairs (its stored spectra are RotD50, its scaling
+    RotD100)."""
+    entry = next(
+        (e for e in study.scaling if e.get("set") == record_set and e.get("method") in
+         ("range", "period")),
+        None,
+    )  # fmt: skip
+    if entry is None:
+        return None
+    damping = float(entry.get("damping", 0.05))
+    grounds = [
+        t
+        for t in study.set_tasks(record_set)
+        if study.buildings[t.meta["building"]].kind != "isolated"
+    ]
+    curves: dict[str, tuple[np.ndarray, np.ndarray]] = {}
+    for t in grounds:
+        rec = str(t.meta["record"])
+        if rec in curves:
+            continue
+        for sp in t.spectra:
+            if int(sp.floor) != 0 or getattr(sp, "orientation", ""):
+                continue
+            zs = np.atleast_1d(np.asarray(sp.damping, dtype=float))
+            hit = np.nonzero(np.abs(zs - damping) <= 1e-9)[0]
+            if hit.size:
+                psa = np.atleast_2d(np.asarray(sp.psa, dtype=float))[hit[0]]
+                curves[rec] = (np.asarray(sp.periods, dtype=float), psa / G)
+    if not curves:
+        return None
+    level = float(entry.get("level", 1.0))
+    target, why = _scale_target(study, entry)
+    fig = Figure(figsize=(8.5, 5.4), layout="constrained")
+    ax = fig.subplots()
+    grid = next(iter(curves.values()))[0]
+    pos = grid > 0
+    stack = []
+    for periods, psa in curves.values():
+        psa = psa if np.array_equal(periods, grid) else interpolate_spectrum(periods, psa, grid)
+        stack.append(psa)
+        ax.plot(grid[pos], psa[pos], color="0.6", lw=0.7)
+    mean = np.mean(stack, axis=0)
+    ax.plot(grid[pos], mean[pos], color="black", lw=2.0)
+    handles = [Line2D([], [], color="0.6", lw=0.7), Line2D([], [], color="black", lw=2.0)]
+    labels = [f"each record, scaled ({len(curves)})", "mean of the scaled records"]
+    lo, hi = [*(entry.get("period_range") or []), math.nan, math.nan][:2]
+    if target is not None:
+        tg = grid[pos & (grid >= target.periods[0]) & (grid <= target.periods[-1])]
+        sa = level * target(tg)
+        ax.plot(tg, sa, color="tab:red", lw=2.0)
+        ax.plot(tg, 0.9 * sa, color="tab:red", lw=1.3, ls="--")
+        handles += [Line2D([], [], color="tab:red", lw=2.0),
+                    Line2D([], [], color="tab:red", lw=1.3, ls="--")]  # fmt: skip
+        times = "" if level == 1 else f"{level:g} × "
+        labels += [f"{times}target", f"90 % of {times}target (ASCE 7-22 §16.2.3)"]
+    if math.isfinite(lo) and math.isfinite(hi):
+        ax.axvspan(lo, hi, color="tab:blue", alpha=0.08, lw=0)
+        handles.append(Line2D([], [], color="tab:blue", alpha=0.25, lw=8))
+        labels.append(f"scaling range {lo:g}–{hi:g} s")
+    if entry.get("period") is not None and entry.get("method") == "period":
+        ax.axvline(float(entry["period"]), color="tab:blue", ls=":", lw=1.3)
+        handles.append(Line2D([], [], color="tab:blue", ls=":", lw=1.3))
+        labels.append(f"T* = {float(entry['period']):g} s (matched)")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("period T (s)")
+    ax.set_ylabel(f"PSA (g), {damping * 100:g} % damping")
+    ax.grid(alpha=0.3, which="both")
+    suite = entry.get("suite") if isinstance(entry.get("suite"), dict) else {}
+    check = ""
+    if suite:
+        verdict = "passes" if suite.get("passes") else "falls short"
+        check = (
+            f"; suite check {verdict}: lowest mean / target {float(suite.get('min_ratio')):.2f} "
+            f"at {float(suite.get('at')):g} s (≥ 0.90 asked)"
+        )
+    _suptitle(
+        fig,
+        study,
+        f"Scaled records against the target — set {record_set}\nthe spectra of floor 0 of the "
+        f"fixed-base building (the ground as run){check}" + (f"; {why}" if why else ""),
+    )
+    fig.legend(handles, labels, loc="outside lower center", ncols=3, fontsize="small")
     return fig
 
 
@@ -1872,7 +1998,8 @@ def plot_figures(
         the history record), for a set of record pairs the slide path in the plane (history
         record) and the 2-D against 1-D slides (every record), FRS, peak slide versus mu,
         oscillators (if any), overturning (if the file holds rocking results), one
-        peak-slide ratio figure per comparison, the PFA/PGA profile against ASCE 7-22 H_f, the
+        peak-slide ratio figure per comparison, the scaled records against the target (sets
+        scaled to a target, with floor-0 spectra), the PFA/PGA profile against ASCE 7-22 H_f, the
         empirical CDF of the peak slide; then, once per set family with rows in the
         ``fragility`` table, the fragility curves. A figure without data is not drawn and not
         listed.
@@ -1941,6 +2068,7 @@ def plot_figures(
                 )
             )
         jobs += [
+            (f"scaled_spectra_{s}", functools.partial(figure_scaled_spectra, study, rs)),
             (f"pfa_profile_{s}", functools.partial(figure_pfa_profile, study, tables, rs)),
             (
                 f"slide_ecdf_{s}",

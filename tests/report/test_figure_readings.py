@@ -12,6 +12,7 @@ import pytest
 from floorslide.report import design_tables, plots
 from floorslide.report.columns import ROCK
 from floorslide.report.study import load_study
+from tests.conftest import ROOT
 
 
 def _strip_marks(ax) -> list[float]:
@@ -154,3 +155,79 @@ def test_the_ecdf_avoids_a_friction_value_at_which_the_object_rocks(study, monke
     assert "mu_k = 0.2 (as asked)" in title
     title = plots.figure_slide_ecdf(st, tables, "broad-band", mu=0.12).axes[0].get_title()
     assert "mu_k = 0.1 (the stored value nearest 0.12)" in title
+
+
+TARGET_SCENE = f"""
+[scene]
+name = "scaled to a target"
+
+[[records]]
+set = "design"
+catalog = "{(ROOT / "data" / "records" / "slammer" / "index.csv").as_posix()}"
+where = {{ station_id = ["ELC-180", "TAF-021", "EMO-270"] }}
+
+[records.scale]
+target = {{ sds = 1.0, sd1 = 0.6, tl = 8.0 }}
+periods = [0.2, 2.0]
+levels = [0.5, 1.0]
+
+[[buildings]]
+id = "fixed"
+kind = "fixed"
+stories = 1
+period = 0.3
+
+[[contents]]
+id = "box"
+floors = [1]
+mu = [0.3]
+
+[spectra]
+floors = [0]
+damping = [0.05]
+periods = [0.1, 0.2, 0.3, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0]
+"""
+
+
+@pytest.fixture(scope="module")
+def scaled(tmp_path_factory):
+    from floorslide.run.execute import execute
+    from floorslide.scene.planner import plan
+    from floorslide.scene.schema import parse_scene
+
+    path = tmp_path_factory.mktemp("scaled") / "scaled.h5"
+    p = plan(parse_scene(TARGET_SCENE, ROOT / "s.toml"))
+    execute(p, str(path), workers=1, progress=False)
+    return load_study(path)
+
+
+def test_scaled_records_are_drawn_against_the_target(scaled, tmp_path):
+    """The figure that was missing: each record's scaled spectrum (the ground of the
+    fixed-base building as run), their mean, the target × level and 90 % of it."""
+    from floorslide.practice.target import TargetSpectrum
+    from floorslide.report.plots import G, figure_scaled_spectra
+
+    target = TargetSpectrum.two_point(1.0, 0.6, 8.0)
+    for rs, level in (("design@0.5x", 0.5), ("design@1x", 1.0)):
+        fig = figure_scaled_spectra(scaled, rs)
+        ax = fig.axes[0]
+        lines = ax.get_lines()
+        grey = [ln for ln in lines if ln.get_color() == "0.6"]
+        assert len(grey) == 3
+        psa = []
+        for t in scaled.set_tasks(rs):
+            (sp,) = [s for s in t.spectra if int(s.floor) == 0]
+            psa.append(np.asarray(sp.psa)[0] / G)
+        mean = next(ln for ln in lines if ln.get_color() == "black")
+        np.testing.assert_allclose(mean.get_ydata(), np.mean(psa, axis=0), rtol=1e-12)
+        red = [ln for ln in lines if ln.get_color() == "tab:red"]
+        x = np.asarray(red[0].get_xdata())
+        np.testing.assert_allclose(red[0].get_ydata(), level * target(x), rtol=1e-12)
+        np.testing.assert_allclose(red[1].get_ydata(), 0.9 * level * target(x), rtol=1e-12)
+        assert "suite check" in fig.get_suptitle()
+    names = [p.name for p in plots.plot_figures(scaled, tmp_path / "fig")]
+    assert "scaled_spectra_design_0.5x.png" in names and "scaled_spectra_design_1x.png" in names
+
+
+def test_no_scaled_spectra_without_a_target(study):
+    assert plots.figure_scaled_spectra(load_study(study.path), "broad-band") is None
