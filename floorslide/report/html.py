@@ -53,7 +53,8 @@ pre { background: #f6f6f6; padding: 0.8em; overflow-x: auto; font-size: 0.8em; }
                body { max-width: none; margin: 0; font-size: 9pt; } h2 { page-break-before: auto; }
                table { font-size: 6.5pt; } nav#contents { display: none; }
                td, th { padding: 0.1em 0.25em; } figure { page-break-inside: avoid; }
-               tr { page-break-inside: avoid; } details > * { display: block; } }
+               tr { page-break-inside: avoid; }
+               details::details-content { content-visibility: visible; display: block; } }
 """
 
 PAGE_CHARS = 150
@@ -283,11 +284,124 @@ def _summary_html(tables: DesignTables) -> list[str]:
     return out
 
 
+PIVOTED = ("slides", "frs")
+"""Tables the report shows pivoted (a row per building, a column per friction value or
+period) above their figures; the table itself, every column, follows folded."""
+
+
+def _pivot_html(heading: str, columns: Sequence[str], rows: Sequence[tuple[str, list]]) -> str:
+    head = "<th>building</th>" + "".join(f"<th>{_e(c)}</th>" for c in columns)
+    body = "".join(
+        f'<tr><td class="t">{_e(label)}</td>'
+        + "".join(
+            f'<td class="rock">{_e(c)}</td>' if "rock" in c else f"<td>{_e(c)}</td>" for c in cells
+        )
+        + "</tr>"
+        for label, cells in rows
+    )
+    return (
+        f'<p class="legend"><strong>{_e(heading)}</strong></p><table class="pivot">'
+        f"<thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
+    )
+
+
+def _stat(value: float, outcome: str, scale: float, fmt: str, few: bool = False) -> str:
+    from floorslide.report.columns import ROCK
+
+    if outcome == ROCK:
+        return "rocks"
+    if value != value:
+        return "—"
+    return format(scale * value, fmt) + ("†" if few else "")
+
+
+def _slides_pivots(rows: Sequence[Mapping]) -> list[str]:
+    """Per record set, content and floor: a building × friction table of the median / p84
+    peak slide (mm) and the records that rock."""
+    from floorslide.report.summary import MAX_FRICTION_COLUMNS, _pick
+
+    groups: dict = {}
+    for r in rows:
+        groups.setdefault((r["record_set"], r["content"], r["floor"]), []).append(r)
+    out = []
+    for (rset, content, floor), g in groups.items():
+        pairs_all = sorted({(r["mu_k"], r["mu_s"]) for r in g})
+        pairs = _pick(pairs_all, MAX_FRICTION_COLUMNS)
+        split = any(abs(k - s) > 1e-12 for k, s in pairs)
+        cols = [f"mu {k:g}/{s:g}" if split else f"mu {k:g}" for k, s in pairs]
+        n = max(r["n_records"] for r in g)
+        body = []
+        for b in dict.fromkeys(r["building"] for r in g):
+            cells = []
+            for k, s in pairs:
+                r = next((x for x in g if x["building"] == b and (x["mu_k"], x["mu_s"]) ==
+                          (k, s)), None)  # fmt: skip
+                if r is None:
+                    cells.append("—")
+                    continue
+                med = _stat(r["peak_slide_median"], r["median_outcome"], 1000, ".1f")
+                p84 = _stat(r["peak_slide_p84"], r["p84_outcome"], 1000, ".1f", r["few_records"])
+                cells.append(f"{med} / {p84}" + (f" ({r['n_rock']} rock)" if r["n_rock"] else ""))
+            body.append((b, cells))
+        shown = f"; {len(pairs)} of {len(pairs_all)} friction values" if len(pairs) < len(
+            pairs_all) else ""  # fmt: skip
+        out.append(
+            _pivot_html(
+                f"{rset} — {content} on floor {floor}: peak slide median / p84 over {n} "
+                f"records, mm (k rock: records under which it rocks){shown}",
+                cols,
+                body,
+            )
+        )
+    return out
+
+
+def _frs_pivots(rows: Sequence[Mapping]) -> list[str]:
+    """Per record set and floor: a building × period table of the median / p84 PSA (g)."""
+    groups: dict = {}
+    for r in rows:
+        groups.setdefault((r["record_set"], r["floor"]), []).append(r)
+    out = []
+    for (rset, floor), g in groups.items():
+        periods = sorted({r["period"] for r in g})
+        n = max(r["n_records"] for r in g)
+        body = []
+        for b in dict.fromkeys(r["building"] for r in g):
+            cells = []
+            for t in periods:
+                r = next((x for x in g if x["building"] == b and x["period"] == t), None)
+                cells.append(
+                    "—"
+                    if r is None
+                    else f"{_stat(r['psa_g_median'], '', 1, '.3g')} / "
+                    f"{_stat(r['psa_g_p84'], '', 1, '.3g', r['few_records'])}"
+                )
+            body.append((b, cells))
+        z = g[0].get("damping", float("nan"))
+        out.append(
+            _pivot_html(
+                f"{rset} — floor {floor}: PSA median / p84 over {n} records, g "
+                f"({100 * z:g} % damping, unbroadened)",
+                [f"T = {t:g} s" for t in periods],
+                body,
+            )
+        )
+    return out
+
+
 def _table_block(tables: DesignTables, name: str) -> list[str]:
     out = [f'<h3 id="t-{_e(name)}">{_e(TITLES.get(name, name))} <small>(table "{_e(name)}")'
            "</small></h3>"]  # fmt: skip
-    if tables[name]:
-        out.append(_table(name, tables[name]))
+    rows = tables[name]
+    if rows and name in PIVOTED:
+        out += _slides_pivots(rows) if name == "slides" else _frs_pivots(rows)
+        n_cols = len(markdown_columns(name, rows))
+        out.append(
+            f"<details><summary>every column: table {_e(name)}, {len(rows)} rows × {n_cols} "
+            f"columns</summary>{_table(name, rows)}</details>"
+        )
+    elif rows:
+        out.append(_table(name, rows))
     else:
         note = EMPTY_NOTES.get(name, "no rows")
         out.append(f'<p class="empty" id="empty-{_e(name)}"><em>{_e(note)}</em></p>')
@@ -384,13 +498,14 @@ def report_html(
                 parts.append(_figure(p))
         for anchor, heading, names, kinds in sections:
             parts.append(f'<h2 id="{_e(anchor)}">{_e(heading)}</h2>')
-            for name in names:
-                if name in tables.tables:
-                    parts += _table_block(tables, name)
-            for kind in kinds:
+            blocks = [_table_block(tables, n) for n in names if n in tables.tables]
+            parts += blocks[0] if blocks else []
+            for kind in kinds:  # the figures next to the section's first table
                 for p in by_kind.get(kind, []):
                     if kind not in KEY_FIGURES:
                         parts.append(_figure(p, f"figure-{Path(p).stem}"))
+            for block in blocks[1:]:
+                parts += block
             if anchor == "slides":
                 parts.append(
                     '<p class="legend">peak slide versus friction: under '

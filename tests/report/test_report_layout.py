@@ -155,3 +155,16 @@ def test_the_first_screen_holds_a_result_and_nothing_is_wider_than_the_page(
     assert len(summary) == len(summary_blocks(design_tables(study.path)))
     for img in layout["imgs"]:  # readable: no figure shrunk below 2/3 of its size
         assert img["shown"] >= 0.66 * img["natural"], img
+
+
+def test_slides_and_spectra_are_pivoted_with_every_column_folded_below(report):
+    text = report.read_text(encoding="utf-8")
+    sliding = text[text.index('<h2 id="slides">') : text.index('<h2 id="pfa">')]
+    assert sliding.index('class="pivot"') < sliding.index("<details>")
+    assert sliding.index("<details>") < sliding.index('id="table-slides"')
+    # a building per row, a friction value per column: median / p84 in mm
+    assert "<th>building</th><th>mu 0.05</th><th>mu 0.1</th><th>mu 0.2</th>" in sliding
+    assert ">rocks / rocks (3 rock)<" in sliding  # pulse-like fixed at mu 0.05: every record
+    spectra = text[text.index('<h2 id="frs">') :]
+    assert spectra.index('class="pivot"') < spectra.index('id="table-frs"')
+    assert "<th>T = 0.1 s</th>" in spectra
