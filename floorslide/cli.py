@@ -1149,6 +1149,24 @@ def _print_summary(summary, plan) -> None:
         click.echo(f"floorslide: error: {failure}", err=True)
 
 
+def _print_results(out: str) -> None:
+    """The study's results after a run (:mod:`floorslide.report.summary`): what
+    ``floorslide table --summary`` prints. A file that cannot be summarised (no finished
+    task) gets one line on stderr; the run's outcome stays as it was."""
+    from floorslide.errors import FloorslideError
+    from floorslide.report.summary import format_summary
+    from floorslide.report.tables import design_tables
+
+    try:
+        tables = design_tables(out, allow_incomplete=True)
+    except FloorslideError as exc:
+        click.echo(f"floorslide: note: no summary of {out}: {exc}", err=True)
+        return
+    click.echo("")
+    click.echo(format_summary(tables))
+    click.echo(f"(again: floorslide table {out} --summary; all tables: floorslide table {out})")
+
+
 @cli.command()
 @click.argument("scene", type=click.Path(dir_okay=False))
 @click.option("-o", "--out", metavar="OUT.h5", help="Result file (default: SCENE's name .h5 here).")
@@ -1243,6 +1261,7 @@ def run(scene, out, dry_run, resume, overwrite, workers, scheduler, scheduler_ti
             )
             if not summary.interrupted:
                 _print_summary(summary, plan)
+                _print_results(out)
         except KeyboardInterrupt:
             received.append(signal.SIGINT)  # (an Interrupted has put its signal first)
     if received or summary.interrupted:
@@ -1401,6 +1420,13 @@ def _figure_workers(workers: int | None) -> int:
     help="Instead of the statistics, one row per record × building × floor × content × "
     "friction value (CSV, or JSON with --json).",
 )
+@click.option(
+    "--summary",
+    is_flag=True,
+    help="Instead of the tables, the study's summary (what run and demo print last): per "
+    "record set, content and floor the median peak slide (mm) per building and friction "
+    "value, rocking and overturning counts, the median PFA (g). With --json: its rows.",
+)
 @_ALLOW_INCOMPLETE
 @click.option(
     "-o",
@@ -1409,7 +1435,19 @@ def _figure_workers(workers: int | None) -> int:
     help="Write to FILE (md, json, --per-record) or one NAME.csv per table into DIR (csv) "
     "instead of stdout.",
 )
-def table(result, fmt, as_json, compare, periods, damping, only, per_record, allow_incomplete, out):
+def table(
+    result,
+    fmt,
+    as_json,
+    compare,
+    periods,
+    damping,
+    only,
+    per_record,
+    summary,
+    allow_incomplete,
+    out,
+):
     """Design tables from a result file OUT.h5: per record set, building, floor, content and
     friction coefficient the number of records, mean, median and 84th percentile (empirical,
     numpy 'linear') of peak slide, |residual| slide and peak object acceleration (for 2-DOF
@@ -1444,6 +1482,9 @@ def table(result, fmt, as_json, compare, periods, damping, only, per_record, all
         fmt = "json"
     if per_record and only:
         raise click.UsageError("--per-record and --table conflict")
+    if summary and (per_record or only or fmt == "csv"):
+        what = "--per-record" if per_record else "--table" if only else "--format csv"
+        raise click.UsageError(f"--summary and {what} conflict")
     names = tuple(n for n in REPORT_TABLES if n in only) if only else REPORT_TABLES
     study = _load_for_report(result, allow_incomplete)
     if per_record:
@@ -1466,6 +1507,16 @@ def table(result, fmt, as_json, compare, periods, damping, only, per_record, all
         damping=damping,
         allow_incomplete=True,
     )
+    if summary:
+        from floorslide.report.summary import format_summary, summary_rows
+
+        if fmt == "json":
+            data = {"status": dt.status, "complete": dt.complete, "rows": summary_rows(dt)}
+            text = _strict_json(data) + "\n"
+        else:
+            text = format_summary(dt) + "\n"
+        _emit(text, out, result)
+        return
     if fmt == "csv":
         if out:
             for path in formats.write_csv(dt, out, names, inputs=[result]):
@@ -1552,100 +1603,13 @@ def plot(result, out, compare, damping, allow_incomplete, as_json, workers):
 
 
 def demo_summary(tables) -> str:
-    """The demo's short summary: median peak slide (mm) per building and mu over every record
-    of the set, one table per set and content, and each building's median PFA at the content's
-    floor.
+    """The summary of a study (:func:`floorslide.report.summary.format_summary`): per record
+    set, content and floor the median peak slide (mm) per building and friction value over
+    every record, rocking and overturning counts, and each building's median PFA at the
+    content's floor; then the records' quality checks."""
+    from floorslide.report.summary import format_summary
 
-    Rocking follows the tables' rule (docs/design.md §10): an object that rocks under a record is
-    simulated as a rocking block, not as a slider, and never counts as 0 slide; it is its own
-    outcome, ranked above every slide. A cell reads ``rocks (k/n)`` when the median falls on
-    rocking records, and a median that does not is followed by ``(k rock)`` when some records
-    rock; where the file holds rocking results (the ``rocking`` table) both say how many of
-    them overturned: ``rocks (k/n; m overturn)``, ``(k rock; m overturn)``. A line under each
-    heading explains the cells (none when nothing rocks).
-    """
-    from collections import defaultdict
-
-    from floorslide.report.columns import MIN_RECORDS, ROCK
-
-    groups: dict = defaultdict(list)
-    for row in tables["slides"]:
-        groups[(row["record_set"], row["content"], row["floor"])].append(row)
-    pfa = {(r["record_set"], r["building"], r["floor"]): r for r in tables["pfa"]}
-    rocking = {
-        (r["record_set"], r["building"], r["floor"], r["content"]): r
-        for r in (tables["rocking"] if "rocking" in tables.tables else [])
-    }
-    out = []
-    if getattr(tables, "status", ""):
-        out += [tables.status, ""]
-    for (rset, content, floor), rows in groups.items():
-        mus = sorted({r["mu_k"] for r in rows})
-        buildings = list(dict.fromkeys(r["building"] for r in rows))
-        n = max(r["n_records"] for r in rows)
-        what = "base of the 2-DOF oscillator" if rows[0]["model"] == "oscillator" else "object"
-        simulated = any((rset, b, floor, content) in rocking for b in buildings)
-        out.append(
-            f"{rset} ({n} records) — {content!r} on floor {floor}: median peak slide of the "
-            f"{what} over all {n} records, mm"
-        )
-        if simulated:
-            out.append(
-                "('rocks (k/n; m overturn)': the median record rocks — k of n records rock "
-                "(simulated as rocking blocks; m of them overturn); rocking records never count "
-                "as 0 slide and rank above every slide; '(k rock; m overturn)': k records rock; "
-                "their rotations and impacts: the rocking table)"
-            )
-        elif any(r["n_rock"] for r in rows):  # a file written before rocking was simulated
-            out.append(
-                "('rocks (k/n)': the median record rocks — rocking objects are not simulated as "
-                "sliders and never count as 0; '(k rock)': k records rock, ranked above every "
-                "slide)"
-            )
-        if n < MIN_RECORDS:
-            out.append(f"(caution: {n} < {MIN_RECORDS} records per set)")
-        head = "| building | PFA (g) | " + " | ".join(f"mu {m:g}" for m in mus) + " |"
-        out += [head, "|" + "---|" * (len(mus) + 2)]
-        for b in buildings:
-            cells = []
-            rock = rocking.get((rset, b, floor, content))
-            over = f"; {rock['n_overturn']} overturn" if rock else ""
-            for m in mus:
-                r = next(x for x in rows if x["building"] == b and x["mu_k"] == m)
-                med, k = r["peak_slide_median"], r["n_rock"]
-                if r["median_outcome"] == ROCK:
-                    cells.append(f"rocks ({k}/{r['n_records']}{over})")
-                elif med != med:
-                    cells.append("—")
-                else:
-                    cells.append(f"{1000 * med:.1f}" + (f" ({k} rock{over})" if k else ""))
-            p = pfa.get((rset, b, floor))
-            pg = f"{p['pfa_g_median']:.2f}" if p else "—"
-            out.append(f"| {b} | {pg} | " + " | ".join(cells) + " |")
-        out.append("")
-    out += _quality_summary(tables["records"]) if "records" in tables.tables else []
-    return "\n".join(out)
-
-
-def _quality_summary(rows: list[dict]) -> list[str]:
-    """One line per quality check that tripped: how many records, which; from the ``records``
-    table."""
-    from collections import Counter
-
-    counts: Counter = Counter()
-    names: dict[str, list[str]] = {}
-    for row in rows:
-        for code in filter(None, row["qa_flags"].split(",")):
-            counts[code] += 1
-            names.setdefault(code, []).append(row["record"])
-    n = len({(r["record_set"].split("@")[0], r["record"]) for r in rows})
-    if not counts:
-        return [f"quality checks: no flags on the {n} records"]
-    out = [f"quality checks on the {n} records (details: the records table):"]
-    for code, k in counts.items():
-        shown = ", ".join(names[code][:4]) + (", …" if k > 4 else "")
-        out.append(f"  {code}: {k} records ({shown})")
-    return out
+    return format_summary(tables)
 
 
 def _older_demo(h5, scene_text: str) -> bool:

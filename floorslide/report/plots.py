@@ -33,6 +33,10 @@ One figure per kind and record set, with one panel per floor or per content on a
     median peak-slide ratio A / B versus the isolation period of A (or of B when A is
     fixed-base; building pairs side by side when neither is isolated), one curve per friction
     coefficient, per comparison (as in the design tables);
+``scaled_spectra_<set>.png``
+    sets scaled to a target spectrum whose file holds floor-0 spectra of a fixed-base
+    building at the scaling's damping: each record's scaled PSA, their mean, the target times
+    the set's level and 90 % of it, the fitting range, the suite check in the title;
 ``pfa_profile_<set>.png``
     PFA/PGA up the height (floor on the y axis), median and 84th percentile per building, one
     panel per building kind, beside the ASCE 7-22 §13.3.1 floor amplification ``H_f`` (Eq.
@@ -91,8 +95,16 @@ from floorslide.run.store import ResultFile
 MAX_PANELS = 12
 """At most this many panels per figure (floors or content × floor, evenly picked)."""
 
-MAX_COLUMNS = 4
-"""At most this many buildings side by side in the history figure."""
+MAX_COLUMNS = 2
+"""At most this many buildings side by side in the history figure (more go to further rows:
+the figure stays readable at a page's width)."""
+
+MAX_BUILDING_PANELS = 4
+"""At most this many buildings (one panel each) in the hysteresis and rocking figures."""
+
+MAX_HISTORY_BUILDINGS = 8
+"""At most this many buildings in the history figure (evenly picked beyond; its title says
+how many of how many)."""
 
 SLIDE_LINTHRESH = 1e-3
 """Peak-slide axes are symmetric-log, linear below this slide (m) so that zero shows."""
@@ -228,15 +240,46 @@ def _history_curves(h, key: str, kind: str) -> np.ndarray | None:
     return np.atleast_2d(source[key]) if key in source else None
 
 
+def _stored_friction(study: Study, tasks: Sequence[TaskResult], keys: Sequence[str]) -> str:
+    """What the history figure says of its friction values: for each content and floor whose
+    histories hold fewer friction values than it has (the result file keeps those of
+    :data:`floorslide.run.task.HISTORY_MU`), which of how many; ``""`` when all are drawn."""
+    parts = []
+    for k in keys:
+        content, floor = k.rsplit("/floor_", 1)
+        drawn = sorted(
+            {float(m) for t in tasks for m in np.atleast_1d(t.histories.mu_k.get(k, []))}
+        )
+        every = sorted(
+            {
+                float(m)
+                for t in tasks
+                for c in t.contents
+                if c.content == content and int(c.floor) == int(floor)
+                for m in np.atleast_1d(c.mu_k)
+            }
+        )
+        if drawn and len(drawn) < len(every):
+            shown = ", ".join(f"{m:g}" for m in drawn)
+            parts.append(
+                f"{content} on floor {floor}: slide histories of {len(drawn)} of its "
+                f"{len(every)} friction values (mu = {shown}; the file stores these)"
+            )
+    return "; ".join(parts)
+
+
 def figure_histories(study: Study, record_set: str) -> Figure | None:
     """Floor accelerations and sliding histories of the set's history task(s), or None.
 
-    Columns: buildings that stored histories (at most :data:`MAX_COLUMNS`); row 1: the
-    absolute acceleration of every output floor (m/s²); next rows: the slide ``u`` (m,
-    relative to the floor; of the sliding base for an oscillator) of each content on each
-    floor, one curve per stored friction value, and for 2-DOF oscillators also the spring
-    deformation and the top mass's absolute acceleration. A friction value under which the
-    object rocks has no curve (it is not simulated as a slider): its legend entry says so.
+    One column per building that stored histories, at most :data:`MAX_COLUMNS` side by side
+    (more go to further rows) and at most :data:`MAX_HISTORY_BUILDINGS` (evenly picked; the
+    title says how many of how many); row 1: the absolute acceleration of every output floor
+    (m/s²); next rows: the slide ``u`` (m, relative to the floor; of the sliding base for an
+    oscillator) of each content on each floor, one curve per stored friction value — the
+    title says which of the content's friction values the file stores histories of — and for
+    2-DOF oscillators also the spring deformation and the top mass's absolute acceleration. A
+    friction value under which the object rocks has no curve (it is not simulated as a
+    slider): its legend entry says so.
     """
     order = list(study.buildings)
     tasks = sorted(
@@ -245,7 +288,8 @@ def figure_histories(study: Study, record_set: str) -> Figure | None:
     )
     if not tasks:
         return None
-    tasks, _ = _pick(tasks, MAX_COLUMNS)
+    n_buildings = len(tasks)
+    tasks, building_cut = _pick(tasks, MAX_HISTORY_BUILDINGS)
     keys: list[str] = []
     oscillators: set[str] = set()
     for t in tasks:
@@ -262,22 +306,38 @@ def figure_histories(study: Study, record_set: str) -> Figure | None:
     keys = sorted(keys, key=key_order)
     keys, cut = _pick(keys, 6)
     rows = [(k, kind) for k in keys for kind in (("u", "z", "top") if k in oscillators else ("u",))]
-    nrows, ncols = 1 + len(rows), len(tasks)
+    per_block = 1 + len(rows)
+    ncols = min(MAX_COLUMNS, len(tasks))
+    blocks = math.ceil(len(tasks) / ncols)
+    nrows = blocks * per_block
     fig = Figure(figsize=(5.6 * ncols + 1.0, 2.6 * nrows + 1.0), layout="constrained")
-    axes = fig.subplots(nrows, ncols, squeeze=False, sharex="col")
+    grid = fig.subplots(nrows, ncols, squeeze=False, sharex=True)
+    for j in range(len(tasks), blocks * ncols):  # the empty end of the last row of buildings
+        for i in range(per_block):
+            grid[(blocks - 1) * per_block + i][j % ncols].set_visible(False)
     from matplotlib import colormaps
 
     records = sorted({str(t.meta["record"]) for t in tasks})
+    said = []
+    if building_cut:
+        shown = ", ".join(str(t.meta["building"]) for t in tasks)
+        said.append(f"{len(tasks)} of the {n_buildings} buildings (evenly picked: {shown})")
+    friction = _stored_friction(study, tasks, keys)
+    if friction:
+        said.append(friction)
     _suptitle(
         fig,
         study,
         f"Floor motions and sliding — record {', '.join(records)}, set {record_set}"
-        + (" (some panels left out)" if cut else ""),
+        + (" (some panels left out)" if cut else "")
+        + ("\n" + "; ".join(said) if said else ""),
     )
     for j, t in enumerate(tasks):
+        top, col = (j // ncols) * per_block, j % ncols
+        axes = [grid[top + i][col] for i in range(per_block)]
         h = t.histories
         time = np.arange(h.floor_acceleration.shape[-1]) * h.dt
-        ax = axes[0][j]
+        ax = axes[0]
         floors = np.asarray(h.floors).tolist()
         cmap = colormaps["plasma"]
         pair = getattr(h, "floor_acceleration_h2", None) is not None
@@ -296,7 +356,7 @@ def figure_histories(study: Study, record_set: str) -> Figure | None:
         if floors:
             ax.legend(fontsize="small", loc="upper right")
         for i, (k, kind) in enumerate(rows, start=1):
-            ax = axes[i][j]
+            ax = axes[i]
             content, floor = k.rsplit("/floor_", 1)
             curves = _history_curves(h, k, kind)
             if curves is None:
@@ -321,7 +381,8 @@ def figure_histories(study: Study, record_set: str) -> Figure | None:
             ax.set_ylabel(ylabel)
             ax.grid(alpha=0.3)
             ax.legend(fontsize="small", loc="upper left")
-        axes[-1][j].set_xlabel("time (s)")
+        axes[-1].set_xlabel("time (s)")
+        axes[-1].xaxis.set_tick_params(labelbottom=True)
     return fig
 
 
@@ -516,15 +577,15 @@ def figure_hysteresis(study: Study, record_set: str) -> Figure | None:
     """Hysteresis loops of the set's history task(s) on nonlinear isolation, or None.
 
     One panel per building on nonlinear isolation that stored its loop (at most
-    :data:`MAX_COLUMNS`): the isolation layer's force over the total weight (V/W) against the
-    isolator displacement (mm) at the samples, the true peak displacement (found inside
+    :data:`MAX_BUILDING_PANELS`): the isolation layer's force over the total weight (V/W)
+    against the isolator displacement (mm) at the samples, the true peak displacement (found inside
     steps) as dashed lines and the layer's capacity, when given, dotted (red when exceeded:
     the impact that would follow is not modelled).
     """
     tasks = _hysteresis_tasks(study, record_set)
     if not tasks:
         return None
-    tasks, cut = _pick(tasks, MAX_COLUMNS)
+    tasks, cut = _pick(tasks, MAX_BUILDING_PANELS)
     fig, axes = _new_figure(len(tasks))
     records = sorted({str(t.meta["record"]) for t in tasks})
     _suptitle(
@@ -621,8 +682,8 @@ def _rocking_panel(ax, t: TaskResult, curves: list) -> None:
 
 def figure_rocking(study: Study, record_set: str) -> Figure | None:
     """Rocking histories θ/α of the contents that rock under the set's history record, one
-    panel per building (at most :data:`MAX_COLUMNS`), or None when none rocks (or the file holds
-    no rocking histories).
+    panel per building (at most :data:`MAX_BUILDING_PANELS`), or None when none rocks (or the
+    file holds no rocking histories).
 
     θ is the block's rotation, α = atan(B/H) its slenderness: the block overturns when |θ/α|
     reaches 1 (the dotted lines); the history ends there (NaN) and the overturning is marked.
@@ -638,7 +699,7 @@ def figure_rocking(study: Study, record_set: str) -> Figure | None:
             panels.append((t, curves))
     if not panels:
         return None
-    panels, cut = _pick(panels, MAX_COLUMNS)
+    panels, cut = _pick(panels, MAX_BUILDING_PANELS)
     fig, axes = _new_figure(len(panels))
     records = sorted({str(t.meta["record"]) for t, _ in panels})
     _suptitle(
@@ -753,10 +814,21 @@ def _median_spectrum(
     return grid, np.nanmedian(np.array(stack), axis=0), len(stack)
 
 
+MARKERS = ("o", "s", "^", "D", "v", "P", "X", "<", ">", "*")
+"""A marker per building in the spectra figure, beside its colour: neighbouring isolation
+periods have close colours, their markers tell them apart."""
+
+
+SPREAD = 4.0
+"""A spectra panel whose curves' peaks differ by more than this factor has a log PSA axis (a
+fixed-base floor's peak otherwise flattens the isolated floors' curves into one band)."""
+
+
 def figure_frs(study: Study, record_set: str, damping: float) -> Figure | None:
     """Median floor response spectra (PSA, g) of the set per building, one panel per floor
-    (log period axis): unbroadened (solid) and, when stored, broadened (dashed); or None when
-    the set has no spectra."""
+    (log period axis): unbroadened (solid) and, when stored, broadened (dashed), each building
+    with its colour and its marker (:data:`MARKERS`), on a log PSA axis where the peaks differ
+    by more than :data:`SPREAD` times; or None when the set has no spectra."""
     tasks = study.set_tasks(record_set)
     by_building: dict[str, list[TaskResult]] = defaultdict(list)
     for t in tasks:
@@ -798,12 +870,29 @@ def figure_frs(study: Study, record_set: str, damping: float) -> Figure | None:
                 if bid not in present:
                     present.append(bid)
                 pos = grid > 0
-                (line,) = ax.plot(grid[pos], median[pos] / G, style, color=colors[bid], lw=1.4)
+                k = list(study.buildings).index(bid)
+                (line,) = ax.plot(
+                    grid[pos],
+                    median[pos] / G,
+                    style,
+                    color=colors[bid],
+                    lw=1.4,
+                    marker=MARKERS[k % len(MARKERS)],
+                    ms=4.5,
+                    mfc="white" if k // len(MARKERS) % 2 else colors[bid],
+                    # markers a few points apart, shifted per building so that they interleave
+                    markevery=(k % 5, 5),
+                )
                 if not broadened:
                     handles.setdefault(bid, (line, f"{bid} ({n} records)"))
         ax.set_xscale("log")
         ax.set_xlabel("period T (s)")
-        ax.set_ylabel("median PSA (g)")
+        peaks = [np.nanmax(ln.get_ydata()) for ln in ax.get_lines() if len(ln.get_ydata())]
+        if peaks and min(peaks) > 0 and max(peaks) / min(peaks) > SPREAD:
+            ax.set_yscale("log")  # the curves of a stiff and an isolated building apart
+            ax.set_ylabel("median PSA (g, log scale)")
+        else:
+            ax.set_ylabel("median PSA (g)")
         ax.set_title(_floor_label(study, floor, present))
         ax.grid(alpha=0.3, which="both")
     labels = [lab for _, lab in handles.values()]
@@ -819,6 +908,128 @@ def figure_frs(study: Study, record_set: str, damping: float) -> Figure | None:
         title="building",
         fontsize="small",
     )
+    return fig
+
+
+def _scale_target(study: Study, entry: dict):
+    """The target spectrum of a scaled set (:class:`floorslide.practice.target.TargetSpectrum`)
+    from the stored scene's ``[[records]] scale.target``, and ``""``; or None and why not (a
+    target CSV that is no longer where the scene said)."""
+    from floorslide.errors import FloorslideError
+    from floorslide.practice.target import TargetSpectrum, read_target_csv
+
+    spec = next(
+        (
+            r.get("scale", {}).get("target")
+            for r in study.scene.get("records", [])
+            if r.get("set") == entry.get("family")
+        ),
+        None,
+    )
+    if isinstance(spec, dict):
+        return TargetSpectrum.two_point(spec["sds"], spec["sd1"], spec["tl"]), ""
+    if isinstance(spec, str):
+        path = Path(spec)
+        if not path.is_absolute():
+            path = Path(study.scene_path).parent / path
+        try:
+            return read_target_csv(path), ""
+        except (FloorslideError, OSError):
+            return None, f"target not drawn: its file {path} is not readable here"
+    return None, "target not drawn: not in the stored scene"
+
+
+def figure_scaled_spectra(study: Study, record_set: str) -> Figure | None:
+    """The records of a set scaled to a target spectrum (``[[records]] scale``) against it:
+    each record's scaled PSA (g) at the scaling's damping (thin grey), their mean (black), the
+    target times the set's level (red) and 90 % of it (red dashed: ASCE 7-22 §16.2.3), the
+    fitting range shaded (or the period ``T*`` matched), log–log, with the suite check's lowest
+    ratio in the title. The records' spectra are the stored spectra of floor 0 of a
+    fixed-base building (the ground, scaled as the tasks ran it), so the figure is drawn only
+    when ``[spectra]`` holds floor 0 and that damping; None otherwise, for a set not scaled to
+    a target, and for a set of record pairs (its stored spectra are RotD50, its scaling
+    RotD100)."""
+    entry = next(
+        (e for e in study.scaling if e.get("set") == record_set and e.get("method") in
+         ("range", "period")),
+        None,
+    )  # fmt: skip
+    if entry is None:
+        return None
+    damping = float(entry.get("damping", 0.05))
+    grounds = [
+        t
+        for t in study.set_tasks(record_set)
+        if study.buildings[t.meta["building"]].kind != "isolated"
+    ]
+    curves: dict[str, tuple[np.ndarray, np.ndarray]] = {}
+    for t in grounds:
+        rec = str(t.meta["record"])
+        if rec in curves:
+            continue
+        for sp in t.spectra:
+            if int(sp.floor) != 0 or getattr(sp, "orientation", ""):
+                continue
+            zs = np.atleast_1d(np.asarray(sp.damping, dtype=float))
+            hit = np.nonzero(np.abs(zs - damping) <= 1e-9)[0]
+            if hit.size:
+                psa = np.atleast_2d(np.asarray(sp.psa, dtype=float))[hit[0]]
+                curves[rec] = (np.asarray(sp.periods, dtype=float), psa / G)
+    if not curves:
+        return None
+    level = float(entry.get("level", 1.0))
+    target, why = _scale_target(study, entry)
+    fig = Figure(figsize=(8.5, 5.4), layout="constrained")
+    ax = fig.subplots()
+    grid = next(iter(curves.values()))[0]
+    pos = grid > 0
+    stack = []
+    for periods, psa in curves.values():
+        psa = psa if np.array_equal(periods, grid) else interpolate_spectrum(periods, psa, grid)
+        stack.append(psa)
+        ax.plot(grid[pos], psa[pos], color="0.6", lw=0.7)
+    mean = np.mean(stack, axis=0)
+    ax.plot(grid[pos], mean[pos], color="black", lw=2.0)
+    handles = [Line2D([], [], color="0.6", lw=0.7), Line2D([], [], color="black", lw=2.0)]
+    labels = [f"each record, scaled ({len(curves)})", "mean of the scaled records"]
+    lo, hi = [*(entry.get("period_range") or []), math.nan, math.nan][:2]
+    if target is not None:
+        tg = grid[pos & (grid >= target.periods[0]) & (grid <= target.periods[-1])]
+        sa = level * target(tg)
+        ax.plot(tg, sa, color="tab:red", lw=2.0)
+        ax.plot(tg, 0.9 * sa, color="tab:red", lw=1.3, ls="--")
+        handles += [Line2D([], [], color="tab:red", lw=2.0),
+                    Line2D([], [], color="tab:red", lw=1.3, ls="--")]  # fmt: skip
+        times = "" if level == 1 else f"{level:g} × "
+        labels += [f"{times}target", f"90 % of {times}target (ASCE 7-22 §16.2.3)"]
+    if math.isfinite(lo) and math.isfinite(hi):
+        ax.axvspan(lo, hi, color="tab:blue", alpha=0.08, lw=0)
+        handles.append(Line2D([], [], color="tab:blue", alpha=0.25, lw=8))
+        labels.append(f"scaling range {lo:g}–{hi:g} s")
+    if entry.get("period") is not None and entry.get("method") == "period":
+        ax.axvline(float(entry["period"]), color="tab:blue", ls=":", lw=1.3)
+        handles.append(Line2D([], [], color="tab:blue", ls=":", lw=1.3))
+        labels.append(f"T* = {float(entry['period']):g} s (matched)")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("period T (s)")
+    ax.set_ylabel(f"PSA (g), {damping * 100:g} % damping")
+    ax.grid(alpha=0.3, which="both")
+    suite = entry.get("suite") if isinstance(entry.get("suite"), dict) else {}
+    check = ""
+    if suite:
+        verdict = "passes" if suite.get("passes") else "falls short"
+        check = (
+            f"; suite check {verdict}: lowest mean / target {float(suite.get('min_ratio')):.2f} "
+            f"at {float(suite.get('at')):g} s (≥ 0.90 asked)"
+        )
+    _suptitle(
+        fig,
+        study,
+        f"Scaled records against the target — set {record_set}\nthe spectra of floor 0 of the "
+        f"fixed-base building (the ground as run){check}" + (f"; {why}" if why else ""),
+    )
+    fig.legend(handles, labels, loc="outside lower center", ncols=3, fontsize="small")
     return fig
 
 
@@ -873,6 +1084,18 @@ def _one_position(ax, x: float) -> None:
     half = 0.5 * abs(x) if x else 0.5
     ax.set_xlim(x - half, x + half)
     ax.set_xticks([x], [f"{x:g}"])
+
+
+def _mu_axis(ax, mus: Sequence[float]) -> None:
+    """The friction axis over every stored mu_k — also those at which every building rocks,
+    which have no slide to draw (matplotlib would leave them off the axis, and their marks in
+    the 'rock' strip with them) — with matplotlib's usual 5 % margins; a single value centred
+    (:func:`_one_position`)."""
+    if len(mus) == 1:
+        _one_position(ax, mus[0])
+        return
+    pad = 0.05 * (mus[-1] - mus[0])
+    ax.set_xlim(mus[0] - pad, mus[-1] + pad)
 
 
 def _dodge(x: float, k: int, n: int) -> float:
@@ -957,8 +1180,7 @@ def figure_slide_vs_mu(study: Study, tables: DesignTables, record_set: str) -> F
                 used.append(bid)
             dx = _dodge(mus[0], k, len(present)) if len(mus) == 1 else 0.0
             rocks += _statistic_panel(ax, sel, "peak_slide", colors[bid], dx=dx)
-        if len(mus) == 1:
-            _one_position(ax, mus[0])
+        _mu_axis(ax, mus)
         ax.set_yscale("symlog", linthresh=SLIDE_LINTHRESH)
         top = ax.get_ylim()[1]  # room above the top marker, not cut by the frame
         ax.set_ylim(0, 1.6 * top if top > SLIDE_LINTHRESH else top)
@@ -1031,8 +1253,7 @@ def figure_oscillators(study: Study, tables: DesignTables, record_set: str) -> F
                 used.append(bid)
             dx = _dodge(mus[0], k, len(present)) if len(mus) == 1 else 0.0
             rocks += _statistic_panel(ax, sel, quantity, colors[bid], scale, dx=dx)
-        if len(mus) == 1:
-            _one_position(ax, mus[0])
+        _mu_axis(ax, mus)
         ax.set_ylim(bottom=0)
         ax.set_xlabel("kinetic friction coefficient mu_k (–)")
         if quantity == "peak_deformation":
@@ -1380,6 +1601,34 @@ def _median_pair(rows: Sequence[dict]) -> tuple[float, float]:
     return same[(len(same) - 1) // 2]
 
 
+def _ecdf_pair(rows: Sequence[dict], mu: float | None) -> tuple[float, float, str]:
+    """The friction pair of an ECDF panel and how it was chosen: the stored mu_k nearest to
+    `mu` when given; else the median (:func:`_median_pair`) of the pairs under which the
+    object slides or rests under at least half the records on every building — a pair under
+    which it mostly rocks has little curve to show — or of all pairs when there is none; how
+    is ``""`` for the plain median of the stored values."""
+    if mu is not None:
+        pairs = sorted({(float(r["mu_k"]), float(r["mu_s"])) for r in rows})
+        mu_k = min((k for k, _ in pairs), key=lambda k: (abs(k - mu), k))
+        same = [p for p in pairs if p[0] == mu_k]
+        pick = same[(len(same) - 1) // 2]
+        how = "as asked" if abs(mu_k - mu) <= 1e-12 else f"the stored value nearest {mu:g}"
+        return (*pick, how)
+    groups: dict = defaultdict(list)
+    for r in rows:
+        groups[(float(r["mu_k"]), float(r["mu_s"]), r["building"])].append(r)
+    rocky = {
+        (k, s)
+        for (k, s, _), g in groups.items()
+        if 2 * sum(r["outcome"] == ROCK for r in g) > len(g)
+    }
+    slides = [r for r in rows if (float(r["mu_k"]), float(r["mu_s"])) not in rocky]
+    if not slides:
+        return (*_median_pair(rows), "the median stored value: it rocks under most records")
+    how = "" if not rocky else "the median value at which it slides"
+    return (*_median_pair(slides), how)
+
+
 def _ecdf_points(rows: Sequence[dict]) -> tuple[np.ndarray, np.ndarray, int, int]:
     """The empirical CDF of the peak slide over `rows` (one per record): the sorted slides of
     the records where the object slides or rests, their fractions ``i/n`` of all ``n`` records
@@ -1398,10 +1647,14 @@ def _ecdf_points(rows: Sequence[dict]) -> tuple[np.ndarray, np.ndarray, int, int
     return slides, np.arange(1, slides.size + 1) / max(n, 1), n, n - slides.size
 
 
-def figure_slide_ecdf(study: Study, tables: DesignTables, record_set: str) -> Figure | None:
+def figure_slide_ecdf(
+    study: Study, tables: DesignTables, record_set: str, mu: float | None = None
+) -> Figure | None:
     """The empirical distribution of the peak slide over the set's records, one panel per
-    content and floor, one step curve per building, for one friction value per panel (the
-    content's median stored mu_k); or None when the set has no slide results.
+    content and floor, one step curve per building, for one friction value per panel — the
+    stored mu_k nearest `mu`, else the median of the content's stored values at which it
+    slides rather than rocks (:func:`_ecdf_pair`; the panel's title says which and why); or
+    None when the set has no slide results.
 
     ``F(x)`` is the fraction of all ``n`` records whose peak slide is at most ``x``. A record
     under which the object rocks (not simulated as a slider) has no slide: it is never ≤ any
@@ -1424,14 +1677,14 @@ def figure_slide_ecdf(study: Study, tables: DesignTables, record_set: str) -> Fi
         fig,
         study,
         f"Peak slide over the records (empirical CDF) — set {record_set}, {n_all} records\n"
-        "one friction value per panel (the content's median stored mu_k); records where the "
+        "one friction value per panel (in its title); records where the "
         "object rocks are never ≤ any slide: a curve ends at the fraction that slides or rests"
         + (" (some panels left out)" if cut else ""),
     )
     any_allowable = False
     for ax, (floor, content) in zip(axes, panels, strict=True):
         prow = [r for r in rows if r["floor"] == floor and r["content"] == content]
-        mu_k, mu_s = _median_pair(prow)
+        mu_k, mu_s, how = _ecdf_pair(prow, mu)
         prow = [r for r in prow if r["mu_k"] == mu_k and r["mu_s"] == mu_s]
         bids = [b for b in study.buildings if any(r["building"] == b for r in prow)]
         curves = {b: _ecdf_points([r for r in prow if r["building"] == b]) for b in bids}
@@ -1495,8 +1748,8 @@ def figure_slide_ecdf(study: Study, tables: DesignTables, record_set: str) -> Fi
             ax.set_ylim(-0.02, 1.05)
             ax.set_ylabel(f"fraction of the records ≤ x (of {max(c[2] for c in curves.values())})")
         same = abs(mu_k - mu_s) <= 1e-12
-        mu = f"mu_k = {mu_k:g}" + ("" if same else f", mu_s = {mu_s:g}")
-        ax.set_title(f"{content} on floor {floor}, {mu}")
+        label = f"mu_k = {mu_k:g}" + ("" if same else f", mu_s = {mu_s:g}")
+        ax.set_title(f"{content} on floor {floor}, {label}" + (f" ({how})" if how else ""))
         ax.grid(alpha=0.3, which="both")
         ax.legend(fontsize="x-small", loc="best", title="building", title_fontsize="x-small")
     if any_allowable:
@@ -1599,6 +1852,7 @@ def figure_fragility(study: Study, tables: DesignTables, record_set: str) -> Fig
         lo, hi = float(levels_all.min()), float(levels_all.max())
         left, right = lo / 1.3, hi * 1.3
         handles, labels = [], []
+        extrapolated = unresolved = False
         counts = {tuple(r["n_records"]) for r in sel}
         shared = len(counts) == 1 and len({tuple(r["levels"]) for r in sel}) == 1
         for j, r in enumerate(sel):
@@ -1616,9 +1870,26 @@ def figure_fragility(study: Study, tables: DesignTables, record_set: str) -> Fig
                     np.geomspace(a / 1.3, b * 1.3, 200), [median] if a <= median <= b else []
                 )
                 left, right = min(left, xs[0]), max(right, xs[-1])
-                ax.plot(xs, norm.cdf(np.log(xs / median) / beta), "-", color=c, lw=1.5)
+                # solid between this row's stripes (where it is fitted), dotted beyond
+                lo_x, hi_x = float(x.min()), float(x.max())
+                for seg, style, lw in (
+                    (np.union1d(xs[(xs > lo_x) & (xs < hi_x)], [lo_x, hi_x]), "-", 1.5),
+                    (np.union1d(xs[xs < lo_x], [lo_x]), ":", 1.3),
+                    (np.union1d(xs[xs > hi_x], [hi_x]), ":", 1.3),
+                ):
+                    if seg.size > 1:
+                        cdf = norm.cdf(np.log(seg / median) / beta)
+                        ax.plot(seg, cdf, style, color=c, lw=lw)
+                        extrapolated = extrapolated or style == ":"
                 handles.append(Line2D([], [], color=c, lw=1.5, marker="o", ms=5))
                 labels.append(f"{r['state']}: θ = {median:.3g}, β = {beta:.2f}")
+                partial = int(np.sum((frac > 0) & (frac < 1)))
+                if partial < 2:  # the rise lies between two stripes: any steeper β fits
+                    unresolved = True
+                    labels[-1] = (
+                        f"{r['state']}: θ = {median:.3g}, β = {beta:.2g}?\n"
+                        f"  β unresolved: {partial} of {len(x)} stripes between 0 and 1"
+                    )
             else:
                 # the note's first clause; the whole note is in the fragility table
                 note = str(r.get("note", "")).split(";")[0].split(":")[0] or "no fit"
@@ -1662,11 +1933,19 @@ def figure_fragility(study: Study, tables: DesignTables, record_set: str) -> Fig
         ax.set_xlabel(" / ".join(ims))
         ax.set_ylabel("P(exceed)")
         ax.grid(alpha=0.3, which="both")
+        if extrapolated:
+            handles.append(Line2D([], [], color="0.3", ls=":", lw=1.3))
+            labels.append("fit beyond the stripes (extrapolated)")
+        if unresolved:
+            handles.append(Line2D([], [], ls="none"))
+            labels.append("?: the stripes do not resolve β (its rise lies between two stripes)")
+        # below the panel, never over the curves and markers
         ax.legend(
             handles,
             labels,
             fontsize="x-small",
-            loc="upper left",
+            loc="upper center",
+            bbox_to_anchor=(0.5, -0.2),
             title="state",
             title_fontsize="x-small",
         )
@@ -1685,6 +1964,7 @@ def plot_figures(
     *,
     allow_incomplete: bool = False,
     workers: int = 1,
+    ecdf_mu: float | None = None,
 ) -> list[Path]:
     """Write the figures of a result file as PNG files into `directory` (created).
 
@@ -1706,6 +1986,9 @@ def plot_figures(
     workers
         Draw the figures in this many processes (forked; where the platform cannot fork, one).
         The files are the same bytes whatever the number.
+    ecdf_mu
+        The friction value of the peak-slide ECDF figure (the stored mu_k nearest to it; by
+        default the median of each content's values at which it slides rather than rocks).
 
     Returns
     -------
@@ -1715,7 +1998,8 @@ def plot_figures(
         the history record), for a set of record pairs the slide path in the plane (history
         record) and the 2-D against 1-D slides (every record), FRS, peak slide versus mu,
         oscillators (if any), overturning (if the file holds rocking results), one
-        peak-slide ratio figure per comparison, the PFA/PGA profile against ASCE 7-22 H_f, the
+        peak-slide ratio figure per comparison, the scaled records against the target (sets
+        scaled to a target, with floor-0 spectra), the PFA/PGA profile against ASCE 7-22 H_f, the
         empirical CDF of the peak slide; then, once per set family with rows in the
         ``fragility`` table, the fragility curves. A figure without data is not drawn and not
         listed.
@@ -1784,8 +2068,12 @@ def plot_figures(
                 )
             )
         jobs += [
+            (f"scaled_spectra_{s}", functools.partial(figure_scaled_spectra, study, rs)),
             (f"pfa_profile_{s}", functools.partial(figure_pfa_profile, study, tables, rs)),
-            (f"slide_ecdf_{s}", functools.partial(figure_slide_ecdf, study, tables, rs)),
+            (
+                f"slide_ecdf_{s}",
+                functools.partial(figure_slide_ecdf, study, tables, rs, ecdf_mu),
+            ),
         ]
     families = sorted({str(r["record_set"]) for r in tables.tables.get("fragility", [])})
     for family in families:

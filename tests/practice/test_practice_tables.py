@@ -169,7 +169,8 @@ def test_report_holds_the_practice_section(study, tmp_path):
 
     text = write_report(study, tmp_path / "r.html", tables=design_tables(study), figures=[])
     text = text.read_text(encoding="utf-8")
-    assert "Design practice: scaling, code comparison, exceedance, fragility" in text
+    assert "Design practice: scaling, exceedance, fragility" in text
+    assert text.index('id="table-code"') < text.index('id="table-scaling"')  # with the PFA
     for name in ("scaling", "suite", "code", "exceedance", "fragility"):
         assert f'id="table-{name}"' in text
     assert 'id="empty-plane"' in text  # an empty table says why

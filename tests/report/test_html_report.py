@@ -65,8 +65,8 @@ def test_report_structure(study, tmp_path):
     out = _Outline()
     out.feed(text)
     assert out.headings[0].startswith("floorslide report")
-    for section in ("Design tables", "Figures", "Records, provenance and quality checks",
-                    "Scene", "Software"):  # fmt: skip
+    for section in ("Results", "Sliding contents", "Floor response spectra", "Notes",
+                    "Records, provenance and quality checks", "Scene", "Software"):  # fmt: skip
         assert section in out.headings
     assert {"table-slides", "table-pfa", "table-frs", "table-records"} <= set(out.tables)
     assert out.images and not out.external and not out.banner
