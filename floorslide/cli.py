@@ -907,6 +907,40 @@ def _periods(text: str | None):
     return _floats(text, "--periods")
 
 
+SPECTRUM_UNITS = {
+    "periods": "s",
+    "damping": "1",
+    "psa": "m/s**2",
+    "sa": "m/s**2",
+    "sv": "m/s",
+    "sd": "m",
+    "psv": "m/s",
+}
+"""Units of ``spectrum --json`` (SI; the text table prints PSA and SA in g)."""
+
+ROTD_UNITS = {
+    "periods": "s",
+    "damping": "1",
+    "rotd50": "m/s**2",
+    "rotd100": "m/s**2",
+    "angle100": "deg",
+    "time100": "s",
+    "h1": SPECTRUM_UNITS,
+    "h2": SPECTRUM_UNITS,
+}
+"""Units of ``spectrum --json`` with two components (the text table prints g)."""
+
+
+def _floor_name(building, floor_no: int) -> str:
+    """``ground``, ``base mat``, ``roof`` or ``floor N`` (the ground without a building)."""
+    from floorslide.report.columns import floor_label
+
+    if building is None:
+        return "ground"
+    kind = "isolated" if building.dof_of(0) is not None else "fixed"
+    return floor_label(kind, floor_no, building.stories)
+
+
 def _spectrum_grid(periods: str | None, damping: str):
     """The periods and damping ratios of ``spectrum``, checked before anything is read: at most
     as many as a scene allows, none absurd (a usage error naming the option, exit 2)."""
@@ -946,7 +980,13 @@ def _spectrum_grid(periods: str | None, damping: str):
     metavar="T[,T...]|MIN:MAX:N",
     help="Periods in s (0 = peak ground acceleration); default 0.02:5:100 (log-spaced).",
 )
-@click.option("--json", "as_json", is_flag=True, help="Print JSON (SI values) on stdout.")
+@click.option(
+    "--json",
+    "as_json",
+    is_flag=True,
+    help="Print JSON on stdout: SI values (PSA and SA in m/s**2, not g as in the text table), "
+    "their units under 'units'.",
+)
 @building_options
 @record_options
 @processing_options
@@ -1022,7 +1062,9 @@ def spectrum(
             "record": record,
             "building": building_spec,
             "floor": floor_no,
+            "floor_label": _floor_name(building, floor_no),
             **sp.to_dict(),
+            "units": SPECTRUM_UNITS,
             "qa": quality.to_dict(),
         }
         click.echo(_strict_json(out))
@@ -1102,7 +1144,9 @@ def _spectrum_pair(record, record2, grid, zetas, building, building_h2, floor_no
             "records": [record] + ([record2] if record2 else []),
             "components": list(pair.names),
             "floor": floor_no,
+            "floor_label": _floor_name(building, floor_no),
             **r.to_dict(),
+            "units": ROTD_UNITS,
             "qa_flags": codes,
             "notes": list(pair.notes),
         }

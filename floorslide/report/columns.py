@@ -85,6 +85,26 @@ _BUILDING = [
 ]
 
 _FLOOR = Column("floor", "1", "floor (0 = ground, or the base mat of an isolated building)")
+FLOOR_LABEL = Column(
+    "floor_label",
+    "",
+    "what the floor is: ground (floor 0 of a fixed-base building), base mat (floor 0 of an "
+    "isolated building: above the isolators), floor n, or roof",
+)
+
+
+def floor_label(kind: str, floor: int, stories: int) -> str:
+    """What floor `floor` of a building is: ``"ground"`` (floor 0 of a fixed-base building),
+    ``"base mat"`` (floor 0 of an isolated one, above the isolation layer), ``"roof"`` (floor
+    `stories`) or ``"floor n"`` (docs/design.md §2)."""
+    floor = int(floor)
+    if floor == 0:
+        return "base mat" if kind == "isolated" else "ground"
+    if floor == int(stories):
+        return "roof"
+    return f"floor {floor}"
+
+
 _N_RECORDS = Column("n_records", "1", "records of the set on this building")
 _FEW = Column(
     "few_records",
@@ -371,7 +391,7 @@ COLUMNS: dict[str, tuple[Column, ...]] = {
         ),
     ),
 }
-"""Columns of every table, in order."""
+"""Columns of every table, in order (``floor_label`` follows every ``floor``: see the end)."""
 
 _OBJECT = [
     _FLOOR,
@@ -487,6 +507,18 @@ COLUMNS.update(
         ),
     }
 )
+
+
+def _with_floor_label(columns: tuple[Column, ...]) -> tuple[Column, ...]:
+    out: list[Column] = []
+    for c in columns:
+        out.append(c)
+        if c.name == "floor":
+            out.append(FLOOR_LABEL)
+    return tuple(out)
+
+
+COLUMNS.update({name: _with_floor_label(cols) for name, cols in COLUMNS.items()})
 
 EMPTY_NOTES = {
     "isolators": "no building on nonlinear isolation in this study",

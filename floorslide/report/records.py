@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from floorslide.constants import G
-from floorslide.report.columns import ROCK, Column
+from floorslide.report.columns import FLOOR_LABEL, ROCK, Column, floor_label
 from floorslide.report.study import Study, _float, _natural, _rank, load_study
 from floorslide.run.results import PLANE_FIELDS
 from floorslide.run.store import ResultFile
@@ -27,6 +27,7 @@ RECORD_COLUMNS: tuple[Column, ...] = (
     Column("building_kind", "", "fixed or isolated"),
     Column("isolation_period", "s", "isolation period T_i (NaN for fixed-base)"),
     Column("floor", "1", "floor (0 = ground, or the base mat of an isolated building)"),
+    FLOOR_LABEL,
     Column("content", "", "content (equipment) id"),
     Column("model", "", "rigid or oscillator"),
     Column("mu_k", "1", "kinetic friction coefficient"),
@@ -215,6 +216,7 @@ def record_rows(study: Study) -> list[dict]:
         bid = str(m["building"])
         pfa_of = dict(zip(np.asarray(t.floors).tolist(), np.asarray(t.pfa).tolist(), strict=True))
         isolator = isolator_values(m)
+        b = study.buildings[bid]
         for c in t.contents:
             modes = _modes(c)
             osc = c.peak_deformation is not None
@@ -233,6 +235,7 @@ def record_rows(study: Study) -> list[dict]:
                         "building_kind": study.buildings[bid].kind,
                         "isolation_period": study.buildings[bid].isolation_period,
                         "floor": int(c.floor),
+                        "floor_label": floor_label(b.kind, int(c.floor), b.stories),
                         "content": c.content,
                         "model": c.model,
                         "mu_k": float(c.mu_k[i]),

@@ -111,6 +111,7 @@ from floorslide.report.columns import (
     Column,
     Comparison,
     DesignTables,
+    floor_label,
 )
 from floorslide.report.formats import (
     format_csv,
@@ -873,6 +874,27 @@ def pfa_ratio_table(study: Study, pfa: list[dict], comparisons: Sequence[Compari
     return _ratio_rows(study, pfa, comparisons, ("floor",), make)
 
 
+def _floor_label_of(study: Study, bid: str, floor: int) -> str:
+    b = study.buildings.get(bid)
+    return "" if b is None else floor_label(b.kind, floor, b.stories)
+
+
+def _label_floors(study: Study, rows: list[dict]) -> None:
+    """Add ``floor_label`` to every row with a ``floor``: ground and base mat are both floor
+    0 (:func:`~floorslide.report.columns.floor_label`); a ratio row whose buildings differ
+    names both (``base mat (A) / ground (B)``)."""
+    for row in rows:
+        if "floor" not in row or "floor_label" in row:
+            continue
+        floor = int(row["floor"])
+        if "building" in row:
+            row["floor_label"] = _floor_label_of(study, str(row["building"]), floor)
+            continue
+        a = _floor_label_of(study, str(row.get("building_a", "")), floor)
+        b = _floor_label_of(study, str(row.get("building_b", "")), floor)
+        row["floor_label"] = a if a == b else f"{a} (A) / {b} (B)"
+
+
 # --------------------------------------------------------------------------------------------
 # the API
 
@@ -1040,6 +1062,8 @@ def design_tables(
     }
     tables["exceedance"] = exceedance_table(study)
     tables["fragility"] = fragility_table(study, tables["exceedance"])
+    for rows in tables.values():
+        _label_floors(study, rows)
     notes = table_notes(study, z) + period_notes + study.notes
     notes += [f"{name}: {note}" for name, note in EMPTY_NOTES.items() if not tables[name]]
     return DesignTables(
