@@ -452,11 +452,17 @@ def _floats(text: str, name: str) -> list[float]:
             param_hint=name,
         )
     try:
-        return [_number(v) for v in items]
+        values = [_number(v) for v in items]
     except ValueError:
         raise click.BadParameter(
             f"expected numbers separated by commas, got {text[:60]!r}", param_hint=name
         ) from None
+    if name in ("--mu", "--mu-s"):
+        from floorslide.scene.schema import friction_warning
+
+        for message in dict.fromkeys(filter(None, map(friction_warning, values))):
+            click.echo(f"floorslide: warning: {name}: {message}", err=True)
+    return values
 
 
 def _read_one(

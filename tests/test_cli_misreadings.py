@@ -49,3 +49,15 @@ def test_spectrum_json_of_two_components_states_its_units():
     assert out.returncode == 0, out.stderr
     units = json.loads(out.stdout)["units"]
     assert units["rotd50"] == units["rotd100"] == "m/s**2" and units["h1"]["psa"] == "m/s**2"
+
+
+def test_friction_as_a_percentage_is_a_one_line_warning():
+    out = run("slide", RECORD, "--mu", "10,20", "--json")
+    assert out.returncode == 0, out.stderr
+    assert out.stderr.splitlines() == [
+        "floorslide: warning: --mu: friction coefficient 10 is implausible (dry friction is "
+        "below about 1); did you mean 0.10?",
+        "floorslide: warning: --mu: friction coefficient 20 is implausible (dry friction is "
+        "below about 1); did you mean 0.20?",
+    ]
+    assert run("slide", RECORD, "--mu", "0.1,1.5").stderr == ""

@@ -473,6 +473,7 @@ def rocking_table(study: Study) -> list[dict]:
         row = _building_cols(study, rs, bid)
         row.update(
             floor=floor,
+            floor_label=_floor_label_of(study, bid, floor),
             content=content,
             b_over_h=slender[content],
             alpha=math.atan(slender[content]),
@@ -526,6 +527,7 @@ def plane_table(study: Study) -> list[dict]:
         row = _building_cols(study, rs, bid)
         row.update(
             floor=floor,
+            floor_label=_floor_label_of(study, bid, floor),
             content=content,
             mu_k=mu_k,
             mu_s=mu_s,

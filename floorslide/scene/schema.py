@@ -133,6 +133,36 @@ ID_RULE = (
 """What :func:`id_problem` allows, as the error messages say it."""
 QA_ACTIONS = ("warn", "reject")
 """Values of ``[scene] qa`` (:mod:`floorslide.records.quality`)."""
+MU_PLAUSIBLE = 2.0
+"""Largest plausible Coulomb friction coefficient: dry friction between equipment and floor
+finishes lies below about 1 (rubber on concrete); a value above this is almost surely a
+percentage (``mu = 10`` for 0.10) and is warned about, not refused."""
+ALLOWABLE_PLAUSIBLE = 5.0
+"""Allowable displacements (m) at or above this are warned about: a gap of metres is almost
+surely one written in cm or mm (``allowable = 10`` for 10 cm)."""
+
+
+def friction_warning(mu: float) -> str | None:
+    """The one-line warning for an implausible friction coefficient (above
+    :data:`MU_PLAUSIBLE`), or None."""
+    if not mu > MU_PLAUSIBLE:
+        return None
+    return (
+        f"friction coefficient {mu:g} is implausible (dry friction is below about 1); "
+        f"did you mean {mu / 100:.2f}?"
+    )
+
+
+def allowable_warning(value: float) -> str | None:
+    """The one-line warning for an implausible allowable displacement (at or above
+    :data:`ALLOWABLE_PLAUSIBLE` m), or None."""
+    if not value >= ALLOWABLE_PLAUSIBLE:
+        return None
+    return (
+        f"allowable displacement {value:g} m is implausible (the value is in m); did you mean "
+        f"{value / 100:g} ({value:g} cm) or {value / 1000:g} ({value:g} mm)?"
+    )
+
 
 MAX_SCALE_PGA = MAX_ACCELERATION / G
 """Largest ``scale_pga`` (g): the most the solvers take
@@ -1295,6 +1325,8 @@ def _isolator(value, where: str, ck: _Checker) -> list:
             continue
         if key in ISOLATOR_SWEEPS:
             vals = ck.numbers(value[key], f"{where}.{key}", lo=0, lo_open=key != "mu")
+            if key == "mu":
+                _warn_each(ck, value[key], vals, f"{where}.{key}", friction_warning)
             if vals:
                 swept[key] = vals
         else:
@@ -1322,6 +1354,14 @@ def _isolator(value, where: str, ck: _Checker) -> list:
         ]
         out.append((tuple(layer), tags))
     return out
+
+
+def _warn_each(ck: _Checker, raw, values: tuple[float, ...], where: str, rule) -> None:
+    """Warn (by key path, ``[j]`` for a list) about each value `rule` finds implausible."""
+    for j, v in enumerate(values):
+        message = rule(v)
+        if message:
+            ck.warn(f"{where}[{j}]" if isinstance(raw, list) else where, message)
 
 
 def _floor_spec(value, where, ck: _Checker, stories: set[int]):
@@ -1369,9 +1409,11 @@ def _contents(value, ck: _Checker, stories: set[int]) -> tuple[ContentSpec, ...]
         if "mu" not in c:
             ck.add(f"{w}.mu", "missing: kinetic friction coefficient(s)")
         mu = ck.numbers(c.get("mu", []), f"{w}.mu", lo=0) if "mu" in c else ()
+        _warn_each(ck, c.get("mu"), mu, f"{w}.mu", friction_warning)
         mu_s = None
         if "mu_s" in c:
             mu_s = ck.numbers(c["mu_s"], f"{w}.mu_s", lo=0)
+            _warn_each(ck, c["mu_s"], mu_s, f"{w}.mu_s", friction_warning)
             if mu_s and len(mu_s) not in (1, len(mu)):
                 ck.add(f"{w}.mu_s", f"must be one value or one per mu ({len(mu)}), got {len(mu_s)}")
             elif mu_s and len(mu_s) == 1:
@@ -1397,6 +1439,7 @@ def _contents(value, ck: _Checker, stories: set[int]) -> tuple[ContentSpec, ...]
         allowable: tuple[float, ...] = ()
         if "allowable" in c:
             allowable = ck.numbers(c["allowable"], f"{w}.allowable", lo=0, lo_open=True)
+            _warn_each(ck, c["allowable"], allowable, f"{w}.allowable", allowable_warning)
             if allowable and len(set(allowable)) != len(allowable):
                 ck.add(f"{w}.allowable", "must not repeat a displacement")
             allowable = tuple(sorted(allowable))

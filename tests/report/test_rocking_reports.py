@@ -222,7 +222,9 @@ def test_the_rocking_table_in_markdown_and_csv(rocking):
     fixed = next(ln for ln in text.splitlines() if ln.startswith("| s | fixed |"))
     assert "| 1† |" in fixed  # a p84 over 3 < 8 records
     csv = format_csv("rocking", tables["rocking"])
-    assert csv.startswith("record_set,building,building_kind,isolation_period,floor,content,")
+    assert csv.startswith(
+        "record_set,building,building_kind,isolation_period,floor,floor_label,content,"
+    )
     assert len(csv.splitlines()) == 1 + 3
 
 

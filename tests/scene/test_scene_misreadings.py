@@ -1,0 +1,31 @@
+"""Scene values that are valid but almost surely a mistake are warned about by key path;
+scene conveniences a user expects (docs/design.md §4)."""
+
+from __future__ import annotations
+
+from floorslide.scene.schema import parse_scene
+from tests.conftest import ROOT
+from tests.scene.test_schema import GOOD
+
+
+def test_friction_given_as_a_percentage_warns_by_key_path():
+    text = GOOD.replace("mu = [0.1, 0.2]\nmu_s = 0.25", "mu = [10, 0.2]\nmu_s = 20")
+    sc = parse_scene(text, ROOT / "x.toml")
+    assert sc.contents[0].mu == (10.0, 0.2)  # valid: warned, not refused
+    assert sc.warnings == (
+        "contents[0].mu[0]: friction coefficient 10 is implausible (dry friction is below "
+        "about 1); did you mean 0.10?",
+        "contents[0].mu_s: friction coefficient 20 is implausible (dry friction is below "
+        "about 1); did you mean 0.20?",
+    )
+
+
+def test_allowable_in_cm_warns_that_it_is_in_metres():
+    text = GOOD.replace("mu = 0.2\n", "mu = 0.2\nallowable = [0.05, 10]\n", 1)
+    sc = parse_scene(text, ROOT / "x.toml")
+    assert sc.warnings == (
+        "contents[1].allowable[1]: allowable displacement 10 m is implausible (the value is in "
+        "m); did you mean 0.1 (10 cm) or 0.01 (10 mm)?",
+    )
+    ok = parse_scene(GOOD.replace("mu = 0.2\n", "mu = 0.2\nallowable = 0.1\n", 1), ROOT / "x.toml")
+    assert ok.warnings == ()
