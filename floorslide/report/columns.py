@@ -485,9 +485,16 @@ COLUMNS.update(
             ),
             Column("n_exceed", "1", "records exceeding (slide > a, or overturning)"),
             Column(
+                "n_records_exceedance",
+                "1",
+                "the fraction's denominator: records whose slide is known (n_records − n_rock) "
+                "for a slide state; n_records to overturn",
+            ),
+            Column(
                 "fraction",
                 "1",
-                "n_exceed / (n_records − n_rock) for a slide; n_exceed / n_records to overturn",
+                "n_exceed / n_records_exceedance: (n_records − n_rock) for a slide, n_records "
+                "to overturn",
             ),
             _FEW,
         ),

@@ -263,6 +263,7 @@ def exceedance_table(study: Study) -> list[dict]:
                     n_records=g["n"],
                     n_rock=0 if over else g["n_rock"],
                     n_exceed=k,
+                    n_records_exceedance=n_known,
                     fraction=k / n_known if n_known else math.nan,
                     few_records=n_known < MIN_RECORDS,
                 )

@@ -10,7 +10,7 @@ import pytest
 
 from floorslide.practice.code import asce7_floor_amplification
 from floorslide.practice.fragility import fit_fragility
-from floorslide.report import design_tables, format_csv, format_markdown
+from floorslide.report import COLUMNS, design_tables, format_csv, format_markdown
 from floorslide.report.records import record_table
 from floorslide.report.study import load_study
 from floorslide.run.execute import execute
@@ -132,6 +132,19 @@ def test_exceedance_counts_from_the_per_record_table(study, tables):
         assert (math.isnan(r["fraction"]) and n == 0) or r["fraction"] == k / n
     # the cases that matter occur: something slides past an allowable, something rocks
     assert any(r["n_exceed"] > 0 for r in rows if r["state"].startswith("slide"))
+
+
+def test_exceedance_fraction_states_its_denominator(tables):
+    """The fraction of a slide state is over the records that did not rock: that count is a
+    column, beside the fraction, so that 1/3 is not read as 1 of the 4 records."""
+    names = [c.name for c in COLUMNS["exceedance"]]
+    assert names.index("n_records_exceedance") == names.index("fraction") - 1
+    rows = tables["exceedance"]
+    for r in rows:
+        over = r["state"] == "overturn"
+        assert r["n_records_exceedance"] == r["n_records"] - (0 if over else r["n_rock"])
+        if r["n_records_exceedance"]:
+            assert r["fraction"] == r["n_exceed"] / r["n_records_exceedance"]
 
 
 def test_fragility_rows_fit_the_stripes_counts(tables):
