@@ -348,7 +348,9 @@ COLUMNS: dict[str, tuple[Column, ...]] = {
         Column(
             "impacts_median",
             "1",
-            "median number of impacts over every record (0 at rest; up to the overturning)",
+            "median number of impacts over every record (0 at rest; up to the overturning), "
+            "counting the whole cascade of ever smaller impacts to rest (each r times the "
+            "last): thousands for a block that barely tilts, not a count of rocking cycles",
         ),
     ),
     "plane": (

@@ -98,7 +98,9 @@ RECORD_COLUMNS: tuple[Column, ...] = (
     Column(
         "rock_impacts",
         "1",
-        "impacts while rocking (up to the overturning); NaN where it slides instead or the "
+        "impacts while rocking (up to the overturning), the whole cascade of ever smaller "
+        "impacts to rest included (thousands for a block that barely tilts: not a count of "
+        "rocking cycles); NaN where it slides instead or the "
         "content has no width and height",
     ),
     Column("overturned", "1", "1 if the block overturned, else 0; NaN where not applicable"),

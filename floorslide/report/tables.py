@@ -928,7 +928,9 @@ def table_notes(study: Study, damping: float | None) -> list[str]:
         notes.append(
             "rocking: contents with a width and height that rock are simulated as rigid blocks "
             "(Housner 1963) — the rocking table and the per-record rock_* columns; peak_ratio "
-            "is max|θ|/α, 1 for a record under which the block overturned, 0 at rest"
+            "is max|θ|/α, 1 for a record under which the block overturned, 0 at rest; impacts "
+            "count the whole cascade of ever smaller impacts to rest (each r times the last), "
+            "thousands for a block that barely tilts — not a count of rocking cycles"
         )
     elif any(
         ROCK in (list(c.modes) if c.modes is not None else [c.mode])

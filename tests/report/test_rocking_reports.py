@@ -334,3 +334,16 @@ def test_no_rocking_figures_without_rocking_results(study, tmp_path):
     names = [p.name for p in plot_figures(study.path, tmp_path / "fig")]
     assert "histories_broad-band.png" in names
     assert not any(n.startswith(("rocking", "overturning")) for n in names)
+
+
+def test_impacts_are_said_to_count_the_cascade_to_rest(rocking):
+    """A block that tilts to 2 % of α counts over a thousand impacts (the geometric cascade to
+    rest): every output that shows the count says what it counts."""
+    from floorslide.report.columns import COLUMNS
+    from floorslide.report.records import RECORD_COLUMNS
+
+    tables = design_tables(rocking)
+    assert any("cascade" in n and "rocking cycles" in n for n in tables.notes)
+    described = {c.name: c.description for c in COLUMNS["rocking"]}
+    assert "cascade" in described["impacts_median"]
+    assert "cascade" in next(c.description for c in RECORD_COLUMNS if c.name == "rock_impacts")
