@@ -212,6 +212,22 @@ COLUMNS: dict[str, tuple[Column, ...]] = {
         Column("psa_broadened_p84", "m/s**2", "84th percentile of the PSA, broadened"),
         Column("psa_broadened_g_median", "g", "median PSA, broadened (NaN without)"),
         Column("psa_broadened_g_p84", "g", "84th percentile of the PSA, broadened"),
+        Column(
+            "orientation",
+            "",
+            "RotD50 for record pairs (the psa columns are then RotD50, Boore 2010); empty for "
+            "one component",
+        ),
+        *(
+            Column(f"{name}{unit_tag}_{stat}", units, f"{label} of {what}")
+            for name, what in (
+                ("rotd100", "RotD100, the largest over every direction (record pairs; else NaN)"),
+                ("psa_h1", "the PSA along the pair's first component h1 (pairs; else NaN)"),
+                ("psa_h2", "the PSA along the pair's second component h2 (pairs; else NaN)"),
+            )
+            for unit_tag, units in (("", "m/s**2"), ("_g", "g"))
+            for stat, label in (("median", "median"), ("p84", "84th percentile"))
+        ),
     ),
     "slide_ratios": (
         Column("comparison", "", "the comparison A:B as asked"),
@@ -545,6 +561,12 @@ EMPTY_NOTES = {
     ),
 }
 """What an empty table means, stated where it is written (Markdown, CSV, notes)."""
+
+PAIR_FRS_COLUMNS = frozenset(
+    c.name for c in COLUMNS["frs"] if c.name.startswith(("rotd100", "psa_h1", "psa_h2"))
+) | {"orientation"}
+"""Columns of the ``frs`` table that only record pairs fill (left out of Markdown without
+pairs)."""
 
 OSCILLATOR_COLUMNS = frozenset(
     c.name for c in COLUMNS["slides"] if c.name.startswith(("peak_deformation", "peak_top_accel"))

@@ -180,6 +180,11 @@ DEFAULT_DAMPING = 0.05
 
 _TOL = 1e-9
 
+PAIR_SPECTRA = ("rotd100", "psa_h1", "psa_h2")
+"""The spectra a pair of horizontal components stores beside its RotD50 ``psa``
+(:class:`~floorslide.run.results.SpectrumResult`): RotD100 and each direction's PSA; the
+``frs`` table gives their median and 84th percentile (NaN for one component)."""
+
 
 # --------------------------------------------------------------------------------------------
 # statistics
@@ -692,9 +697,18 @@ def frs_table(study: Study, periods: Sequence[float], damping: float | None) -> 
             if s.psa_broadened is not None:
                 row = np.atleast_2d(np.asarray(s.psa_broadened, dtype=float))[hit[0]]
                 wide = interpolate_spectrum(s.periods, row, periods)
+            pair = []
+            for name in PAIR_SPECTRA:
+                values = getattr(s, name, None)
+                if values is None:
+                    pair.append(nan)
+                    continue
+                row = np.atleast_2d(np.asarray(values, dtype=float))[hit[0]]
+                pair.append(interpolate_spectrum(s.periods, row, periods))
             groups[(rs, bid, int(s.floor))].append(
-                (record, interpolate_spectrum(s.periods, psa, periods), wide)
-            )
+                (record, interpolate_spectrum(s.periods, psa, periods), wide, *pair,
+                 str(getattr(s, "orientation", "") or ""))
+            )  # fmt: skip
     bkey = _order_key(study)
     rows = []
     for key in sorted(groups, key=lambda k: (*bkey(k[0], k[1]), k[2])):
@@ -702,6 +716,8 @@ def frs_table(study: Study, periods: Sequence[float], damping: float | None) -> 
         obs = _by_record(groups[key])
         stack = np.array([o[1] for o in obs])
         wide = np.array([o[2] for o in obs])
+        pairs = {name: np.array([o[3 + k] for o in obs]) for k, name in enumerate(PAIR_SPECTRA)}
+        orientation = ", ".join(sorted({o[-1] for o in obs if o[-1]}))
         for j, p in enumerate(periods):
             _, median, p84 = summarize(stack[:, j])
             _, wmedian, wp84 = summarize(wide[:, j])
@@ -722,7 +738,18 @@ def frs_table(study: Study, periods: Sequence[float], damping: float | None) -> 
                 psa_broadened_p84=wp84,
                 psa_broadened_g_median=wmedian / G,
                 psa_broadened_g_p84=wp84 / G,
+                orientation=orientation,
             )
+            for name, values in pairs.items():
+                _, pmedian, pp84 = summarize(values[:, j])
+                row.update(
+                    {
+                        f"{name}_median": pmedian,
+                        f"{name}_p84": pp84,
+                        f"{name}_g_median": pmedian / G,
+                        f"{name}_g_p84": pp84 / G,
+                    }
+                )
             rows.append(row)
     return rows
 
@@ -971,8 +998,9 @@ def table_notes(study: Study, damping: float | None) -> list[str]:
         if any(getattr(s, "orientation", "") for t in study.tasks for s in t.spectra):
             notes.append(
                 "FRS of record pairs: psa is RotD50 (Boore 2010: the median over 180 directions "
-                "of the peak response along each, exact with in-step peaks); RotD100 and each "
-                "direction's PSA are in the result file"
+                "of the peak response along each, exact with in-step peaks; orientation RotD50); "
+                "RotD100 and each direction's PSA are the rotd100_*, psa_h1_* and psa_h2_* "
+                "columns"
             )
         lost = any(
             s.broadening and np.isnan(np.asarray(s.psa, dtype=float)).all()

@@ -44,3 +44,12 @@ def test_markdown_and_per_record_table_say_base_mat(study, tables):
     df = record_table(study.path)
     assert [c.name for c in RECORD_COLUMNS].index("floor_label") == 7
     assert set(df.floor_label) == {"roof"}
+
+
+def test_one_component_frs_has_no_pair_columns_in_markdown(tables):
+    """The pair columns (RotD100, each direction) are NaN for one component and left out of
+    Markdown; CSV and JSON keep every column."""
+    row = tables["frs"][0]
+    assert row["orientation"] == "" and row["rotd100_median"] != row["rotd100_median"]
+    text = format_markdown(tables, ["frs"])
+    assert "rotd100" not in text and "orientation" not in text
