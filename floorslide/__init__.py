@@ -71,6 +71,7 @@ _EXPORTS: dict[str, tuple[str, ...]] = {
         "design_tables",
         "plot_figures",
         "record_table",
+        "spectra_table",
     ),
     "floorslide.spectra": (
         "RotDSpectrum",
@@ -144,6 +145,7 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
         design_tables,
         plot_figures,
         record_table,
+        spectra_table,
     )
     from floorslide.spectra import (
         RotDSpectrum,
@@ -197,6 +199,7 @@ __all__ = [
     "design_tables",
     "plot_figures",
     "record_table",
+    "spectra_table",
     "envelope",
     "response_mode",
     "response_spectrum",

@@ -53,3 +53,28 @@ def test_one_component_frs_has_no_pair_columns_in_markdown(tables):
     assert row["orientation"] == "" and row["rotd100_median"] != row["rotd100_median"]
     text = format_markdown(tables, ["frs"])
     assert "rotd100" not in text and "orientation" not in text
+
+
+def test_per_record_floor_spectra_are_a_dataframe(study):
+    """spectra_table: the stored spectra record by record, each value the stored one."""
+    import numpy as np
+
+    import floorslide as fs
+    from floorslide.report.records import SPECTRA_COLUMNS
+    from floorslide.run.store import ResultFile
+
+    df = fs.spectra_table(study.path, damping=0.05)
+    assert list(df.columns) == [c.name for c in SPECTRA_COLUMNS]
+    assert df.attrs["units"]["psa"] == "m/s**2" and set(df.damping) == {0.05}
+    tasks = list(ResultFile(study.path).tasks())
+    n_rows = sum(s.periods.size for t in tasks for s in t.spectra)
+    assert len(df) == n_rows
+    t = tasks[0]
+    s = t.spectra[0]
+    sel = df[(df.record == t.meta["record"]) & (df.record_set == t.meta["record_set"])
+             & (df.building == t.meta["building"]) & (df.floor == s.floor)]  # fmt: skip
+    k = list(np.asarray(s.damping)).index(0.05)
+    np.testing.assert_array_equal(sel.psa.to_numpy(), np.asarray(s.psa)[k])
+    np.testing.assert_array_equal(sel.period.to_numpy(), np.asarray(s.periods))
+    assert len(fs.spectra_table(study.path)) == 2 * n_rows  # both damping ratios
+    assert set(df[df.floor == 0].floor_label) == {"ground", "base mat"}
