@@ -346,7 +346,7 @@ class ContentSpec:
     """Equipment: friction values (a list sweeps) on chosen floors."""
 
     id: str
-    floors: Any  # tuple of ints, "all" or "roof"
+    floors: Any  # tuple of ints (and "roof": [1, 3, "roof"]), "all" or "roof"
     mu: tuple[float, ...]
     mu_s: tuple[float, ...] | None = None
     width: float | None = None
@@ -403,11 +403,13 @@ class Scene:
 
 
 def _floors(spec, stories: int) -> tuple[int, ...]:
+    """The floors `spec` names in a building with `stories` storeys: ``"all"``, ``"roof"``, or
+    a list of floor numbers that may hold ``"roof"`` (``[1, 3, "roof"]``), each floor once."""
     if spec == "all":
         return tuple(range(stories + 1))
     if spec == "roof":
         return (stories,)
-    return tuple(sorted(set(int(f) for f in spec)))
+    return tuple(sorted(set(stories if f == "roof" else int(f) for f in spec)))
 
 
 class _Checker:
@@ -1370,6 +1372,15 @@ def _floor_spec(value, where, ck: _Checker, stories: set[int]):
     items = value if isinstance(value, list) else [value]
     out = []
     for j, f in enumerate(items):
+        if f == "roof" and isinstance(value, list):
+            out.append("roof")
+            continue
+        if isinstance(f, str):
+            ck.add(
+                f"{where}[{j}]" if isinstance(value, list) else where,
+                f"must be a floor number, 'roof' or 'all', got {f!r}",
+            )
+            continue
         got = ck.number(
             f, f"{where}[{j}]" if isinstance(value, list) else where, lo=0, integer=True
         )

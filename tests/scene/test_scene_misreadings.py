@@ -29,3 +29,25 @@ def test_allowable_in_cm_warns_that_it_is_in_metres():
     )
     ok = parse_scene(GOOD.replace("mu = 0.2\n", "mu = 0.2\nallowable = 0.1\n", 1), ROOT / "x.toml")
     assert ok.warnings == ()
+
+
+def test_floor_lists_mix_numbers_and_roof():
+    text = GOOD.replace(
+        "floors = [1, 2]\nmu = [0.1, 0.2]", 'floors = [0, 1, "roof"]\nmu = [0.1, 0.2]'
+    )
+    sc = parse_scene(text.replace('floors = "all"', 'floors = [0, "roof"]'), ROOT / "x.toml")
+    assert sc.contents[0].floors_of(2) == (0, 1, 2) and sc.contents[0].floors_of(5) == (0, 1, 5)
+    assert sc.spectra.floors_of(3) == (0, 3)
+    twice = parse_scene(text.replace('[0, 1, "roof"]', '[2, "roof"]'), ROOT / "x.toml")
+    assert twice.contents[0].floors_of(2) == (2,)  # the roof named twice is one floor
+
+
+def test_a_floor_name_other_than_roof_is_one_error_by_key_path():
+    import pytest
+
+    from floorslide.errors import SceneError
+
+    text = GOOD.replace("floors = [1, 2]\nmu = [0.1, 0.2]", 'floors = [1, "top"]\nmu = [0.1, 0.2]')
+    with pytest.raises(SceneError, match=r"contents\[0\]\.floors\[1\]: must be a floor number, "
+                       r"'roof' or 'all', got 'top'"):  # fmt: skip
+        parse_scene(text, ROOT / "x.toml")
