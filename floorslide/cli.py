@@ -531,6 +531,12 @@ def _building(spec: str | None, floor: str | None):
         building = parse_building(spec)
     except ModelError as exc:
         raise click.BadParameter(str(exc), param_hint="--building") from None
+    if hasattr(building, "isolator"):
+        raise click.BadParameter(
+            f"isolator={building.kind}: a nonlinear isolation layer runs in a scene "
+            "([[buildings]] isolator, floorslide run), not yet on the single-record commands",
+            param_hint="--building",
+        )
     top = building.stories
     if floor is None or floor.strip().lower() == "roof":
         number = top
@@ -549,7 +555,7 @@ def _building(spec: str | None, floor: str | None):
     if number == top:
         name = f"floor {number} (roof)"
     elif number == 0:
-        name = "floor 0 (base mat)" if building.dof_of(0) is not None else "floor 0 (ground)"
+        name = "floor 0 (base mat)" if _kind(building) == "isolated" else "floor 0 (ground)"
     else:
         name = f"floor {number}"
     return building, number, f"on {name} of: {describe_building(building)}"
@@ -943,8 +949,12 @@ def _floor_name(building, floor_no: int) -> str:
 
     if building is None:
         return "ground"
-    kind = "isolated" if building.dof_of(0) is not None else "fixed"
-    return floor_label(kind, floor_no, building.stories)
+    return floor_label(_kind(building), floor_no, building.stories)
+
+
+def _kind(building) -> str:
+    """``isolated`` (on linear or nonlinear isolation: floor 0 is its base mat) or ``fixed``."""
+    return "isolated" if hasattr(building, "superstructure") else "fixed"
 
 
 def _spectrum_grid(periods: str | None, damping: str):

@@ -15,7 +15,11 @@ with the superstructure of an isolated building inline:
     (:class:`~floorslide.building.model.IsolatedBuilding`): ``period`` (isolation period
     T_i, s, required), ``damping`` (ξ_i, default 0.10), ``base_mass_ratio`` (m_b/m, default 1);
     the superstructure as ``super_period`` (s) with ``stories``, ``super_damping`` (default
-    0.05), ``mass``, ``profile`` — or as ``masses`` and ``stiffnesses`` with ``super_damping``.
+    0.05), ``mass``, ``profile`` — or as ``masses`` and ``stiffnesses`` with ``super_damping``;
+    ``isolator=friction_pendulum`` (``mu``, ``mu_s``, ``capacity``, and ``radius`` R in m or
+    ``period`` = 2π√(R/g): both must agree) or ``isolator=bilinear`` (``q_ratio``,
+    ``yield_disp`` or ``alpha``, ``capacity``; ``period`` = T_d) put it on a nonlinear layer
+    (:class:`~floorslide.building.nonlinear.NonlinearIsolatedBuilding`, ``damping`` default 0).
 
 A list (``masses``, ``stiffnesses``, per-floor ``mass``, per-mode ``damping``) separates its
 values with ``/``: ``fixed:masses=2e5/2e5/1.5e5,stiffnesses=3e8/3e8/2e8,damping=0.03``.
@@ -52,9 +56,58 @@ KEYS: dict[str, tuple[str, ...]] = {
         "profile",
         "masses",
         "stiffnesses",
+        "isolator",
+        "mu",
+        "mu_s",
+        "radius",
+        "q_ratio",
+        "yield_disp",
+        "alpha",
+        "capacity",
     ),
 }
 """The keys each kind accepts."""
+
+ISOLATORS = ("linear", "friction_pendulum", "bilinear")
+"""Values of an isolated spec's ``isolator`` (the scene's ``isolator.model``)."""
+LAYER_KEYS = {
+    "linear": (),
+    "friction_pendulum": ("mu", "mu_s", "radius", "capacity"),
+    "bilinear": ("q_ratio", "yield_disp", "alpha", "capacity"),
+}
+"""The keys of each isolator's layer (beside ``period`` and ``damping``)."""
+
+PENDULUM_PERIOD_TOLERANCE = 1e-3
+"""A friction pendulum given both a radius and a period: they must agree to this relative
+difference in period (``T = 2π√(R/g)``)."""
+
+
+def pendulum_period(radius: float, period: float | None = None) -> float:
+    """The period ``T = 2π√(R/g)`` of a friction pendulum of radius `radius` (m); with `period`
+    given too (s), that period, once checked to agree within :data:`PENDULUM_PERIOD_TOLERANCE`
+    (a :class:`~floorslide.errors.ModelError` at ``radius`` otherwise).
+
+    Examples
+    --------
+    >>> round(pendulum_period(2.0), 4)
+    2.8375
+    """
+    from floorslide.constants import G
+
+    radius = float(radius)
+    if not np.isfinite(radius) or radius <= 0:
+        raise ModelError(f"must be > 0, got {radius!r}", "radius")
+    own = 2 * np.pi * np.sqrt(radius / G)
+    if period is None:
+        return float(own)
+    if abs(period - own) > PENDULUM_PERIOD_TOLERANCE * own:
+        raise ModelError(
+            f"R = {radius:g} m gives the pendulum period 2π√(R/g) = {own:.4g} s, but "
+            f"period = {period:g} s; give one of radius and period",
+            "radius",
+        )
+    return float(period)
+
 
 EXAMPLES = (
     "fixed:period=0.4,stories=3,damping=0.05",
@@ -212,14 +265,61 @@ def parse_building(text: str) -> LinearBuilding:
     superstructure = _superstructure(values, kind)
     if kind == "fixed":
         return superstructure
-    if "period" not in values:
-        raise ModelError("period is missing: the isolation period T_i, s", "period")
-    return IsolatedBuilding(
-        superstructure,
-        base_mass_ratio=_number(values, "base_mass_ratio", 1.0),
-        period=_number(values, "period"),
-        damping=_number(values, "damping", 0.10),
-    )
+    model = values.get("isolator", "linear").strip().lower()
+    if model not in ISOLATORS:
+        raise ModelError(
+            f"isolator={values['isolator']!r}; expected one of {', '.join(ISOLATORS)}", "isolator"
+        )
+    stray = [k for k in _LAYER_ONLY if k in values and k not in LAYER_KEYS[model]]
+    if stray:
+        raise ModelError(
+            f"{stray[0]}= is not a key of isolator={model} (its keys: "
+            f"{', '.join(LAYER_KEYS[model]) or 'period, damping'})",
+            stray[0],
+        )
+    if model == "friction_pendulum" and "radius" in values:
+        period = pendulum_period(
+            _number(values, "radius"),
+            _number(values, "period") if "period" in values else None,
+        )
+    elif "period" not in values:
+        what = {
+            "linear": "the isolation period T_i, s",
+            "bilinear": "the post-yield period T_d, s",
+            "friction_pendulum": "the pendulum period, s (or radius=, m)",
+        }[model]
+        raise ModelError(f"period is missing: {what}", "period")
+    else:
+        period = _number(values, "period")
+    ratio = _number(values, "base_mass_ratio", 1.0)
+    if model == "linear":
+        return IsolatedBuilding(
+            superstructure,
+            base_mass_ratio=ratio,
+            period=period,
+            damping=_number(values, "damping", 0.10),
+        )
+    from floorslide.building.isolators import BilinearIsolator, FrictionPendulum
+    from floorslide.building.nonlinear import NonlinearIsolatedBuilding
+
+    params = {k: _number(values, k) for k in LAYER_KEYS[model] if k in values and k != "radius"}
+    damping = _number(values, "damping", 0.0)
+    try:
+        if model == "bilinear":
+            if "q_ratio" not in values:
+                raise ModelError("q_ratio is missing: the characteristic strength Q/W", "q_ratio")
+            layer = BilinearIsolator(period=period, damping=damping, **params)
+        else:
+            if "mu" not in values:
+                raise ModelError("mu is missing: the pendulum's friction coefficient", "mu")
+            layer = FrictionPendulum(period=period, damping=damping, **params)
+    except ModelError as exc:
+        where = (exc.where or "").removeprefix("isolator.")
+        raise ModelError(exc.message, where or "isolator") from None
+    return NonlinearIsolatedBuilding(superstructure, ratio, layer)
+
+
+_LAYER_ONLY = ("mu", "mu_s", "radius", "q_ratio", "yield_disp", "alpha", "capacity")
 
 
 def _damping_text(damping: object) -> str:
@@ -238,6 +338,19 @@ def describe_building(building: LinearBuilding) -> str:
     >>> describe_building(parse_building("fixed:period=0.4,stories=3"))
     'fixed-base, 3 storeys, T1 = 0.4 s, ξ = 0.05'
     """
+    layer = getattr(building, "isolator", None)
+    if layer is not None:
+        sup = building.superstructure
+        if hasattr(layer, "R"):
+            what = (
+                f"a friction pendulum, R = {layer.R:.4g} m, T = {layer.T:.4g} s, mu = {layer.mu:g}"
+            )
+        else:
+            what = f"a bilinear layer, T_d = {layer.period:g} s, Q/W = {layer.q_ratio:g}"
+        return (
+            f"isolated on {what}, m_b/m = {building.base_mass_ratio:g}; superstructure "
+            f"{describe_building(sup)}"
+        )
     if isinstance(building, IsolatedBuilding):
         sup = building.superstructure
         return (

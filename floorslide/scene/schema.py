@@ -82,7 +82,7 @@ ways. A single-component record runs on the first direction's model."""
 ISOLATOR_KEYS = {
     "linear": {"model"},
     "bilinear": {"model", "q_ratio", "yield_disp", "alpha", "capacity"},
-    "friction_pendulum": {"model", "mu", "mu_s", "capacity"},
+    "friction_pendulum": {"model", "mu", "mu_s", "capacity", "radius"},
 }
 """Keys of an isolated building's ``isolator`` table per ``model`` (``period`` and ``damping``
 stay on the building: the isolation period — post-yield ``T_d`` of a bilinear layer, the
@@ -1206,7 +1206,10 @@ def _buildings(value, ck: _Checker) -> tuple[tuple[BuildingSpec, ...], set[str]]
         periods = (
             ck.numbers(b["period"], f"{w}.period", lo=0, lo_open=True) if "period" in b else ()
         )
-        if "period" not in b:
+        pendulum = _pendulum_period(b, w, ck, periods)
+        if pendulum is not None:
+            periods = (pendulum,)
+        elif "period" not in b:
             ck.add(f"{w}.period", "missing: the isolation period, s")
         layers = _isolator(b.get("isolator"), f"{w}.isolator", ck)
         nonlinear = bool(layers) and dict(layers[0][0]).get("model", "linear") != "linear"
@@ -1301,6 +1304,36 @@ def _direction_h2(b: dict, w: str, ck: _Checker, storeys_given: bool, nonlinear:
     return tuple(out)
 
 
+def _pendulum_period(b: dict, w: str, ck: _Checker, periods: tuple[float, ...]):
+    """The period ``2π√(R/g)`` of a friction pendulum given by ``isolator.radius`` (None
+    without one, or when invalid: the problem is reported). With ``period`` given too, both
+    must agree (:func:`floorslide.building.spec.pendulum_period`)."""
+    layer = b.get("isolator")
+    if not isinstance(layer, dict) or "radius" not in layer:
+        return None
+    if layer.get("model") != "friction_pendulum":
+        return None  # reported as an unknown key of the layer
+    from floorslide.building.spec import pendulum_period
+    from floorslide.errors import ModelError
+
+    where = f"{w}.isolator.radius"
+    radius = ck.number(layer["radius"], where, lo=0, lo_open=True)
+    if radius is None:
+        return None
+    if "period" not in b:
+        return pendulum_period(radius)
+    if isinstance(b["period"], list) and len(b["period"]) > 1:
+        ck.add(where, "a radius gives one pendulum period: do not sweep period with it")
+        return None
+    if not periods:
+        return None  # the period is invalid: reported there
+    try:
+        return pendulum_period(radius, periods[0])
+    except ModelError as exc:
+        ck.add(where, exc.message)
+        return None
+
+
 def _isolator(value, where: str, ck: _Checker) -> list:
     """The variants of an ``isolator`` table: ``[(layer, tags)]`` with ``layer`` the
     :attr:`BuildingSpec.isolator` tuple and ``tags`` the swept values' id tags; ``[]`` for the
@@ -1325,6 +1358,8 @@ def _isolator(value, where: str, ck: _Checker) -> list:
     for key in sorted(ISOLATOR_KEYS[model] - {"model"}):
         if key not in value:
             continue
+        if key == "radius":
+            continue  # the pendulum's period (_pendulum_period)
         if key in ISOLATOR_SWEEPS:
             vals = ck.numbers(value[key], f"{where}.{key}", lo=0, lo_open=key != "mu")
             if key == "mu":

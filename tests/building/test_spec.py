@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 import pytest
 
@@ -96,3 +98,24 @@ def test_description():
     assert text.endswith("superstructure fixed-base, 1 storey, T1 = 0.2 s, ξ = 0.05")
     rayleigh = ShearBuilding([1, 1], [100, 100], Rayleigh(0.05))
     assert "Rayleigh ξ = 0.05" in describe_building(rayleigh)
+
+
+def test_a_friction_pendulum_by_radius_or_period():
+    """T = 2π√(R/g): radius=2 is the period 2.8375 s; both given must agree (0.1 %)."""
+    from floorslide.building.isolators import FrictionPendulum
+    from floorslide.building.spec import pendulum_period
+
+    assert pendulum_period(2.0) == pytest.approx(2 * np.pi * np.sqrt(2.0 / 9.80665), rel=1e-15)
+    sup = "super_period=0.4,stories=3"
+    by_r = parse_building(f"isolated:isolator=friction_pendulum,mu=0.05,radius=2,{sup}")
+    by_t = parse_building(f"isolated:isolator=friction_pendulum,mu=0.05,period=2.8375,{sup}")
+    assert isinstance(by_r.isolator, FrictionPendulum) and by_r.stories == 3
+    assert by_r.isolator.R == pytest.approx(2.0, rel=1e-12)
+    assert by_t.isolator.R == pytest.approx(2.0, rel=1e-4)
+    assert "friction pendulum, R = 2 m, T = 2.837 s" in describe_building(by_r)
+    text = "gives the pendulum period 2π√(R/g) = 2.837 s, but period = 3 s; give one of radius"
+    with pytest.raises(ModelError, match=re.escape(text)) as err:
+        parse_building(f"isolated:isolator=friction_pendulum,mu=0.05,radius=2,period=3,{sup}")
+    assert err.value.where == "radius"
+    with pytest.raises(ModelError, match="radius= is not a key of isolator=linear"):
+        parse_building(f"isolated:period=2.5,radius=2,{sup}")

@@ -51,3 +51,40 @@ def test_a_floor_name_other_than_roof_is_one_error_by_key_path():
     with pytest.raises(SceneError, match=r"contents\[0\]\.floors\[1\]: must be a floor number, "
                        r"'roof' or 'all', got 'top'"):  # fmt: skip
         parse_scene(text, ROOT / "x.toml")
+
+
+PENDULUM = """
+[[buildings]]
+id = "fps"
+kind = "isolated"
+superstructure = "fb1"
+{period}
+isolator = {{ model = "friction_pendulum", mu = 0.05, {radius} }}
+"""
+
+
+def _pendulum_scene(period: str, radius: str) -> str:
+    return GOOD.replace("\n[[contents]]", PENDULUM.format(period=period, radius=radius)
+                        + "\n[[contents]]", 1)  # fmt: skip
+
+
+def test_a_pendulum_by_its_radius_has_the_period_two_pi_root_r_over_g():
+    import math
+
+    sc = parse_scene(_pendulum_scene("", "radius = 2.0"), ROOT / "x.toml")
+    (fps,) = [b for b in sc.buildings if b.base == "fps"]
+    assert fps.period == 2 * math.pi * math.sqrt(2.0 / 9.80665)  # 2.8375 s
+    assert fps.build().isolator.R == __import__("pytest").approx(2.0, rel=1e-12)
+    both = parse_scene(_pendulum_scene("period = 2.8375", "radius = 2.0"), ROOT / "x.toml")
+    assert [b.period for b in both.buildings if b.base == "fps"] == [2.8375]
+
+
+def test_a_pendulum_radius_that_contradicts_its_period_is_refused():
+    import pytest
+
+    from floorslide.errors import SceneError
+
+    with pytest.raises(SceneError, match=r"buildings\[3\]\.isolator\.radius: R = 2 m gives the "
+                       r"pendulum period 2π√\(R/g\) = 2\.837 s, but period = 3 s; give one of "
+                       r"radius and period"):  # fmt: skip
+        parse_scene(_pendulum_scene("period = 3.0", "radius = 2.0"), ROOT / "x.toml")
