@@ -471,7 +471,12 @@ COLUMNS.update(
         "code": (
             *_BUILDING,
             _FLOOR,
-            Column("z_over_h", "1", "relative height floor/stories (equal storey heights)"),
+            Column(
+                "z_over_h",
+                "1",
+                "relative height z/h of the floor: from the building's storey_heights, else "
+                "floor/stories (equal storeys)",
+            ),
             Column(
                 "period_a",
                 "s",

@@ -63,6 +63,7 @@ FIXED_KEYS = {
     "profile",
     "period_h2",
     "damping_h2",
+    "storey_heights",
 }
 ISOLATED_KEYS = {
     "id",
@@ -260,6 +261,8 @@ class BuildingSpec:
     """Along the second horizontal component: the damping ratio (NaN: as along the first)."""
     super_period_h2: float = math.nan
     super_damping_h2: float = math.nan
+    storey_heights: tuple[float, ...] = ()
+    """Height of each storey, m (``()``: equal storeys); the code comparison's z/h."""
 
     @property
     def two_way(self) -> bool:
@@ -1162,6 +1165,7 @@ def _buildings(value, ck: _Checker) -> tuple[tuple[BuildingSpec, ...], set[str]]
             declared_fixed.add(named)
         ck.keys(b, FIXED_KEYS, w)
         model = _fixed_model(b, w, ck)
+        heights = _storey_heights(b, w, ck, model[0] if model else None)
         damps = ck.numbers(b.get("damping", 0.05), f"{w}.damping", lo=0, hi=1, hi_open=True)
         if model is None or not damps or not bid:
             continue
@@ -1191,6 +1195,7 @@ def _buildings(value, ck: _Checker) -> tuple[tuple[BuildingSpec, ...], set[str]]
                     stiffnesses=stiffnesses,
                     period_h2=p2,
                     damping_h2=z2,
+                    storey_heights=heights,
                 )
             )
         fixed[bid] = variants
@@ -1273,9 +1278,27 @@ def _buildings(value, ck: _Checker) -> tuple[tuple[BuildingSpec, ...], set[str]]
                     damping_h2=z2,
                     super_period_h2=s.period_h2,
                     super_damping_h2=s.damping_h2,
+                    storey_heights=s.storey_heights,
                 )
             )
     return tuple(out), ids
+
+
+def _storey_heights(b: dict, w: str, ck: _Checker, stories: int | None) -> tuple[float, ...]:
+    """``storey_heights`` of a fixed building (m, > 0; one number or one per storey), used for
+    the code comparison's z/h; ``()`` when absent or invalid (reported)."""
+    if "storey_heights" not in b:
+        return ()
+    got = _storey_values(b["storey_heights"], f"{w}.storey_heights", ck, "m")
+    if got is None or stories is None:
+        return ()
+    if len(got) not in (1, stories):
+        ck.add(
+            f"{w}.storey_heights",
+            f"{len(got)} heights (one per storey) for {stories} storeys",
+        )
+        return ()
+    return tuple(np.broadcast_to(got, (stories,)).tolist())
 
 
 def _direction_h2(b: dict, w: str, ck: _Checker, storeys_given: bool, nonlinear: bool):

@@ -215,3 +215,38 @@ def test_a_real_report_with_figures_renders(study, tmp_path):
     assert path.stat().st_size > 200_000  # the figures are in it
     inked = rendered_ink(path, tmp_path)
     assert inked > 0.01, f"the rendered report looks blank ({inked:.4f} of pixels inked)"
+
+
+def test_code_h_f_uses_the_storey_heights(study, monkeypatch):
+    """With storey_heights = [4, 2] m floor 1 is at z/h = 4/6, not 1/2, and H_f follows
+    (ASCE 7-22 Eq. 13.3-4 at that height); the roof stays at 1."""
+    import dataclasses
+
+    from floorslide.practice.code import relative_heights
+    from floorslide.report import practice
+    from floorslide.report.practice import code_table
+
+    profiles = practice.pfa_profiles
+
+    def every_floor(st, rs):  # the study stores the roof only: floor 1 gets its values too
+        return {b: {0: fl[2], 1: fl[2], 2: fl[2]} for b, fl in profiles(st, rs).items()}
+
+    monkeypatch.setattr(practice, "pfa_profiles", every_floor)
+
+    scene = dict(study.scene)
+    scene["buildings"] = [dict(b) for b in scene["buildings"]]
+    scene["buildings"][0]["storey_heights"] = [4.0, 2.0]
+    tall = dataclasses.replace(study, scene=scene)
+    equal = {(r["building"], r["floor"]): r for r in code_table(study)}
+    rows = {(r["building"], r["floor"]): r for r in code_table(tall)}
+    assert relative_heights(2, [4.0, 2.0]).tolist() == [0.0, 4 / 6, 1.0]
+    assert rows[("fixed", 2)]["z_over_h"] == 1.0
+    floors = [f for (b, f) in rows if b == "fixed"]
+    for f in floors:
+        z = relative_heights(2, [4.0, 2.0])[f]
+        assert rows[("fixed", f)]["z_over_h"] == z
+        assert rows[("fixed", f)]["h_f"] == float(asce7_floor_amplification(z, 0.3))
+    assert floors == [0, 1, 2] and equal[("fixed", 1)]["z_over_h"] == 0.5
+    assert rows[("fixed", 1)]["z_over_h"] == 4 / 6
+    iso = [r for (b, f), r in rows.items() if b == "iso"]
+    assert all(r["z_over_h"] == relative_heights(2, [4.0, 2.0])[r["floor"]] for r in iso)

@@ -88,3 +88,19 @@ def test_a_pendulum_radius_that_contradicts_its_period_is_refused():
                        r"pendulum period 2π√\(R/g\) = 2\.837 s, but period = 3 s; give one of "
                        r"radius and period"):  # fmt: skip
         parse_scene(_pendulum_scene("period = 3.0", "radius = 2.0"), ROOT / "x.toml")
+
+
+def test_storey_heights_one_per_storey_or_one_for_all():
+    import pytest
+
+    from floorslide.errors import SceneError
+
+    text = GOOD.replace('id = "fb1"\nkind = "fixed"\nstories = 2', 'id = "fb1"\nkind = "fixed"\n'
+                        'stories = 2\nstorey_heights = [4.5, 3.0]')  # fmt: skip
+    sc = parse_scene(text, ROOT / "x.toml")
+    fb1 = next(b for b in sc.buildings if b.id == "fb1")
+    assert fb1.storey_heights == (4.5, 3.0)
+    assert next(b for b in sc.buildings if b.base == "iso").storey_heights == (4.5, 3.0)
+    with pytest.raises(SceneError, match=r"buildings\[1\]\.storey_heights: 3 heights \(one per "
+                       r"storey\) for 2 storeys"):  # fmt: skip
+        parse_scene(text.replace("[4.5, 3.0]", "[4.5, 3.0, 3.0]"), ROOT / "x.toml")
