@@ -1922,6 +1922,31 @@ def bench(quick, as_json, out):
 
 
 @cli.command()
+@click.argument("path", default="scene.toml", required=False, metavar="[PATH]")
+def init(path):
+    """Write a commented scene template to PATH (default scene.toml): every section of a
+    scene file (docs/design.md §4) on the bundled records, ready for
+    `floorslide run PATH --dry-run`. An existing file is replaced only when it is an unedited
+    template; anything else there is refused (exit code 2) and left alone."""
+    from pathlib import Path
+
+    from floorslide import outputs
+    from floorslide.scene.template import scene_template
+
+    text = scene_template(Path(path).name)
+    mine = text.encode("utf-8")
+    outputs.write_output(
+        path,
+        text,
+        replace=lambda existing: existing == mine,
+        advice="choose another PATH, or move the file away",
+        what="the scene template",
+    )
+    click.echo(f"wrote {path}: a scene on the bundled records; edit it, then")
+    click.echo(f"  floorslide run {path} --dry-run")
+
+
+@cli.command()
 @click.argument("families", nargs=-1, metavar="[FAMILY]...")
 @click.option(
     "--workers",
