@@ -368,6 +368,13 @@ COLUMNS: dict[str, tuple[Column, ...]] = {
             "counting the whole cascade of ever smaller impacts to rest (each r times the "
             "last): thousands for a block that barely tilts, not a count of rocking cycles",
         ),
+        Column(
+            "significant_impacts_median",
+            "1",
+            "median number of significant impacts: those at |θ'| ≥ p·α·√(f(2 − f)), f = 0.01, "
+            "the speed of a block rocking freely back from a tilt of 1 % of α (the cascade to "
+            "rest left out; NaN in files written before they were counted)",
+        ),
     ),
     "plane": (
         *_BUILDING,

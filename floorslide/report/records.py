@@ -103,6 +103,13 @@ RECORD_COLUMNS: tuple[Column, ...] = (
         "rocking cycles); NaN where it slides instead or the "
         "content has no width and height",
     ),
+    Column(
+        "rock_significant_impacts",
+        "1",
+        "significant impacts: at |θ'| ≥ p·α·√(f(2 − f)), f = 0.01, the speed of a block "
+        "rocking freely back from a tilt of 1 % of α (the cascade to rest left out); NaN where "
+        "not applicable or in files written before they were counted",
+    ),
     Column("overturned", "1", "1 if the block overturned, else 0; NaN where not applicable"),
     Column("overturn_time_s", "s", "when it overturned (NaN: it did not, or not applicable)"),
     Column("rock_time_s", "s", "time spent rocking; NaN where not applicable"),
@@ -136,7 +143,14 @@ PLANE_VALUES = PLANE_FIELDS
 """The per-record columns of a pair (NaN for one component): the pair's arrays of a content
 result (:data:`~floorslide.run.results.PLANE_FIELDS`)."""
 
-ROCK_VALUES = ("rock_peak_ratio", "rock_impacts", "overturned", "overturn_time_s", "rock_time_s")
+ROCK_VALUES = (
+    "rock_peak_ratio",
+    "rock_impacts",
+    "rock_significant_impacts",
+    "overturned",
+    "overturn_time_s",
+    "rock_time_s",
+)
 """The per-record rocking columns (NaN where not applicable)."""
 
 
@@ -186,6 +200,15 @@ def plane_values(c, i: int) -> dict:
     return {name: float(getattr(c, name)[i]) for name in PLANE_VALUES}
 
 
+def significant_impacts(c, i: int) -> float:
+    """The significant impacts of friction pair `i` of a content result (NaN where not
+    applicable, and in files written before they were counted)."""
+    big = getattr(c, "rock_significant_impacts", None)
+    if big is None or len(big) <= i or big[i] < 0:
+        return math.nan
+    return float(big[i])
+
+
 def rocking_values(c, i: int) -> dict:
     """The rocking columns of friction pair `i` of a content result: NaN (and an empty
     ``observed_outcome``) for a content without width and height, a file written before rocking
@@ -200,6 +223,7 @@ def rocking_values(c, i: int) -> dict:
     return {
         "rock_peak_ratio": float(c.rock_peak_ratio[i]),
         "rock_impacts": impacts if impacts >= 0 else math.nan,
+        "rock_significant_impacts": significant_impacts(c, i),
         "overturned": float(c.overturned[i]),
         "overturn_time_s": float(c.overturn_time[i]),
         "rock_time_s": float(c.rock_time[i]),

@@ -130,7 +130,7 @@ from floorslide.report.practice import (
     scaling_table,
     suite_table,
 )
-from floorslide.report.records import record_rows
+from floorslide.report.records import record_rows, significant_impacts
 from floorslide.report.statistics import (
     interpolate_spectrum,
     outcome,
@@ -457,6 +457,7 @@ def rocking_table(study: Study) -> list[dict]:
                     float(c.rock_peak_ratio[i]),
                     float(c.rock_impacts[i]),
                     float(c.overturned[i]),
+                    significant_impacts(c, i),
                 )
             )
             mus = holding.setdefault(key, [])
@@ -470,7 +471,9 @@ def rocking_table(study: Study) -> list[dict]:
     for k in sorted(groups, key=key):
         rs, bid, floor, content = k
         obs = _by_record(groups[k])
-        peak, impacts, over = (np.array([o[j] for o in obs], dtype=float) for j in (1, 2, 3))
+        peak, impacts, over, big = (
+            np.array([o[j] for o in obs], dtype=float) for j in (1, 2, 3, 4)
+        )
         n = len(obs)
         n_rock = int(np.sum((peak > 0) | (over > 0)))
         n_over = int(np.sum(over > 0))
@@ -492,6 +495,7 @@ def rocking_table(study: Study) -> list[dict]:
             peak_ratio_median=peak_median,
             peak_ratio_p84=peak_p84,
             impacts_median=summarize(impacts)[1],
+            significant_impacts_median=summarize(big)[1],
         )
         rows.append({c.name: row[c.name] for c in COLUMNS["rocking"]})
     return rows
@@ -957,7 +961,9 @@ def table_notes(study: Study, damping: float | None) -> list[str]:
             "(Housner 1963) — the rocking table and the per-record rock_* columns; peak_ratio "
             "is max|θ|/α, 1 for a record under which the block overturned, 0 at rest; impacts "
             "count the whole cascade of ever smaller impacts to rest (each r times the last), "
-            "thousands for a block that barely tilts — not a count of rocking cycles"
+            "thousands for a block that barely tilts — not a count of rocking cycles; "
+            "significant_impacts count those at |θ'| ≥ p·α·√(f(2 − f)), f = 0.01, the speed of "
+            "a block rocking freely back from a tilt of 1 % of α"
         )
     elif any(
         ROCK in (list(c.modes) if c.modes is not None else [c.mode])

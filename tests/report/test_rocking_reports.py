@@ -347,3 +347,33 @@ def test_impacts_are_said_to_count_the_cascade_to_rest(rocking):
     described = {c.name: c.description for c in COLUMNS["rocking"]}
     assert "cascade" in described["impacts_median"]
     assert "cascade" in next(c.description for c in RECORD_COLUMNS if c.name == "rock_impacts")
+
+
+def test_significant_impacts_are_stored_and_tabulated(rocking):
+    """A run stores the rocking solver's significant impacts beside all impacts; the per-record
+    table shows them and the rocking table gives their median (numpy's)."""
+    import floorslide as fs
+    from floorslide.run.store import ResultFile
+
+    df = record_table(rocking)
+    rocked = df[df.observed_outcome.isin(["rock", "overturn"])]
+    assert len(rocked) and rocked.rock_significant_impacts.notna().all()
+    assert (rocked.rock_significant_impacts <= rocked.rock_impacts).all()
+    assert (rocked.rock_significant_impacts < rocked.rock_impacts).any()  # a cascade left out
+    rest = df[df.observed_outcome == "rest"]
+    assert (rest.rock_significant_impacts == 0).all()
+    # the stored value is the solver's own count for that record and block
+    row = rocked[rocked.building == "fixed"].iloc[0]
+    task = next(
+        t for t in ResultFile(rocking).tasks()
+        if t.meta["record"] == row.record and t.meta["building"] == "fixed"
+    )  # fmt: skip
+    assert int(row.rock_significant_impacts) in {
+        int(c.rock_significant_impacts[i]) for c in task.contents if c.content == "cabinet"
+        for i in range(len(c.mu_k)) if c.rock_significant_impacts[i] >= 0
+    }  # fmt: skip
+    assert fs.RockResult.__dataclass_fields__["significant_impacts"]
+    for r in design_tables(rocking)["rocking"]:
+        sel = df[(df.building == r["building"]) & (df.content == r["content"])
+                 & (df.mu_s == df[df.content == r["content"]].mu_s.max())]  # fmt: skip
+        assert r["significant_impacts_median"] == np.median(sel.rock_significant_impacts)
