@@ -73,6 +73,7 @@ _EXPORTS: dict[str, tuple[str, ...]] = {
         "design_tables",
         "plot_figures",
         "record_table",
+        "spectra_table",
     ),
     "floorslide.spectra": (
         "RotDSpectrum",
@@ -148,6 +149,7 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
         design_tables,
         plot_figures,
         record_table,
+        spectra_table,
     )
     from floorslide.spectra import (
         RotDSpectrum,
@@ -203,6 +205,7 @@ __all__ = [
     "design_tables",
     "plot_figures",
     "record_table",
+    "spectra_table",
     "envelope",
     "response_mode",
     "response_spectrum",

@@ -452,11 +452,17 @@ def _floats(text: str, name: str) -> list[float]:
             param_hint=name,
         )
     try:
-        return [_number(v) for v in items]
+        values = [_number(v) for v in items]
     except ValueError:
         raise click.BadParameter(
             f"expected numbers separated by commas, got {text[:60]!r}", param_hint=name
         ) from None
+    if name in ("--mu", "--mu-s"):
+        from floorslide.scene.schema import friction_warning
+
+        for message in dict.fromkeys(filter(None, map(friction_warning, values))):
+            click.echo(f"floorslide: warning: {name}: {message}", err=True)
+    return values
 
 
 def _read_one(
@@ -545,7 +551,7 @@ def _building(spec: str | None, floor: str | None):
     if number == top:
         name = f"floor {number} (roof)"
     elif number == 0:
-        name = "floor 0 (base mat)" if building.dof_of(0) is not None else "floor 0 (ground)"
+        name = "floor 0 (base mat)" if _kind(building) == "isolated" else "floor 0 (ground)"
     else:
         name = f"floor {number}"
     return building, number, f"on {name} of: {describe_building(building)}"
@@ -915,6 +921,44 @@ def _periods(text: str | None):
     return _floats(text, "--periods")
 
 
+SPECTRUM_UNITS = {
+    "periods": "s",
+    "damping": "1",
+    "psa": "m/s**2",
+    "sa": "m/s**2",
+    "sv": "m/s",
+    "sd": "m",
+    "psv": "m/s",
+}
+"""Units of ``spectrum --json`` (SI; the text table prints PSA and SA in g)."""
+
+ROTD_UNITS = {
+    "periods": "s",
+    "damping": "1",
+    "rotd50": "m/s**2",
+    "rotd100": "m/s**2",
+    "angle100": "deg",
+    "time100": "s",
+    "h1": SPECTRUM_UNITS,
+    "h2": SPECTRUM_UNITS,
+}
+"""Units of ``spectrum --json`` with two components (the text table prints g)."""
+
+
+def _floor_name(building, floor_no: int) -> str:
+    """``ground``, ``base mat``, ``roof`` or ``floor N`` (the ground without a building)."""
+    from floorslide.report.columns import floor_label
+
+    if building is None:
+        return "ground"
+    return floor_label(_kind(building), floor_no, building.stories)
+
+
+def _kind(building) -> str:
+    """``isolated`` (on linear or nonlinear isolation: floor 0 is its base mat) or ``fixed``."""
+    return "isolated" if hasattr(building, "superstructure") else "fixed"
+
+
 def _spectrum_grid(periods: str | None, damping: str):
     """The periods and damping ratios of ``spectrum``, checked before anything is read: at most
     as many as a scene allows, none absurd (a usage error naming the option, exit 2)."""
@@ -954,7 +998,13 @@ def _spectrum_grid(periods: str | None, damping: str):
     metavar="T[,T...]|MIN:MAX:N",
     help="Periods in s (0 = peak ground acceleration); default 0.02:5:100 (log-spaced).",
 )
-@click.option("--json", "as_json", is_flag=True, help="Print JSON (SI values) on stdout.")
+@click.option(
+    "--json",
+    "as_json",
+    is_flag=True,
+    help="Print JSON on stdout: SI values (PSA and SA in m/s**2, not g as in the text table), "
+    "their units under 'units'.",
+)
 @building_options
 @record_options
 @processing_options
@@ -1030,7 +1080,9 @@ def spectrum(
             "record": record,
             "building": building_spec,
             "floor": floor_no,
+            "floor_label": _floor_name(building, floor_no),
             **sp.to_dict(),
+            "units": SPECTRUM_UNITS,
             "qa": quality.to_dict(),
         }
         click.echo(_strict_json(out))
@@ -1110,7 +1162,9 @@ def _spectrum_pair(record, record2, grid, zetas, building, building_h2, floor_no
             "records": [record] + ([record2] if record2 else []),
             "components": list(pair.names),
             "floor": floor_no,
+            "floor_label": _floor_name(building, floor_no),
             **r.to_dict(),
+            "units": ROTD_UNITS,
             "qa_flags": codes,
             "notes": list(pair.notes),
         }
@@ -1831,6 +1885,31 @@ def bench(quick, as_json, out):
         return
     click.echo(to_markdown(result, compile_rows))
     click.echo(f"{len(paths)} files written to {out}")
+
+
+@cli.command()
+@click.argument("path", default="scene.toml", required=False, metavar="[PATH]")
+def init(path):
+    """Write a commented scene template to PATH (default scene.toml): every section of a
+    scene file (docs/design.md §4) on the bundled records, ready for
+    `floorslide run PATH --dry-run`. An existing file is replaced only when it is an unedited
+    template; anything else there is refused (exit code 2) and left alone."""
+    from pathlib import Path
+
+    from floorslide import outputs
+    from floorslide.scene.template import scene_template
+
+    text = scene_template(Path(path).name)
+    mine = text.encode("utf-8")
+    outputs.write_output(
+        path,
+        text,
+        replace=lambda existing: existing == mine,
+        advice="choose another PATH, or move the file away",
+        what="the scene template",
+    )
+    click.echo(f"wrote {path}: a scene on the bundled records; edit it, then")
+    click.echo(f"  floorslide run {path} --dry-run")
 
 
 @cli.command()

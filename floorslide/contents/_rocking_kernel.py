@@ -58,11 +58,12 @@ from floorslide.numerics.polynomial import (
 )
 
 # columns of a block's state, shared with the wrapper (contents.rocking_block)
-MODE, TH, THD, PEAK, T_PEAK, IMPACTS, ROCK_TIME, T_OVER, UPLIFTS, LIMIT_AT = range(10)
+MODE, TH, THD, PEAK, T_PEAK, IMPACTS, ROCK_TIME, T_OVER, UPLIFTS, LIMIT_AT, SIGNIFICANT = range(11)
 """Mode (0 rest, ±1 rocking about that corner, 2 overturned), θ and θ', peak |θ|/α and its
 time, impacts, time spent rocking, overturning time (−1: none), uplifts from rest, start of the
-first sub-step where the event limit was reached (−1: never)."""
-NCOL = 10
+first sub-step where the event limit was reached (−1: never), significant impacts
+(:data:`SIGNIFICANT_TILT`)."""
+NCOL = 11
 OVERTURNED = 2.0
 
 # columns of a block's parameters
@@ -76,6 +77,13 @@ NONLINEAR_PHASE = 0.25
 REST_VELOCITY = 1e-12
 """An impact that leaves ``|θ'| ≤ REST_VELOCITY·p·α`` ends in rest: the rest of the geometric
 sequence of impacts (each ``r`` times the last) lasts less than ``2·10⁻¹²/(1 − r)`` of ``1/p``."""
+SIGNIFICANT_TILT = 0.01
+"""An impact is *significant* when the block hits at ``|θ'| ≥ p·α·√(f(2 − f))`` with ``f`` =
+this: the speed at which a block rocking freely (linearised equation, Housner 1963) comes back
+to ``θ = 0`` from a tilt of ``f·α`` (energy ``θ'² − p²(θ − α)²`` is conserved between
+impacts). The cascade of ever smaller impacts to rest that follows is not counted."""
+SIGNIFICANT_SPEED = (SIGNIFICANT_TILT * (2.0 - SIGNIFICANT_TILT)) ** 0.5
+"""``√(f(2 − f))``: the significant impact speed over ``p·α``."""
 EVENT_GAP = 1e-12
 """Shortest time between two events of a block, as a fraction of its part."""
 ROCK_MAX_EVENTS = 10000
@@ -312,7 +320,10 @@ def _block_on_part(st, par, cs, K, Lq, t_part, g, D, nonlinear, max_events, t, S
                 return True
             # impact
             st[IMPACTS] += 1.0
-            w = r * poly_der(t, D, te)
+            w_in = poly_der(t, D, te)
+            if abs(w_in) >= SIGNIFICANT_SPEED * p * alpha:
+                st[SIGNIFICANT] += 1.0
+            w = r * w_in
             st[TH] = 0.0
             if abs(w) <= REST_VELOCITY * p * alpha:
                 st[MODE] = 0.0

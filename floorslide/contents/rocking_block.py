@@ -46,7 +46,13 @@ class RockResult:
     peak_time
         Time of the peak, s (NaN when the block never uplifted).
     impacts
-        Impacts (``θ`` back to 0 while rocking).
+        Impacts (``θ`` back to 0 while rocking), the whole cascade of ever smaller impacts to
+        rest included (up to ``log(10⁻¹²)/log r`` after each excitation).
+    significant_impacts
+        Impacts at ``|θ'| ≥ p·α·√(f(2 − f))``, ``f = 0.01``: those ending an excursion to at
+        least 1 % of α in free rocking
+        (:data:`~floorslide.contents._rocking_kernel.SIGNIFICANT_TILT`); None for the
+        approximate methods.
     uplifts
         Uplifts from rest.
     rocking_time
@@ -84,6 +90,7 @@ class RockResult:
     method: str
     theta: np.ndarray | None = field(default=None, repr=False)
     notes: tuple[str, ...] = ()
+    significant_impacts: np.ndarray | None = None
 
     def to_records(self) -> list[dict]:
         """One JSON-ready dict per block (snake_case keys, SI values)."""
@@ -97,6 +104,9 @@ class RockResult:
                 peak_ratio=float(self.peak_ratio[i]),
                 peak_time=float(self.peak_time[i]),
                 impacts=int(self.impacts[i]),
+                significant_impacts=None
+                if self.significant_impacts is None
+                else int(self.significant_impacts[i]),
                 uplifts=int(self.uplifts[i]),
                 rocking_time=float(self.rocking_time[i]),
                 overturned=bool(self.overturned[i]),
@@ -324,6 +334,7 @@ def rock(
         peak_ratio=states[:, rk.PEAK].copy(),
         peak_time=states[:, rk.T_PEAK].copy(),
         impacts=states[:, rk.IMPACTS].astype(int),
+        significant_impacts=states[:, rk.SIGNIFICANT].astype(int),
         uplifts=states[:, rk.UPLIFTS].astype(int),
         rocking_time=states[:, rk.ROCK_TIME].copy(),
         overturned=over,

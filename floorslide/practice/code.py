@@ -54,3 +54,38 @@ def asce7_floor_amplification(z_over_h, period: float | None = None) -> np.ndarr
     a1 = min(1.0 / period, 2.5)
     a2 = max(0.0, 1.0 - (0.4 / period) ** 2)
     return 1.0 + a1 * r + a2 * r**10
+
+
+def relative_heights(stories: int, storey_heights=None) -> np.ndarray:
+    """``z/h`` of floors 0 … `stories` (0 at the ground or base mat, 1 at the roof), the
+    height ``z`` of each floor over the roof's ``h`` (ASCE 7-22 §13.3.1).
+
+    Parameters
+    ----------
+    stories
+        Number of storeys.
+    storey_heights
+        Height of each storey, m, from the first up (one number: every storey the same); None
+        for equal storeys (``z/h = floor/stories``).
+
+    Examples
+    --------
+    >>> relative_heights(3, [5.0, 3.0, 2.0]).tolist()
+    [0.0, 0.5, 0.8, 1.0]
+    """
+    n = int(stories)
+    if n < 1:
+        raise ModelError(f"stories must be ≥ 1, got {stories!r}", "stories")
+    if storey_heights is None:
+        return np.arange(n + 1) / n
+    h = np.ravel(np.asarray(storey_heights, dtype=float))
+    if h.size == 1:
+        h = np.full(n, h[0])
+    if h.shape != (n,):
+        raise ModelError(
+            f"one height per storey: {h.size} heights for {n} storeys", "storey_heights"
+        )
+    if not (np.all(np.isfinite(h)) and np.all(h > 0)):
+        raise ModelError("storey heights must be > 0 m", "storey_heights")
+    z = np.concatenate([[0.0], np.cumsum(h)])
+    return z / z[-1]

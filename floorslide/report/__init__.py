@@ -1,9 +1,10 @@
 """Reports: design tables and figures from a result file (docs/design.md §3, §5).
 
 ``design_tables(path)`` gives the statistics over record sets and the ratios between buildings
-(``.to_pandas()`` as DataFrames); ``record_table(path)`` the per-record values as a DataFrame;
-``plot_figures(path, folder)`` writes the PNG figures. All read the result file only, and
-refuse an incomplete one unless ``allow_incomplete=True`` (then they label it INCOMPLETE).
+(``.to_pandas()`` as DataFrames); ``record_table(path)`` the per-record values as a DataFrame,
+``spectra_table(path)`` the per-record floor spectra as one; ``plot_figures(path, folder)``
+writes the PNG figures. All read the result file only, and refuse an incomplete one unless
+``allow_incomplete=True`` (then they label it INCOMPLETE).
 matplotlib is imported only when ``plot_figures`` is first used, pandas when a DataFrame is.
 """
 
@@ -22,7 +23,7 @@ from floorslide.report.formats import (
     to_json,
     write_csv,
 )
-from floorslide.report.records import RECORD_COLUMNS, record_table
+from floorslide.report.records import RECORD_COLUMNS, SPECTRA_COLUMNS, record_table, spectra_table
 from floorslide.report.study import Study, load_study
 from floorslide.report.tables import design_tables
 
@@ -30,6 +31,7 @@ __all__ = [
     "COLUMNS",
     "MIN_RECORDS",
     "RECORD_COLUMNS",
+    "SPECTRA_COLUMNS",
     "TABLE_NAMES",
     "Column",
     "Comparison",
@@ -42,6 +44,7 @@ __all__ = [
     "load_study",
     "plot_figures",
     "record_table",
+    "spectra_table",
     "to_json",
     "write_csv",
 ]

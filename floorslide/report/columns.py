@@ -85,6 +85,26 @@ _BUILDING = [
 ]
 
 _FLOOR = Column("floor", "1", "floor (0 = ground, or the base mat of an isolated building)")
+FLOOR_LABEL = Column(
+    "floor_label",
+    "",
+    "what the floor is: ground (floor 0 of a fixed-base building), base mat (floor 0 of an "
+    "isolated building: above the isolators), floor n, or roof",
+)
+
+
+def floor_label(kind: str, floor: int, stories: int) -> str:
+    """What floor `floor` of a building is: ``"ground"`` (floor 0 of a fixed-base building),
+    ``"base mat"`` (floor 0 of an isolated one, above the isolation layer), ``"roof"`` (floor
+    `stories`) or ``"floor n"`` (docs/design.md §2)."""
+    floor = int(floor)
+    if floor == 0:
+        return "base mat" if kind == "isolated" else "ground"
+    if floor == int(stories):
+        return "roof"
+    return f"floor {floor}"
+
+
 _N_RECORDS = Column("n_records", "1", "records of the set on this building")
 _FEW = Column(
     "few_records",
@@ -192,6 +212,22 @@ COLUMNS: dict[str, tuple[Column, ...]] = {
         Column("psa_broadened_p84", "m/s**2", "84th percentile of the PSA, broadened"),
         Column("psa_broadened_g_median", "g", "median PSA, broadened (NaN without)"),
         Column("psa_broadened_g_p84", "g", "84th percentile of the PSA, broadened"),
+        Column(
+            "orientation",
+            "",
+            "RotD50 for record pairs (the psa columns are then RotD50, Boore 2010); empty for "
+            "one component",
+        ),
+        *(
+            Column(f"{name}{unit_tag}_{stat}", units, f"{label} of {what}")
+            for name, what in (
+                ("rotd100", "RotD100, the largest over every direction (record pairs; else NaN)"),
+                ("psa_h1", "the PSA along the pair's first component h1 (pairs; else NaN)"),
+                ("psa_h2", "the PSA along the pair's second component h2 (pairs; else NaN)"),
+            )
+            for unit_tag, units in (("", "m/s**2"), ("_g", "g"))
+            for stat, label in (("median", "median"), ("p84", "84th percentile"))
+        ),
     ),
     "slide_ratios": (
         Column("comparison", "", "the comparison A:B as asked"),
@@ -328,7 +364,16 @@ COLUMNS: dict[str, tuple[Column, ...]] = {
         Column(
             "impacts_median",
             "1",
-            "median number of impacts over every record (0 at rest; up to the overturning)",
+            "median number of impacts over every record (0 at rest; up to the overturning), "
+            "counting the whole cascade of ever smaller impacts to rest (each r times the "
+            "last): thousands for a block that barely tilts, not a count of rocking cycles",
+        ),
+        Column(
+            "significant_impacts_median",
+            "1",
+            "median number of significant impacts: those at |θ'| ≥ p·α·√(f(2 − f)), f = 0.01, "
+            "the speed of a block rocking freely back from a tilt of 1 % of α (the cascade to "
+            "rest left out; NaN in files written before they were counted)",
         ),
     ),
     "plane": (
@@ -371,7 +416,7 @@ COLUMNS: dict[str, tuple[Column, ...]] = {
         ),
     ),
 }
-"""Columns of every table, in order."""
+"""Columns of every table, in order (``floor_label`` follows every ``floor``: see the end)."""
 
 _OBJECT = [
     _FLOOR,
@@ -433,7 +478,12 @@ COLUMNS.update(
         "code": (
             *_BUILDING,
             _FLOOR,
-            Column("z_over_h", "1", "relative height floor/stories (equal storey heights)"),
+            Column(
+                "z_over_h",
+                "1",
+                "relative height z/h of the floor: from the building's storey_heights, else "
+                "floor/stories (equal storeys)",
+            ),
             Column(
                 "period_a",
                 "s",
@@ -465,9 +515,16 @@ COLUMNS.update(
             ),
             Column("n_exceed", "1", "records exceeding (slide > a, or overturning)"),
             Column(
+                "n_records_exceedance",
+                "1",
+                "the fraction's denominator: records whose slide is known (n_records − n_rock) "
+                "for a slide state; n_records to overturn",
+            ),
+            Column(
                 "fraction",
                 "1",
-                "n_exceed / (n_records − n_rock) for a slide; n_exceed / n_records to overturn",
+                "n_exceed / n_records_exceedance: (n_records − n_rock) for a slide, n_records "
+                "to overturn",
             ),
             _FEW,
         ),
@@ -488,6 +545,18 @@ COLUMNS.update(
     }
 )
 
+
+def _with_floor_label(columns: tuple[Column, ...]) -> tuple[Column, ...]:
+    out: list[Column] = []
+    for c in columns:
+        out.append(c)
+        if c.name == "floor":
+            out.append(FLOOR_LABEL)
+    return tuple(out)
+
+
+COLUMNS.update({name: _with_floor_label(cols) for name, cols in COLUMNS.items()})
+
 EMPTY_NOTES = {
     "isolators": "no building on nonlinear isolation in this study",
     "plane": "no set of record pairs (two horizontal components) in this study",
@@ -504,6 +573,12 @@ EMPTY_NOTES = {
     ),
 }
 """What an empty table means, stated where it is written (Markdown, CSV, notes)."""
+
+PAIR_FRS_COLUMNS = frozenset(
+    c.name for c in COLUMNS["frs"] if c.name.startswith(("rotd100", "psa_h1", "psa_h2"))
+) | {"orientation"}
+"""Columns of the ``frs`` table that only record pairs fill (left out of Markdown without
+pairs)."""
 
 OSCILLATOR_COLUMNS = frozenset(
     c.name for c in COLUMNS["slides"] if c.name.startswith(("peak_deformation", "peak_top_accel"))

@@ -35,6 +35,7 @@ from floorslide.report.columns import (
     EMPTY_NOTES,
     MIN_RECORDS,
     OSCILLATOR_COLUMNS,
+    PAIR_FRS_COLUMNS,
     PERCENTILE,
     ROCK,
     STATS,
@@ -130,6 +131,8 @@ def markdown_columns(name: str, rows: Sequence[Mapping]) -> tuple[Column, ...]:
         cols = tuple(c for c in cols if c.name not in OSCILLATOR_COLUMNS)
     if name == "frs" and not any(r.get("broadening") for r in rows):
         cols = tuple(c for c in cols if not c.name.startswith("psa_broadened"))
+    if name == "frs" and not any(r.get("orientation") for r in rows):
+        cols = tuple(c for c in cols if c.name not in PAIR_FRS_COLUMNS)
     if name == "isolators" and rows:
         unused = {k for k in _LAYER_PARAMETERS if all(math.isnan(float(r[k])) for r in rows)}
         cols = tuple(c for c in cols if c.name not in unused)

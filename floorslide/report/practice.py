@@ -163,6 +163,29 @@ def suite_table(study: Study) -> list[dict]:
     return rows
 
 
+def storey_heights(study: Study, building) -> list[float] | None:
+    """The scene's ``storey_heights`` of a building (of its superstructure when isolated), or
+    None when the scene gives none (equal storeys)."""
+    by_id = {b.get("id"): b for b in study.scene.get("buildings", []) if isinstance(b, dict)}
+    spec = by_id.get(building.base, {})
+    if spec.get("kind") == "isolated":
+        spec = by_id.get(spec.get("superstructure"), {})
+    value = spec.get("storey_heights")
+    if value is None:
+        return None
+    return [float(v) for v in (value if isinstance(value, list) else [value])]
+
+
+def _relative_heights(study: Study, building) -> np.ndarray:
+    """``z/h`` of the building's floors (:func:`floorslide.practice.code.relative_heights`);
+    NaN when the building has no storeys."""
+    from floorslide.practice.code import relative_heights
+
+    if building.stories < 1:
+        return np.full(1, math.nan)
+    return relative_heights(building.stories, storey_heights(study, building))
+
+
 def code_table(study: Study) -> list[dict]:
     """The ``code`` table (see the module docstring): ASCE 7-22 Eq. 13.3-4 beside the computed
     PFA/PGA (:func:`pfa_profiles`, as the PFA-profile figure draws it)."""
@@ -174,11 +197,12 @@ def code_table(study: Study) -> list[dict]:
             b = study.buildings[bid]
             fixed = b.kind == "fixed"
             period = fixed_period(study, rs, bid)
+            heights = _relative_heights(study, b)
             for floor, obs in floors.items():
                 amp = np.array([a for _, a in obs], dtype=float)
                 amp = amp[np.isfinite(amp)]
                 _, med, p84 = summarize(amp)
-                z_h = floor / b.stories if b.stories > 0 else math.nan
+                z_h = float(heights[floor]) if 0 <= floor < heights.size else math.nan
                 h_f = math.nan
                 if fixed and 0 <= z_h <= 1 and period > 0:
                     h_f = float(asce7_floor_amplification(z_h, period))
@@ -263,6 +287,7 @@ def exceedance_table(study: Study) -> list[dict]:
                     n_records=g["n"],
                     n_rock=0 if over else g["n_rock"],
                     n_exceed=k,
+                    n_records_exceedance=n_known,
                     fraction=k / n_known if n_known else math.nan,
                     few_records=n_known < MIN_RECORDS,
                 )

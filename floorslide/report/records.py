@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from floorslide.constants import G
-from floorslide.report.columns import ROCK, Column
+from floorslide.report.columns import FLOOR_LABEL, ROCK, Column, floor_label
 from floorslide.report.study import Study, _float, _natural, _rank, load_study
 from floorslide.run.results import PLANE_FIELDS
 from floorslide.run.store import ResultFile
@@ -27,6 +27,7 @@ RECORD_COLUMNS: tuple[Column, ...] = (
     Column("building_kind", "", "fixed or isolated"),
     Column("isolation_period", "s", "isolation period T_i (NaN for fixed-base)"),
     Column("floor", "1", "floor (0 = ground, or the base mat of an isolated building)"),
+    FLOOR_LABEL,
     Column("content", "", "content (equipment) id"),
     Column("model", "", "rigid or oscillator"),
     Column("mu_k", "1", "kinetic friction coefficient"),
@@ -97,8 +98,17 @@ RECORD_COLUMNS: tuple[Column, ...] = (
     Column(
         "rock_impacts",
         "1",
-        "impacts while rocking (up to the overturning); NaN where it slides instead or the "
+        "impacts while rocking (up to the overturning), the whole cascade of ever smaller "
+        "impacts to rest included (thousands for a block that barely tilts: not a count of "
+        "rocking cycles); NaN where it slides instead or the "
         "content has no width and height",
+    ),
+    Column(
+        "rock_significant_impacts",
+        "1",
+        "significant impacts: at |θ'| ≥ p·α·√(f(2 − f)), f = 0.01, the speed of a block "
+        "rocking freely back from a tilt of 1 % of α (the cascade to rest left out); NaN where "
+        "not applicable or in files written before they were counted",
     ),
     Column("overturned", "1", "1 if the block overturned, else 0; NaN where not applicable"),
     Column("overturn_time_s", "s", "when it overturned (NaN: it did not, or not applicable)"),
@@ -133,7 +143,14 @@ PLANE_VALUES = PLANE_FIELDS
 """The per-record columns of a pair (NaN for one component): the pair's arrays of a content
 result (:data:`~floorslide.run.results.PLANE_FIELDS`)."""
 
-ROCK_VALUES = ("rock_peak_ratio", "rock_impacts", "overturned", "overturn_time_s", "rock_time_s")
+ROCK_VALUES = (
+    "rock_peak_ratio",
+    "rock_impacts",
+    "rock_significant_impacts",
+    "overturned",
+    "overturn_time_s",
+    "rock_time_s",
+)
 """The per-record rocking columns (NaN where not applicable)."""
 
 
@@ -183,6 +200,15 @@ def plane_values(c, i: int) -> dict:
     return {name: float(getattr(c, name)[i]) for name in PLANE_VALUES}
 
 
+def significant_impacts(c, i: int) -> float:
+    """The significant impacts of friction pair `i` of a content result (NaN where not
+    applicable, and in files written before they were counted)."""
+    big = getattr(c, "rock_significant_impacts", None)
+    if big is None or len(big) <= i or big[i] < 0:
+        return math.nan
+    return float(big[i])
+
+
 def rocking_values(c, i: int) -> dict:
     """The rocking columns of friction pair `i` of a content result: NaN (and an empty
     ``observed_outcome``) for a content without width and height, a file written before rocking
@@ -197,6 +223,7 @@ def rocking_values(c, i: int) -> dict:
     return {
         "rock_peak_ratio": float(c.rock_peak_ratio[i]),
         "rock_impacts": impacts if impacts >= 0 else math.nan,
+        "rock_significant_impacts": significant_impacts(c, i),
         "overturned": float(c.overturned[i]),
         "overturn_time_s": float(c.overturn_time[i]),
         "rock_time_s": float(c.rock_time[i]),
@@ -215,6 +242,7 @@ def record_rows(study: Study) -> list[dict]:
         bid = str(m["building"])
         pfa_of = dict(zip(np.asarray(t.floors).tolist(), np.asarray(t.pfa).tolist(), strict=True))
         isolator = isolator_values(m)
+        b = study.buildings[bid]
         for c in t.contents:
             modes = _modes(c)
             osc = c.peak_deformation is not None
@@ -233,6 +261,7 @@ def record_rows(study: Study) -> list[dict]:
                         "building_kind": study.buildings[bid].kind,
                         "isolation_period": study.buildings[bid].isolation_period,
                         "floor": int(c.floor),
+                        "floor_label": floor_label(b.kind, int(c.floor), b.stories),
                         "content": c.content,
                         "model": c.model,
                         "mu_k": float(c.mu_k[i]),
@@ -312,6 +341,157 @@ def record_table(result: str | Path | ResultFile | Study, *, allow_incomplete: b
     df = pd.DataFrame(rows, columns=[c.name for c in RECORD_COLUMNS])
     df.attrs.update(
         units={c.name: c.units for c in RECORD_COLUMNS},
+        source=study.source,
+        status=study.status,
+    )
+    return df
+
+
+SPECTRA_COLUMNS: tuple[Column, ...] = (
+    Column("record_set", "", "record set (scaled sets are named set@PGAg)"),
+    Column("record", "", "record id (file name without extension)"),
+    Column("building", "", "building variant id"),
+    Column("building_kind", "", "fixed or isolated"),
+    Column("isolation_period", "s", "isolation period T_i (NaN for fixed-base)"),
+    Column("floor", "1", "floor (0 = ground, or the base mat of an isolated building)"),
+    FLOOR_LABEL,
+    Column("damping", "1", "damping ratio of the oscillator"),
+    Column("period", "s", "oscillator period (0: the floor's true peak acceleration)"),
+    Column(
+        "orientation",
+        "",
+        "RotD50 for a record pair (psa is then RotD50, Boore 2010; sa and sv NaN); empty for "
+        "one component",
+    ),
+    Column("psa", "m/s**2", "pseudo-spectral acceleration ω²·SD, unbroadened"),
+    Column("psa_g", "g", "pseudo-spectral acceleration, unbroadened"),
+    Column("sa", "m/s**2", "peak absolute acceleration of the oscillator (NaN for a pair)"),
+    Column("sv", "m/s", "peak relative velocity (NaN for a pair)"),
+    Column("sd", "m", "peak relative displacement"),
+    Column("broadening", "1", "peak broadening ±fraction of psa_broadened (0: none)"),
+    Column("psa_broadened", "m/s**2", "PSA broadened by ±broadening in frequency (NaN: none)"),
+    Column("rotd100", "m/s**2", "a pair: RotD100, the largest over every direction (else NaN)"),
+    Column("psa_h1", "m/s**2", "a pair: the PSA along the first component h1 (else NaN)"),
+    Column("psa_h2", "m/s**2", "a pair: the PSA along the second component h2 (else NaN)"),
+)
+"""Columns of the per-record floor spectra, in order."""
+
+
+def _spectrum_values(values, i: int, n: int) -> np.ndarray:
+    if values is None:
+        return np.full(n, math.nan)
+    return np.atleast_2d(np.asarray(values, dtype=float))[i]
+
+
+def spectra_rows(study: Study, damping: float | None = None) -> list[dict]:
+    """The per-record floor spectra of a study (dicts keyed by :data:`SPECTRA_COLUMNS`): one
+    row per record × building × floor × damping ratio × stored period, in the tables' order
+    (record sets and buildings as in the scene, floors up, damping and periods ascending,
+    records in natural order); only `damping` when given."""
+    buildings = list(study.buildings)
+    rows = []
+    for t in study.tasks:
+        m = t.meta
+        bid = str(m["building"])
+        b = study.buildings[bid]
+        for s in t.spectra:
+            periods = np.atleast_1d(np.asarray(s.periods, dtype=float))
+            zetas = np.atleast_1d(np.asarray(s.damping, dtype=float))
+            n = periods.size
+            orientation = str(getattr(s, "orientation", "") or "")
+            for i, z in enumerate(zetas.tolist()):
+                if damping is not None and abs(z - damping) > 1e-9:
+                    continue
+                cols = {
+                    name: _spectrum_values(getattr(s, name, None), i, n)
+                    for name in ("psa", "sa", "sv", "sd", "psa_broadened", "rotd100")
+                }
+                cols["psa_h1"] = _spectrum_values(getattr(s, "psa_h1", None), i, n)
+                cols["psa_h2"] = _spectrum_values(getattr(s, "psa_h2", None), i, n)
+                for j, p in enumerate(periods.tolist()):
+                    rows.append(
+                        {
+                            "record_set": str(m["record_set"]),
+                            "record": str(m["record"]),
+                            "building": bid,
+                            "building_kind": b.kind,
+                            "isolation_period": b.isolation_period,
+                            "floor": int(s.floor),
+                            "floor_label": floor_label(b.kind, int(s.floor), b.stories),
+                            "damping": float(z),
+                            "period": float(p),
+                            "orientation": orientation,
+                            "psa": float(cols["psa"][j]),
+                            "psa_g": float(cols["psa"][j]) / G,
+                            "sa": float(cols["sa"][j]),
+                            "sv": float(cols["sv"][j]),
+                            "sd": float(cols["sd"][j]),
+                            "broadening": float(s.broadening or 0.0),
+                            "psa_broadened": float(cols["psa_broadened"][j]),
+                            "rotd100": float(cols["rotd100"][j]),
+                            "psa_h1": float(cols["psa_h1"][j]),
+                            "psa_h2": float(cols["psa_h2"][j]),
+                        }
+                    )
+
+    def key(r: dict) -> tuple:
+        return (
+            _rank(study.sets, r["record_set"]),
+            _rank(buildings, r["building"]),
+            r["floor"],
+            r["damping"],
+            r["period"],
+            _natural(r["record"]),
+        )
+
+    return sorted(rows, key=key)
+
+
+def spectra_table(
+    result: str | Path | ResultFile | Study,
+    *,
+    damping: float | None = None,
+    allow_incomplete: bool = False,
+):
+    """The floor response spectra of a result file, record by record, as a
+    :class:`pandas.DataFrame` — what the ``frs`` table summarises.
+
+    One row per record × building × floor × damping ratio × stored period (long form: pivot
+    it for one column per record), columns as in :data:`SPECTRA_COLUMNS` (SI values;
+    ``psa_g`` in g). For a record pair ``psa`` is RotD50 (``orientation``), ``rotd100``,
+    ``psa_h1`` and ``psa_h2`` beside it. ``df.attrs`` holds ``units`` (column → unit),
+    ``source`` and ``status`` (``""``, or the INCOMPLETE label).
+
+    Parameters
+    ----------
+    result
+        Path of a result file, a :class:`ResultFile` or a
+        :class:`~floorslide.report.study.Study`.
+    damping
+        Keep only this damping ratio (default: every stored one).
+    allow_incomplete
+        Accept a result file whose run is not finished (``status`` says INCOMPLETE).
+
+    Raises
+    ------
+    ResultFileError
+        Missing, corrupt or empty result file.
+    IncompleteResultError
+        The run is not finished and `allow_incomplete` is False.
+
+    Examples
+    --------
+    >>> df = spectra_table("demo.h5", damping=0.05)  # doctest: +SKIP
+    >>> df[df.floor_label == "roof"].pivot_table("psa_g", "period", "record")  # doctest: +SKIP
+    """
+    import pandas as pd
+
+    study = load_study(result)
+    study.require_complete(allow_incomplete)
+    rows = spectra_rows(study, damping)
+    df = pd.DataFrame(rows, columns=[c.name for c in SPECTRA_COLUMNS])
+    df.attrs.update(
+        units={c.name: c.units for c in SPECTRA_COLUMNS},
         source=study.source,
         status=study.status,
     )

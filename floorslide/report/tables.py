@@ -111,6 +111,7 @@ from floorslide.report.columns import (
     Column,
     Comparison,
     DesignTables,
+    floor_label,
 )
 from floorslide.report.formats import (
     format_csv,
@@ -129,7 +130,7 @@ from floorslide.report.practice import (
     scaling_table,
     suite_table,
 )
-from floorslide.report.records import record_rows
+from floorslide.report.records import record_rows, significant_impacts
 from floorslide.report.statistics import (
     interpolate_spectrum,
     outcome,
@@ -178,6 +179,11 @@ DEFAULT_DAMPING = 0.05
 """Damping ratio of the FRS ordinates when ``[report]`` gives none (else the first stored)."""
 
 _TOL = 1e-9
+
+PAIR_SPECTRA = ("rotd100", "psa_h1", "psa_h2")
+"""The spectra a pair of horizontal components stores beside its RotD50 ``psa``
+(:class:`~floorslide.run.results.SpectrumResult`): RotD100 and each direction's PSA; the
+``frs`` table gives their median and 84th percentile (NaN for one component)."""
 
 
 # --------------------------------------------------------------------------------------------
@@ -451,6 +457,7 @@ def rocking_table(study: Study) -> list[dict]:
                     float(c.rock_peak_ratio[i]),
                     float(c.rock_impacts[i]),
                     float(c.overturned[i]),
+                    significant_impacts(c, i),
                 )
             )
             mus = holding.setdefault(key, [])
@@ -464,7 +471,9 @@ def rocking_table(study: Study) -> list[dict]:
     for k in sorted(groups, key=key):
         rs, bid, floor, content = k
         obs = _by_record(groups[k])
-        peak, impacts, over = (np.array([o[j] for o in obs], dtype=float) for j in (1, 2, 3))
+        peak, impacts, over, big = (
+            np.array([o[j] for o in obs], dtype=float) for j in (1, 2, 3, 4)
+        )
         n = len(obs)
         n_rock = int(np.sum((peak > 0) | (over > 0)))
         n_over = int(np.sum(over > 0))
@@ -472,6 +481,7 @@ def rocking_table(study: Study) -> list[dict]:
         row = _building_cols(study, rs, bid)
         row.update(
             floor=floor,
+            floor_label=_floor_label_of(study, bid, floor),
             content=content,
             b_over_h=slender[content],
             alpha=math.atan(slender[content]),
@@ -485,6 +495,7 @@ def rocking_table(study: Study) -> list[dict]:
             peak_ratio_median=peak_median,
             peak_ratio_p84=peak_p84,
             impacts_median=summarize(impacts)[1],
+            significant_impacts_median=summarize(big)[1],
         )
         rows.append({c.name: row[c.name] for c in COLUMNS["rocking"]})
     return rows
@@ -525,6 +536,7 @@ def plane_table(study: Study) -> list[dict]:
         row = _building_cols(study, rs, bid)
         row.update(
             floor=floor,
+            floor_label=_floor_label_of(study, bid, floor),
             content=content,
             mu_k=mu_k,
             mu_s=mu_s,
@@ -689,9 +701,18 @@ def frs_table(study: Study, periods: Sequence[float], damping: float | None) -> 
             if s.psa_broadened is not None:
                 row = np.atleast_2d(np.asarray(s.psa_broadened, dtype=float))[hit[0]]
                 wide = interpolate_spectrum(s.periods, row, periods)
+            pair = []
+            for name in PAIR_SPECTRA:
+                values = getattr(s, name, None)
+                if values is None:
+                    pair.append(nan)
+                    continue
+                row = np.atleast_2d(np.asarray(values, dtype=float))[hit[0]]
+                pair.append(interpolate_spectrum(s.periods, row, periods))
             groups[(rs, bid, int(s.floor))].append(
-                (record, interpolate_spectrum(s.periods, psa, periods), wide)
-            )
+                (record, interpolate_spectrum(s.periods, psa, periods), wide, *pair,
+                 str(getattr(s, "orientation", "") or ""))
+            )  # fmt: skip
     bkey = _order_key(study)
     rows = []
     for key in sorted(groups, key=lambda k: (*bkey(k[0], k[1]), k[2])):
@@ -699,6 +720,8 @@ def frs_table(study: Study, periods: Sequence[float], damping: float | None) -> 
         obs = _by_record(groups[key])
         stack = np.array([o[1] for o in obs])
         wide = np.array([o[2] for o in obs])
+        pairs = {name: np.array([o[3 + k] for o in obs]) for k, name in enumerate(PAIR_SPECTRA)}
+        orientation = ", ".join(sorted({o[-1] for o in obs if o[-1]}))
         for j, p in enumerate(periods):
             _, median, p84 = summarize(stack[:, j])
             _, wmedian, wp84 = summarize(wide[:, j])
@@ -719,7 +742,18 @@ def frs_table(study: Study, periods: Sequence[float], damping: float | None) -> 
                 psa_broadened_p84=wp84,
                 psa_broadened_g_median=wmedian / G,
                 psa_broadened_g_p84=wp84 / G,
+                orientation=orientation,
             )
+            for name, values in pairs.items():
+                _, pmedian, pp84 = summarize(values[:, j])
+                row.update(
+                    {
+                        f"{name}_median": pmedian,
+                        f"{name}_p84": pp84,
+                        f"{name}_g_median": pmedian / G,
+                        f"{name}_g_p84": pp84 / G,
+                    }
+                )
             rows.append(row)
     return rows
 
@@ -873,6 +907,27 @@ def pfa_ratio_table(study: Study, pfa: list[dict], comparisons: Sequence[Compari
     return _ratio_rows(study, pfa, comparisons, ("floor",), make)
 
 
+def _floor_label_of(study: Study, bid: str, floor: int) -> str:
+    b = study.buildings.get(bid)
+    return "" if b is None else floor_label(b.kind, floor, b.stories)
+
+
+def _label_floors(study: Study, rows: list[dict]) -> None:
+    """Add ``floor_label`` to every row with a ``floor``: ground and base mat are both floor
+    0 (:func:`~floorslide.report.columns.floor_label`); a ratio row whose buildings differ
+    names both (``base mat (A) / ground (B)``)."""
+    for row in rows:
+        if "floor" not in row or "floor_label" in row:
+            continue
+        floor = int(row["floor"])
+        if "building" in row:
+            row["floor_label"] = _floor_label_of(study, str(row["building"]), floor)
+            continue
+        a = _floor_label_of(study, str(row.get("building_a", "")), floor)
+        b = _floor_label_of(study, str(row.get("building_b", "")), floor)
+        row["floor_label"] = a if a == b else f"{a} (A) / {b} (B)"
+
+
 # --------------------------------------------------------------------------------------------
 # the API
 
@@ -904,7 +959,11 @@ def table_notes(study: Study, damping: float | None) -> list[str]:
         notes.append(
             "rocking: contents with a width and height that rock are simulated as rigid blocks "
             "(Housner 1963) — the rocking table and the per-record rock_* columns; peak_ratio "
-            "is max|θ|/α, 1 for a record under which the block overturned, 0 at rest"
+            "is max|θ|/α, 1 for a record under which the block overturned, 0 at rest; impacts "
+            "count the whole cascade of ever smaller impacts to rest (each r times the last), "
+            "thousands for a block that barely tilts — not a count of rocking cycles; "
+            "significant_impacts count those at |θ'| ≥ p·α·√(f(2 − f)), f = 0.01, the speed of "
+            "a block rocking freely back from a tilt of 1 % of α"
         )
     elif any(
         ROCK in (list(c.modes) if c.modes is not None else [c.mode])
@@ -945,8 +1004,9 @@ def table_notes(study: Study, damping: float | None) -> list[str]:
         if any(getattr(s, "orientation", "") for t in study.tasks for s in t.spectra):
             notes.append(
                 "FRS of record pairs: psa is RotD50 (Boore 2010: the median over 180 directions "
-                "of the peak response along each, exact with in-step peaks); RotD100 and each "
-                "direction's PSA are in the result file"
+                "of the peak response along each, exact with in-step peaks; orientation RotD50); "
+                "RotD100 and each direction's PSA are the rotd100_*, psa_h1_* and psa_h2_* "
+                "columns"
             )
         lost = any(
             s.broadening and np.isnan(np.asarray(s.psa, dtype=float)).all()
@@ -1040,6 +1100,8 @@ def design_tables(
     }
     tables["exceedance"] = exceedance_table(study)
     tables["fragility"] = fragility_table(study, tables["exceedance"])
+    for rows in tables.values():
+        _label_floors(study, rows)
     notes = table_notes(study, z) + period_notes + study.notes
     notes += [f"{name}: {note}" for name, note in EMPTY_NOTES.items() if not tables[name]]
     return DesignTables(

@@ -59,6 +59,9 @@ class ContentResult:
     peak_slide_h1: np.ndarray | None = None  # each component's 1-D slide alone, m
     peak_slide_h2: np.ndarray | None = None
     ratio_2d_1d: np.ndarray | None = None  # peak_slide / max(1-D slides)
+    # rocking: the impacts at |θ'| ≥ p·α·√(f(2 − f)), f = 0.01 (RockResult.significant_impacts;
+    # −1 where it slides instead; None in files written before they were counted)
+    rock_significant_impacts: np.ndarray | None = None
 
 
 ROCK_FIELDS = ("rock_peak_ratio", "rock_impacts", "rock_time", "overturned", "overturn_time")

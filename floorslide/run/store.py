@@ -35,7 +35,9 @@ Layout (every dataset carries a ``units`` attribute; ``1`` means dimensionless):
                              modes (per friction pair, Shenton's: rest/slide/rock/slide-rock;
                              the slide values of a rocking object are NaN); for contents with a
                              width and height also rock_peak_ratio (1, max|θ|/α), rock_impacts
-                             (1), rock_time (s), overturned (1: 1/0), overturn_time (s, NaN:
+                             (1, the cascade to rest included), rock_significant_impacts (1,
+                             at |θ'| ≥ p·α·√(f(2 − f)), f = 0.01; absent in older files),
+                             rock_time (s), overturned (1: 1/0), overturn_time (s, NaN:
                              never) — NaN (−1 impacts) where the object slides — and outcomes
                              (what it did: rest/slide/rock/overturn/slide-rock); for a pair
                              of components (the block slides in the plane; peak_slide = peak
@@ -171,6 +173,7 @@ UNITS = {
     "isolator_force_ratio": "1",
     "rock_peak_ratio": "1",
     "rock_impacts": "1",
+    "rock_significant_impacts": "1",
     "rock_time": "s",
     "overturned": "1",
     "overturn_time": "s",
@@ -278,6 +281,8 @@ def _rocking_of(h) -> dict:
     if "rock_peak_ratio" not in h:
         return {}
     out = {name: _value(h, name) for name in ROCK_FIELDS}
+    if "rock_significant_impacts" in h:
+        out["rock_significant_impacts"] = _value(h, "rock_significant_impacts")
     out["outcomes"] = np.array([_s(m) for m in _value(h, "outcomes")])
     return out
 
@@ -304,6 +309,10 @@ def task_node(result: TaskResult) -> Node:
         if c.rock_peak_ratio is not None:
             for name in ROCK_FIELDS:
                 h.children[name] = _data(name, getattr(c, name))
+            if c.rock_significant_impacts is not None:
+                h.children["rock_significant_impacts"] = _data(
+                    "rock_significant_impacts", c.rock_significant_impacts
+                )
             h.children["outcomes"] = Data(np.asarray(c.outcomes, dtype=object), {"units": "1"})
         if c.peak_angle is not None:
             for name in PLANE_FIELDS:

@@ -168,7 +168,8 @@ def rocking_results(content, modes, rocker) -> dict:
     Returns
     -------
     dict
-        ``rock_peak_ratio``, ``rock_impacts``, ``rock_time``, ``overturned``,
+        ``rock_peak_ratio``, ``rock_impacts``, ``rock_significant_impacts``, ``rock_time``,
+        ``overturned``,
         ``overturn_time``, ``outcomes`` and, when the block rocks, the :class:`RockResult`
         under ``"result"``. Where the object slides instead (Shenton's ``slide``) they are NaN
         (−1 impacts) and the outcome ``slide``; where it stays at rest (the floor's true peak
@@ -180,13 +181,20 @@ def rocking_results(content, modes, rocker) -> dict:
     out = dict(
         rock_peak_ratio=np.full(n, np.nan),
         rock_impacts=np.full(n, -1, dtype=np.int64),
+        rock_significant_impacts=np.full(n, -1, dtype=np.int64),
         rock_time=np.full(n, np.nan),
         overturned=np.full(n, np.nan),
         overturn_time=np.full(n, np.nan),
     )
     outcomes = list(modes)
     rest = np.array([m == "rest" for m in modes])
-    for name in ("rock_peak_ratio", "rock_impacts", "rock_time", "overturned"):
+    for name in (
+        "rock_peak_ratio",
+        "rock_impacts",
+        "rock_significant_impacts",
+        "rock_time",
+        "overturned",
+    ):
         out[name][rest] = 0
     rocks = [i for i, m in enumerate(modes) if m in ROCKS]
     if rocks:
@@ -194,6 +202,8 @@ def rocking_results(content, modes, rocker) -> dict:
         for i in rocks:
             out["rock_peak_ratio"][i] = r.peak_ratio[0]
             out["rock_impacts"][i] = r.impacts[0]
+            if r.significant_impacts is not None:
+                out["rock_significant_impacts"][i] = r.significant_impacts[0]
             out["rock_time"][i] = r.rocking_time[0]
             out["overturned"][i] = float(r.overturned[0])
             out["overturn_time"][i] = r.overturn_time[0]

@@ -63,6 +63,7 @@ FIXED_KEYS = {
     "profile",
     "period_h2",
     "damping_h2",
+    "storey_heights",
 }
 ISOLATED_KEYS = {
     "id",
@@ -82,7 +83,7 @@ ways. A single-component record runs on the first direction's model."""
 ISOLATOR_KEYS = {
     "linear": {"model"},
     "bilinear": {"model", "q_ratio", "yield_disp", "alpha", "capacity"},
-    "friction_pendulum": {"model", "mu", "mu_s", "capacity"},
+    "friction_pendulum": {"model", "mu", "mu_s", "capacity", "radius"},
 }
 """Keys of an isolated building's ``isolator`` table per ``model`` (``period`` and ``damping``
 stay on the building: the isolation period — post-yield ``T_d`` of a bilinear layer, the
@@ -133,6 +134,36 @@ ID_RULE = (
 """What :func:`id_problem` allows, as the error messages say it."""
 QA_ACTIONS = ("warn", "reject")
 """Values of ``[scene] qa`` (:mod:`floorslide.records.quality`)."""
+MU_PLAUSIBLE = 2.0
+"""Largest plausible Coulomb friction coefficient: dry friction between equipment and floor
+finishes lies below about 1 (rubber on concrete); a value above this is almost surely a
+percentage (``mu = 10`` for 0.10) and is warned about, not refused."""
+ALLOWABLE_PLAUSIBLE = 5.0
+"""Allowable displacements (m) at or above this are warned about: a gap of metres is almost
+surely one written in cm or mm (``allowable = 10`` for 10 cm)."""
+
+
+def friction_warning(mu: float) -> str | None:
+    """The one-line warning for an implausible friction coefficient (above
+    :data:`MU_PLAUSIBLE`), or None."""
+    if not mu > MU_PLAUSIBLE:
+        return None
+    return (
+        f"friction coefficient {mu:g} is implausible (dry friction is below about 1); "
+        f"did you mean {mu / 100:.2f}?"
+    )
+
+
+def allowable_warning(value: float) -> str | None:
+    """The one-line warning for an implausible allowable displacement (at or above
+    :data:`ALLOWABLE_PLAUSIBLE` m), or None."""
+    if not value >= ALLOWABLE_PLAUSIBLE:
+        return None
+    return (
+        f"allowable displacement {value:g} m is implausible (the value is in m); did you mean "
+        f"{value / 100:g} ({value:g} cm) or {value / 1000:g} ({value:g} mm)?"
+    )
+
 
 MAX_SCALE_PGA = MAX_ACCELERATION / G
 """Largest ``scale_pga`` (g): the most the solvers take
@@ -230,6 +261,8 @@ class BuildingSpec:
     """Along the second horizontal component: the damping ratio (NaN: as along the first)."""
     super_period_h2: float = math.nan
     super_damping_h2: float = math.nan
+    storey_heights: tuple[float, ...] = ()
+    """Height of each storey, m (``()``: equal storeys); the code comparison's z/h."""
 
     @property
     def two_way(self) -> bool:
@@ -316,7 +349,7 @@ class ContentSpec:
     """Equipment: friction values (a list sweeps) on chosen floors."""
 
     id: str
-    floors: Any  # tuple of ints, "all" or "roof"
+    floors: Any  # tuple of ints (and "roof": [1, 3, "roof"]), "all" or "roof"
     mu: tuple[float, ...]
     mu_s: tuple[float, ...] | None = None
     width: float | None = None
@@ -373,11 +406,13 @@ class Scene:
 
 
 def _floors(spec, stories: int) -> tuple[int, ...]:
+    """The floors `spec` names in a building with `stories` storeys: ``"all"``, ``"roof"``, or
+    a list of floor numbers that may hold ``"roof"`` (``[1, 3, "roof"]``), each floor once."""
     if spec == "all":
         return tuple(range(stories + 1))
     if spec == "roof":
         return (stories,)
-    return tuple(sorted(set(int(f) for f in spec)))
+    return tuple(sorted(set(stories if f == "roof" else int(f) for f in spec)))
 
 
 class _Checker:
@@ -1130,6 +1165,7 @@ def _buildings(value, ck: _Checker) -> tuple[tuple[BuildingSpec, ...], set[str]]
             declared_fixed.add(named)
         ck.keys(b, FIXED_KEYS, w)
         model = _fixed_model(b, w, ck)
+        heights = _storey_heights(b, w, ck, model[0] if model else None)
         damps = ck.numbers(b.get("damping", 0.05), f"{w}.damping", lo=0, hi=1, hi_open=True)
         if model is None or not damps or not bid:
             continue
@@ -1159,6 +1195,7 @@ def _buildings(value, ck: _Checker) -> tuple[tuple[BuildingSpec, ...], set[str]]
                     stiffnesses=stiffnesses,
                     period_h2=p2,
                     damping_h2=z2,
+                    storey_heights=heights,
                 )
             )
         fixed[bid] = variants
@@ -1174,7 +1211,10 @@ def _buildings(value, ck: _Checker) -> tuple[tuple[BuildingSpec, ...], set[str]]
         periods = (
             ck.numbers(b["period"], f"{w}.period", lo=0, lo_open=True) if "period" in b else ()
         )
-        if "period" not in b:
+        pendulum = _pendulum_period(b, w, ck, periods)
+        if pendulum is not None:
+            periods = (pendulum,)
+        elif "period" not in b:
             ck.add(f"{w}.period", "missing: the isolation period, s")
         layers = _isolator(b.get("isolator"), f"{w}.isolator", ck)
         nonlinear = bool(layers) and dict(layers[0][0]).get("model", "linear") != "linear"
@@ -1238,9 +1278,27 @@ def _buildings(value, ck: _Checker) -> tuple[tuple[BuildingSpec, ...], set[str]]
                     damping_h2=z2,
                     super_period_h2=s.period_h2,
                     super_damping_h2=s.damping_h2,
+                    storey_heights=s.storey_heights,
                 )
             )
     return tuple(out), ids
+
+
+def _storey_heights(b: dict, w: str, ck: _Checker, stories: int | None) -> tuple[float, ...]:
+    """``storey_heights`` of a fixed building (m, > 0; one number or one per storey), used for
+    the code comparison's z/h; ``()`` when absent or invalid (reported)."""
+    if "storey_heights" not in b:
+        return ()
+    got = _storey_values(b["storey_heights"], f"{w}.storey_heights", ck, "m")
+    if got is None or stories is None:
+        return ()
+    if len(got) not in (1, stories):
+        ck.add(
+            f"{w}.storey_heights",
+            f"{len(got)} heights (one per storey) for {stories} storeys",
+        )
+        return ()
+    return tuple(np.broadcast_to(got, (stories,)).tolist())
 
 
 def _direction_h2(b: dict, w: str, ck: _Checker, storeys_given: bool, nonlinear: bool):
@@ -1269,6 +1327,36 @@ def _direction_h2(b: dict, w: str, ck: _Checker, storeys_given: bool, nonlinear:
     return tuple(out)
 
 
+def _pendulum_period(b: dict, w: str, ck: _Checker, periods: tuple[float, ...]):
+    """The period ``2π√(R/g)`` of a friction pendulum given by ``isolator.radius`` (None
+    without one, or when invalid: the problem is reported). With ``period`` given too, both
+    must agree (:func:`floorslide.building.spec.pendulum_period`)."""
+    layer = b.get("isolator")
+    if not isinstance(layer, dict) or "radius" not in layer:
+        return None
+    if layer.get("model") != "friction_pendulum":
+        return None  # reported as an unknown key of the layer
+    from floorslide.building.spec import pendulum_period
+    from floorslide.errors import ModelError
+
+    where = f"{w}.isolator.radius"
+    radius = ck.number(layer["radius"], where, lo=0, lo_open=True)
+    if radius is None:
+        return None
+    if "period" not in b:
+        return pendulum_period(radius)
+    if isinstance(b["period"], list) and len(b["period"]) > 1:
+        ck.add(where, "a radius gives one pendulum period: do not sweep period with it")
+        return None
+    if not periods:
+        return None  # the period is invalid: reported there
+    try:
+        return pendulum_period(radius, periods[0])
+    except ModelError as exc:
+        ck.add(where, exc.message)
+        return None
+
+
 def _isolator(value, where: str, ck: _Checker) -> list:
     """The variants of an ``isolator`` table: ``[(layer, tags)]`` with ``layer`` the
     :attr:`BuildingSpec.isolator` tuple and ``tags`` the swept values' id tags; ``[]`` for the
@@ -1293,8 +1381,12 @@ def _isolator(value, where: str, ck: _Checker) -> list:
     for key in sorted(ISOLATOR_KEYS[model] - {"model"}):
         if key not in value:
             continue
+        if key == "radius":
+            continue  # the pendulum's period (_pendulum_period)
         if key in ISOLATOR_SWEEPS:
             vals = ck.numbers(value[key], f"{where}.{key}", lo=0, lo_open=key != "mu")
+            if key == "mu":
+                _warn_each(ck, value[key], vals, f"{where}.{key}", friction_warning)
             if vals:
                 swept[key] = vals
         else:
@@ -1324,12 +1416,29 @@ def _isolator(value, where: str, ck: _Checker) -> list:
     return out
 
 
+def _warn_each(ck: _Checker, raw, values: tuple[float, ...], where: str, rule) -> None:
+    """Warn (by key path, ``[j]`` for a list) about each value `rule` finds implausible."""
+    for j, v in enumerate(values):
+        message = rule(v)
+        if message:
+            ck.warn(f"{where}[{j}]" if isinstance(raw, list) else where, message)
+
+
 def _floor_spec(value, where, ck: _Checker, stories: set[int]):
     if value in ("all", "roof"):
         return value
     items = value if isinstance(value, list) else [value]
     out = []
     for j, f in enumerate(items):
+        if f == "roof" and isinstance(value, list):
+            out.append("roof")
+            continue
+        if isinstance(f, str):
+            ck.add(
+                f"{where}[{j}]" if isinstance(value, list) else where,
+                f"must be a floor number, 'roof' or 'all', got {f!r}",
+            )
+            continue
         got = ck.number(
             f, f"{where}[{j}]" if isinstance(value, list) else where, lo=0, integer=True
         )
@@ -1369,9 +1478,11 @@ def _contents(value, ck: _Checker, stories: set[int]) -> tuple[ContentSpec, ...]
         if "mu" not in c:
             ck.add(f"{w}.mu", "missing: kinetic friction coefficient(s)")
         mu = ck.numbers(c.get("mu", []), f"{w}.mu", lo=0) if "mu" in c else ()
+        _warn_each(ck, c.get("mu"), mu, f"{w}.mu", friction_warning)
         mu_s = None
         if "mu_s" in c:
             mu_s = ck.numbers(c["mu_s"], f"{w}.mu_s", lo=0)
+            _warn_each(ck, c["mu_s"], mu_s, f"{w}.mu_s", friction_warning)
             if mu_s and len(mu_s) not in (1, len(mu)):
                 ck.add(f"{w}.mu_s", f"must be one value or one per mu ({len(mu)}), got {len(mu_s)}")
             elif mu_s and len(mu_s) == 1:
@@ -1397,6 +1508,7 @@ def _contents(value, ck: _Checker, stories: set[int]) -> tuple[ContentSpec, ...]
         allowable: tuple[float, ...] = ()
         if "allowable" in c:
             allowable = ck.numbers(c["allowable"], f"{w}.allowable", lo=0, lo_open=True)
+            _warn_each(ck, c["allowable"], allowable, f"{w}.allowable", allowable_warning)
             if allowable and len(set(allowable)) != len(allowable):
                 ck.add(f"{w}.allowable", "must not repeat a displacement")
             allowable = tuple(sorted(allowable))

@@ -125,3 +125,21 @@ def test_bad_input_is_refused_with_the_key():
         fs.rock(acc, 0.01, 0.2, 1.0, initial_angle=0.3)
     with pytest.raises(ModelError, match="restitution"):
         fs.rock(acc, 0.01, 2.0, 1.0)  # squat: Housner's r < 0
+
+
+@pytest.mark.parametrize(("f0", "rr"), [(0.5, 0.9), (0.3, 0.7), (0.02, 0.95)])
+def test_significant_impacts_leave_out_the_cascade_to_rest(f0, rr):
+    """Free rocking from θ0 = f0·α (linearised): the k-th impact comes at
+    ``|θ'| = r^(k−1)·p·α·√(f0(2 − f0))`` (energy conserved between impacts), so the impacts
+    at or above ``p·α·√(f(2 − f))``, f = 0.01, number ``⌊ln(√(f(2−f))/√(f0(2−f0)))/ln r⌋ + 1``;
+    all impacts run on to ``r^k·√(f0(2 − f0)) ≤ 10⁻¹²``: ``⌈ln(10⁻¹²/√(f0(2−f0)))/ln r⌉``."""
+    w0 = np.sqrt(f0 * (2 - f0))
+    x = np.log(np.sqrt(0.01 * 1.99) / w0) / np.log(rr)
+    assert 0.05 < x % 1 < 0.95  # no impact near the threshold
+    significant = int(np.floor(x)) + 1 if x >= 0 else 0
+    total = int(np.ceil(np.log(1e-12 / w0) / np.log(rr)))
+    r = fs.rock(np.zeros(3001), 0.01, B, H, restitution=rr, initial_angle=f0 * ALPHA)
+    assert r.mode == ("rock",) and r.peak_ratio[0] == pytest.approx(f0, abs=1e-12)
+    assert r.significant_impacts[0] == significant
+    assert r.impacts[0] == total
+    assert r.to_records()[0]["significant_impacts"] == significant

@@ -10,7 +10,7 @@ import pytest
 
 from floorslide.practice.code import asce7_floor_amplification
 from floorslide.practice.fragility import fit_fragility
-from floorslide.report import design_tables, format_csv, format_markdown
+from floorslide.report import COLUMNS, design_tables, format_csv, format_markdown
 from floorslide.report.records import record_table
 from floorslide.report.study import load_study
 from floorslide.run.execute import execute
@@ -134,6 +134,19 @@ def test_exceedance_counts_from_the_per_record_table(study, tables):
     assert any(r["n_exceed"] > 0 for r in rows if r["state"].startswith("slide"))
 
 
+def test_exceedance_fraction_states_its_denominator(tables):
+    """The fraction of a slide state is over the records that did not rock: that count is a
+    column, beside the fraction, so that 1/3 is not read as 1 of the 4 records."""
+    names = [c.name for c in COLUMNS["exceedance"]]
+    assert names.index("n_records_exceedance") == names.index("fraction") - 1
+    rows = tables["exceedance"]
+    for r in rows:
+        over = r["state"] == "overturn"
+        assert r["n_records_exceedance"] == r["n_records"] - (0 if over else r["n_rock"])
+        if r["n_records_exceedance"]:
+            assert r["fraction"] == r["n_exceed"] / r["n_records_exceedance"]
+
+
 def test_fragility_rows_fit_the_stripes_counts(tables):
     rows = tables["fragility"]
     ex = {(r["record_set"], r["building"], r["mu_k"], r["state"]): r for r in tables["exceedance"]}
@@ -203,3 +216,38 @@ def test_a_real_report_with_figures_renders(study, tmp_path):
     assert path.stat().st_size > 200_000  # the figures are in it
     inked = rendered_ink(path, tmp_path)
     assert inked > 0.01, f"the rendered report looks blank ({inked:.4f} of pixels inked)"
+
+
+def test_code_h_f_uses_the_storey_heights(study, monkeypatch):
+    """With storey_heights = [4, 2] m floor 1 is at z/h = 4/6, not 1/2, and H_f follows
+    (ASCE 7-22 Eq. 13.3-4 at that height); the roof stays at 1."""
+    import dataclasses
+
+    from floorslide.practice.code import relative_heights
+    from floorslide.report import practice
+    from floorslide.report.practice import code_table
+
+    profiles = practice.pfa_profiles
+
+    def every_floor(st, rs):  # the study stores the roof only: floor 1 gets its values too
+        return {b: {0: fl[2], 1: fl[2], 2: fl[2]} for b, fl in profiles(st, rs).items()}
+
+    monkeypatch.setattr(practice, "pfa_profiles", every_floor)
+
+    scene = dict(study.scene)
+    scene["buildings"] = [dict(b) for b in scene["buildings"]]
+    scene["buildings"][0]["storey_heights"] = [4.0, 2.0]
+    tall = dataclasses.replace(study, scene=scene)
+    equal = {(r["building"], r["floor"]): r for r in code_table(study)}
+    rows = {(r["building"], r["floor"]): r for r in code_table(tall)}
+    assert relative_heights(2, [4.0, 2.0]).tolist() == [0.0, 4 / 6, 1.0]
+    assert rows[("fixed", 2)]["z_over_h"] == 1.0
+    floors = [f for (b, f) in rows if b == "fixed"]
+    for f in floors:
+        z = relative_heights(2, [4.0, 2.0])[f]
+        assert rows[("fixed", f)]["z_over_h"] == z
+        assert rows[("fixed", f)]["h_f"] == float(asce7_floor_amplification(z, 0.3))
+    assert floors == [0, 1, 2] and equal[("fixed", 1)]["z_over_h"] == 0.5
+    assert rows[("fixed", 1)]["z_over_h"] == 4 / 6
+    iso = [r for (b, f), r in rows.items() if b == "iso"]
+    assert all(r["z_over_h"] == relative_heights(2, [4.0, 2.0])[r["floor"]] for r in iso)

@@ -222,7 +222,9 @@ def test_the_rocking_table_in_markdown_and_csv(rocking):
     fixed = next(ln for ln in text.splitlines() if ln.startswith("| s | fixed |"))
     assert "| 1† |" in fixed  # a p84 over 3 < 8 records
     csv = format_csv("rocking", tables["rocking"])
-    assert csv.startswith("record_set,building,building_kind,isolation_period,floor,content,")
+    assert csv.startswith(
+        "record_set,building,building_kind,isolation_period,floor,floor_label,content,"
+    )
     assert len(csv.splitlines()) == 1 + 3
 
 
@@ -332,3 +334,46 @@ def test_no_rocking_figures_without_rocking_results(study, tmp_path):
     names = [p.name for p in plot_figures(study.path, tmp_path / "fig")]
     assert "histories_broad-band.png" in names
     assert not any(n.startswith(("rocking", "overturning")) for n in names)
+
+
+def test_impacts_are_said_to_count_the_cascade_to_rest(rocking):
+    """A block that tilts to 2 % of α counts over a thousand impacts (the geometric cascade to
+    rest): every output that shows the count says what it counts."""
+    from floorslide.report.columns import COLUMNS
+    from floorslide.report.records import RECORD_COLUMNS
+
+    tables = design_tables(rocking)
+    assert any("cascade" in n and "rocking cycles" in n for n in tables.notes)
+    described = {c.name: c.description for c in COLUMNS["rocking"]}
+    assert "cascade" in described["impacts_median"]
+    assert "cascade" in next(c.description for c in RECORD_COLUMNS if c.name == "rock_impacts")
+
+
+def test_significant_impacts_are_stored_and_tabulated(rocking):
+    """A run stores the rocking solver's significant impacts beside all impacts; the per-record
+    table shows them and the rocking table gives their median (numpy's)."""
+    import floorslide as fs
+    from floorslide.run.store import ResultFile
+
+    df = record_table(rocking)
+    rocked = df[df.observed_outcome.isin(["rock", "overturn"])]
+    assert len(rocked) and rocked.rock_significant_impacts.notna().all()
+    assert (rocked.rock_significant_impacts <= rocked.rock_impacts).all()
+    assert (rocked.rock_significant_impacts < rocked.rock_impacts).any()  # a cascade left out
+    rest = df[df.observed_outcome == "rest"]
+    assert (rest.rock_significant_impacts == 0).all()
+    # the stored value is the solver's own count for that record and block
+    row = rocked[rocked.building == "fixed"].iloc[0]
+    task = next(
+        t for t in ResultFile(rocking).tasks()
+        if t.meta["record"] == row.record and t.meta["building"] == "fixed"
+    )  # fmt: skip
+    assert int(row.rock_significant_impacts) in {
+        int(c.rock_significant_impacts[i]) for c in task.contents if c.content == "cabinet"
+        for i in range(len(c.mu_k)) if c.rock_significant_impacts[i] >= 0
+    }  # fmt: skip
+    assert fs.RockResult.__dataclass_fields__["significant_impacts"]
+    for r in design_tables(rocking)["rocking"]:
+        sel = df[(df.building == r["building"]) & (df.content == r["content"])
+                 & (df.mu_s == df[df.content == r["content"]].mu_s.max())]  # fmt: skip
+        assert r["significant_impacts_median"] == np.median(sel.rock_significant_impacts)

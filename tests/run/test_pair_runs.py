@@ -299,3 +299,31 @@ def test_a_pair_with_its_vertical_slides_with_vertical_shaking(tmp_path):
     np.testing.assert_allclose(c.peak_slide, ref.peak_slide, rtol=1e-12)
     plain = fs.slide_plane((rec.acc, rec.acc2), rec.dt, c.mu_k, building=_model("fixed"), floor=2)
     assert np.all(np.abs(c.peak_slide - plain.peak_slide) > 1e-6 * plain.peak_slide)
+
+
+def test_frs_table_gives_rotd100_and_each_direction(run):
+    """The frs table of a pair set: RotD50 (psa, orientation RotD50), and beside it the median
+    and p84 of RotD100 and of each direction's PSA, the stored arrays' statistics."""
+    from floorslide.report import design_tables, format_markdown
+
+    _, rf, _ = run
+    tables = design_tables(rf.path)
+    rows = [r for r in tables["frs"] if r["period"] == 0.3]
+    assert rows
+    stored = {}
+    for t in rf.tasks():
+        (s,) = t.spectra
+        k = list(np.asarray(s.periods)).index(0.3)
+        stored.setdefault(t.meta["building"], []).append(
+            [np.asarray(getattr(s, n))[0, k] for n in ("psa", "rotd100", "psa_h1", "psa_h2")]
+        )
+    for r in rows:
+        got = np.array(stored[r["building"]])
+        assert r["orientation"] == "RotD50"
+        assert r["psa_median"] == pytest.approx(np.median(got[:, 0]), rel=1e-12)
+        assert r["rotd100_median"] == pytest.approx(np.median(got[:, 1]), rel=1e-12)
+        assert r["rotd100_p84"] == pytest.approx(np.percentile(got[:, 1], 84), rel=1e-12)
+        assert r["psa_h1_median"] == pytest.approx(np.median(got[:, 2]), rel=1e-12)
+        assert r["psa_h2_g_p84"] == pytest.approx(np.percentile(got[:, 3], 84) / 9.80665)
+        assert r["rotd100_median"] >= r["psa_median"]
+    assert "rotd100_median" in format_markdown(tables, ["frs"])
