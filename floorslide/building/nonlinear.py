@@ -534,7 +534,16 @@ def nonlinear_motion(
         x0[:n] = u
     branch0 = _initial(building, x0, float(acc[0]))
     motion = NonlinearMotion(
-        building, acc, float(dt), int(m), dt / m, tuple(floors), None, kn, notes=tuple(notes)
+        building,
+        acc,
+        float(dt),
+        int(m),
+        dt / m,
+        tuple(floors),
+        None,
+        kn,
+        notes=tuple(notes),
+        augmented=oscillator is not None,
     )
     X, BR, Yo, events, peak, _ = integrate(motion, x0, branch0, keep_segments, max_bytes)
     motion.response = _response(building, motion, X, BR, Yo, events, peak, oscillator)

@@ -107,6 +107,8 @@ class NonlinearMotion:
     _checkpoints: list | None = field(default=None, repr=False)
     _samples: tuple | None = field(default=None, repr=False)
     _start: tuple | None = field(default=None, repr=False)
+    augmented: bool = False
+    """An oscillator is appended to the building's states (its outputs replace the floors')."""
 
     @property
     def npts(self) -> int:
@@ -152,6 +154,12 @@ class NonlinearMotion:
         """The motion of `floor` (0 is the base mat, above the isolators)."""
         if floor is None:
             raise ModelError("floor is required with building=", "floor")
+        if self.augmented:
+            raise ModelError(
+                "this motion carries an oscillator appended as states (its outputs are the "
+                "oscillator's): build the motion without oscillator= to read its floors",
+                "oscillator",
+            )
         (floor,) = self.building.check_floors([floor])
         if floor not in self.floors:
             raise ModelError(

@@ -122,6 +122,7 @@ def test_refused_in_one_line(kobe):
         (lambda: b.motion(a, 0.01, floors=[1]).floor(2), "not among the floors"),
         (lambda: fs.slide(b.motion(a, 0.01).floor(1), 0.01, 0.1, building=b), "FloorMotion"),
         (lambda: fs.peak_floor_acceleration(b, a, 0.01, output="drift"), "output"),
+        (lambda: b.motion(a, 0.01, floors=[1], oscillator=(1, 6.0, 0.05)).floor(1), "oscillator"),
     ]
     for call, words in cases:
         with pytest.raises(fs.FloorslideError, match=words) as err:
