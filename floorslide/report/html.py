@@ -257,6 +257,7 @@ def _summary_html(tables: DesignTables) -> list[str]:
     from floorslide.report.summary import quality_lines, summary_blocks
 
     out = []
+    said: set[str] = set()
     for i, b in enumerate(summary_blocks(tables)):
         out.append(f"<h3>{_e(b.heading)}</h3>")
         if b.caution:
@@ -276,8 +277,9 @@ def _summary_html(tables: DesignTables) -> list[str]:
             f'<table class="summary" id="summary-{i}"><thead><tr>{head}</tr></thead>'
             f"<tbody>{''.join(body)}</tbody></table>"
         )
-        if b.legend:
+        if b.legend and b.legend not in said:  # once, under the first table it explains
             out.append(f'<p class="legend">{_e(b.legend)}</p>')
+            said.add(b.legend)
     if "records" in tables.tables:
         lines = quality_lines(tables["records"])
         out.append(f'<p class="legend">{"<br>".join(_e(x) for x in lines)}</p>')

@@ -185,16 +185,19 @@ def _pfa_text(value: float) -> str:
 
 def format_summary(tables: DesignTables) -> str:
     """The summary as text: per record set, content and floor a heading, the line that
-    explains the rocking cells (none when nothing rocks), a caution below 8 records and a
+    explains the rocking cells (under the first table that has them; none when nothing
+    rocks), a caution below 8 records and a
     Markdown table (building, PFA (g), one column per friction value); then the records'
     quality checks. INCOMPLETE first when the run is not finished."""
     out = []
     if getattr(tables, "status", ""):
         out += [tables.status, ""]
+    said: set[str] = set()
     for b in summary_blocks(tables):
         out.append(b.heading)
-        if b.legend:
+        if b.legend and b.legend not in said:  # once, under the first table it explains
             out.append(b.legend)
+            said.add(b.legend)
         if b.caution:
             out.append(b.caution)
         out.append("| building | PFA (g) | " + " | ".join(b.friction_labels) + " |")

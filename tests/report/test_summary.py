@@ -99,3 +99,13 @@ def test_run_ends_with_the_summary(monkeypatch, capsys, tmp_path):
     assert summary in out
     assert "one (1 records) — 'box' on floor 1: median peak slide" in out
     assert out.rstrip().endswith(f"--summary; all tables: floorslide table {out_h5})")
+
+
+def test_the_rocking_legend_is_printed_once(study):
+    text = format_summary(design_tables(study.path))
+    assert text.count("never count as 0") == 1
+    lines = text.splitlines()
+    assert (
+        "never count as 0"
+        in lines[lines.index(next(ln for ln in lines if "(3 records)" in ln)) + 1]
+    )

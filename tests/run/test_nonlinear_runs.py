@@ -80,7 +80,11 @@ def test_isolator_tables_sweep_and_name_variants():
         ('{ model = "bilinear", q_ratio = 0.05 }', "", "give one of yield_disp and alpha"),
         ('{ model = "bilinear", q_ratio = 0.05, alpha = 1.5, yield_disp = 0.01 }', "", "one of"),
         ('{ model = "bilinear", q_ratio = 0.0, yield_disp = 0.01 }', "", r"q_ratio: must be > 0"),
-        ('{ model = "friction_pendulum", mu = 0.05, radius = 2 }', "", "unknown key"),
+        (
+            '{ model = "friction_pendulum", mu = 0.05, radius = 2 }',
+            "",
+            "give one of radius and period",
+        ),
         (
             '{ model = "friction_pendulum", mu = 0.05 }',
             "vertical = true",
