@@ -499,8 +499,10 @@ BUILDING_HELP = (
     "Put the object on a floor of this building, KIND:key=value,... e.g. "
     "'fixed:period=0.4,stories=3,damping=0.05', "
     "'isolated:period=2.5,damping=0.1,super_period=0.4,stories=3' or "
-    "'fixed:masses=2e5/2e5/1.5e5,stiffnesses=3e8/3e8/2e8' (keys as in a scene's "
-    "[[buildings]]; lists separated by '/'). Default: the ground."
+    "'fixed:masses=2e5/2e5/1.5e5,stiffnesses=3e8/3e8/2e8'; on nonlinear isolation "
+    "'fps:period=3,mu=0.06,super_period=0.4,stories=3' (friction pendulums) or "
+    "'lrb:q_ratio=0.06,period=2.5,yield_disp=0.02,super_period=0.4,stories=3' (lead-rubber) "
+    "(keys as in a scene's [[buildings]]; lists separated by '/'). Default: the ground."
 )
 
 
@@ -531,12 +533,6 @@ def _building(spec: str | None, floor: str | None):
         building = parse_building(spec)
     except ModelError as exc:
         raise click.BadParameter(str(exc), param_hint="--building") from None
-    if hasattr(building, "isolator"):
-        raise click.BadParameter(
-            f"isolator={building.kind}: a nonlinear isolation layer runs in a scene "
-            "([[buildings]] isolator, floorslide run), not yet on the single-record commands",
-            param_hint="--building",
-        )
     top = building.stories
     if floor is None or floor.strip().lower() == "roof":
         number = top
@@ -559,6 +555,12 @@ def _building(spec: str | None, floor: str | None):
     else:
         name = f"floor {number}"
     return building, number, f"on {name} of: {describe_building(building)}"
+
+
+def _family_of(building) -> str:
+    """The kernel family a single-record command on `building` needs (the first-run notice):
+    ``nonlinear`` on nonlinear isolation, else ``floors``."""
+    return "nonlinear" if getattr(building, "segmented", False) else "floors"
 
 
 def _record_on_floor(record, reading, processing, scale_pga, building, floor_no):
@@ -757,7 +759,7 @@ def slide(
     building, floor_no, where = _building(building_spec, floor)
     processing = _processing(detrend, taper, highpass, lowpass)
     pair = record2 is not None or as_pair
-    _kernels("plane" if pair else "ground" if building is None else "floors")
+    _kernels("plane" if pair else "ground" if building is None else _family_of(building))
     if pair:
         if direction != "both":
             raise click.BadParameter(
@@ -865,7 +867,7 @@ def rock(
     heights = _floats(height, "--height")
     building, floor_no, where = _building(building_spec, floor)
     processing = _processing(detrend, taper, highpass, lowpass)
-    _kernels("floors")
+    _kernels(_family_of(building))
     tr, quality, fm = _record_on_floor(record, (fmt, units, dt, component), processing,
                                        scale_pga, building, floor_no)  # fmt: skip
     try:
@@ -1045,7 +1047,7 @@ def spectrum(
 
     grid, zetas = _spectrum_grid(periods, damping)
     building, floor_no, where = _building(building_spec, floor)
-    _kernels("plane" if record2 is not None or as_pair else "floors")
+    _kernels("plane" if record2 is not None or as_pair else _family_of(building))
     if record2 is not None or as_pair:
         if record2 is not None and as_pair:
             raise click.BadParameter("give RECORD2 or --pair, not both", param_hint="--pair")

@@ -160,8 +160,8 @@ def _oscillator() -> None:
 
 
 def _nonlinear() -> None:
-    """Buildings on nonlinear isolation (lead-rubber, friction pendulum), their riders
-    included."""
+    """Buildings on nonlinear isolation (lead-rubber, friction pendulum) and the contents and
+    spectra that read their motion."""
     from floorslide.run import warmup
 
     warmup._nonlinear_tasks()

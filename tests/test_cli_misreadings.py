@@ -54,18 +54,11 @@ def test_spectrum_json_of_two_components_states_its_units():
 def test_friction_as_a_percentage_is_a_one_line_warning():
     out = run("slide", RECORD, "--mu", "10,20", "--json")
     assert out.returncode == 0, out.stderr
-    assert out.stderr.splitlines() == [
+    warned = [ln for ln in out.stderr.splitlines() if "compiling" not in ln]  # a first run
+    assert warned == [
         "floorslide: warning: --mu: friction coefficient 10 is implausible (dry friction is "
         "below about 1); did you mean 0.10?",
         "floorslide: warning: --mu: friction coefficient 20 is implausible (dry friction is "
         "below about 1); did you mean 0.20?",
     ]
     assert run("slide", RECORD, "--mu", "0.1,1.5").stderr == ""
-
-
-def test_a_nonlinear_building_spec_is_refused_by_the_single_record_commands_in_one_line():
-    spec = "isolated:isolator=friction_pendulum,mu=0.05,radius=2,super_period=0.4,stories=3"
-    out = run("slide", RECORD, "--mu", "0.1", "--building", spec)
-    assert out.returncode == 2
-    assert "a nonlinear isolation layer runs in a scene" in out.stderr
-    assert "Traceback" not in out.stderr

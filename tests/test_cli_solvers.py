@@ -11,7 +11,14 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from floorslide.building import IsolatedBuilding, ShearBuilding, peak_floor_acceleration
+from floorslide.building import (
+    BilinearIsolator,
+    FrictionPendulum,
+    IsolatedBuilding,
+    NonlinearIsolatedBuilding,
+    ShearBuilding,
+    peak_floor_acceleration,
+)
 from floorslide.cli import cli
 from floorslide.contents.sliding import slide
 from floorslide.spectra import response_spectrum
@@ -136,7 +143,25 @@ def fixed_building():
             lambda: ShearBuilding([2e5, 2e5, 1.5e5], [3e8, 3e8, 2e8], 0.03),
             3,
         ),
+        (
+            "fps:period=3,mu=0.06,super_period=0.4,stories=3",
+            "roof",
+            lambda: NonlinearIsolatedBuilding(
+                fixed_building(), 1.0, FrictionPendulum(mu=0.06, period=3.0)
+            ),
+            3,
+        ),
+        (
+            "isolated:period=2.5,isolator=bilinear,q_ratio=0.06,yield_disp=0.02,"
+            "super_period=0.4,stories=3",
+            "1",
+            lambda: NonlinearIsolatedBuilding(
+                fixed_building(), 1.0, BilinearIsolator(q_ratio=0.06, period=2.5, yield_disp=0.02)
+            ),
+            1,
+        ),
     ],
+    ids=["fixed", "isolated", "storeys", "fps", "lead-rubber"],
 )
 def test_slide_on_a_floor_of_a_building(spec, floor, building, number):
     args = ["slide", RECORD, "--mu", "0.05,0.2", "--building", spec, "--json"]
@@ -340,3 +365,15 @@ def test_spectrum_of_two_components_is_rotd():
                "--building-h2", "fixed:period=0.8,stories=2")  # fmt: skip
     assert text.returncode == 0, text.stderr
     assert "RotD50 and RotD100" in text.stdout and "along 142" in text.stdout
+
+
+def test_two_components_on_nonlinear_isolation_are_refused_in_one_line():
+    """Bearings under two components need the coupled (bidirectional) layer: not the per-direction
+    model, and not a traceback."""
+    pairs = SLAMMER.parent / "pairs"
+    a, b = sorted(str(p) for p in pairs.glob("RSN1084_*.AT2"))
+    spec = "fps:period=3,mu=0.06,super_period=0.4"
+    out = run("slide", a, b, "--mu", "0.1", "--building", spec)
+    assert out.returncode == 2, out.stderr
+    lines = [x for x in out.stderr.splitlines() if x.startswith("floorslide: error")]
+    assert len(lines) == 1 and "nonlinear isolation are not available yet" in lines[0]

@@ -22,6 +22,7 @@ from floorslide.building.nonlinear import (
     NonlinearIsolatedBuilding,
     isolator_response,
 )
+from floorslide.building.nonlinear_motion import NonlinearFloorMotion, NonlinearMotion
 
 __all__ = [
     "BilinearIsolator",
@@ -34,6 +35,8 @@ __all__ = [
     "FrictionPendulum",
     "IsolatorResponse",
     "NonlinearIsolatedBuilding",
+    "NonlinearFloorMotion",
+    "NonlinearMotion",
     "isolator_response",
     "building_motion",
     "floor_motion",

@@ -11,6 +11,12 @@ the friction a stuck pendulum needs), found by rigorous root isolation
 value, the branch changes, and the rest of the sub-step continues from it. The augmented
 state's last component is the layer's constant force on the branch (``F0``: ``−(k1 − k2)·p``
 elastic, ``±Q`` yielding, ``±mu·W`` sliding).
+
+The building is integrated alone: nothing rides along. Each *segment* of its motion — a whole
+sub-step of one branch, or the piece of a sub-step between events — can be recorded (its
+sub-step, branch, the states at its ends, the ground there), and every consumer (rigid blocks,
+2-DOF oscillators, rocking blocks, floor spectra) reads those segments
+(:class:`floorslide.building.nonlinear_motion.NonlinearMotion`).
 """
 
 from __future__ import annotations
@@ -24,28 +30,11 @@ from floorslide.building._instep import (
     substep_inputs,
     taylor_coefficients,
 )
-from floorslide.contents._kernels import objects_on_substep
-from floorslide.contents._oscillator_kernel import O_MODE, O_U, O_Z, O_ZD, _advance_part, _shift
-from floorslide.contents._rocking_kernel import MODE as RK_MODE
-from floorslide.contents._rocking_kernel import OVERTURNED as RK_OVERTURNED
-from floorslide.contents._rocking_kernel import P_P, P_TAN, block_through
-from floorslide.contents._rocking_kernel import ROCK_MAX_EVENTS as RK_MAX_EVENTS
-from floorslide.contents._rocking_kernel import TH as RK_TH
-from floorslide.numerics.polynomial import (
-    max_abs_on,
-    poly_val,
-    rise_within,
-    scratch,
-)
+from floorslide.numerics.polynomial import max_abs_on, poly_val, rise_within, scratch
 
 # branch codes: as floorslide.building.isolators
 LINEAR, ELASTIC, PLASTIC_POS, PLASTIC_NEG, SLIP_POS, SLIP_NEG, STICK = 0, 1, 2, 3, 4, 5, 6
 NO_EVENT = 1e300
-BLOCK_MAX_EVENTS = 10000
-FLEX_MAX_EVENTS = 1000
-"""Most friction events of a block / a 2-DOF oscillator in one segment or part (as
-``floorslide.contents.events``)."""
-"""Most friction events of a block in one segment (as ``floorslide.contents.events``)."""
 EVENT_GAP = 1e-12
 """Shortest time between two events, in sub-steps (see :func:`nonlinear_run`)."""
 
@@ -118,484 +107,8 @@ def _search_peak(OR, OB, i, x, a0, slope, h, K, peak, t_peak, t0, c, work):
         t_peak[i] = t0 + t
 
 
-@njit(cache=True, inline="always")
-def _bound_on(p, deg, L):
-    """``Σ_j |p_j| L^j ≥ max|p|`` on ``[0, L]``."""
-    s = 0.0
-    for j in range(deg, -1, -1):
-        s = s * L + abs(p[j])
-    return s
-
-
-@njit(cache=True, inline="always")
-def _pack_segment(XW, pk, x, y, a0, a1, slope, L, t0, g):
-    """Into the block pass's packed arguments: the building's states at a segment's ends, the
-    ground's values and slope there, its length and start time, and the normal force's
-    integrals over it (no vertical shaking: ``N = g``)."""
-    for j in range(x.size):
-        XW[0, j] = x[j]
-        XW[1, j] = y[j]
-    pk[0], pk[1], pk[2], pk[3], pk[4] = a0, a1, slope, L, t0
-    pk[13] = g * L
-    pk[14] = g * L * L / 2.0
-
-
-@njit(cache=True, inline="always")
-def _blocks_substep(G, OR, OB, m, XW, BLK, MU, bstates, buf, rw, pk, flags, n, h):
-    """Advance the rigid blocks through a whole sub-step without events of the building, or a
-    segment of one of length ``h`` (the curvature-tail weights of the whole sub-step in ``G``
-    bound a shorter segment too), floor by floor, as on a linear building
-    (:func:`floorslide.contents._kernels.objects_on_substep`: closed forms where a rigorous
-    enclosure of the floor acceleration decides, the event-driven step otherwise).
-
-    ``XW[0], XW[1]``: the building's states at the segment's ends (branch matrices ``m``);
-    ``pk[0:5]``, ``pk[9:16]``: ground values, slope, ``h``, start time and the normal force's
-    terms, set by the caller. Block ``i`` stands on floor ``BLK[1, i]`` (state index), output
-    row ``BLK[0, i]`` (sorted); the floor's relative displacement and velocity are the states
-    ``f`` and ``n + f``. Arguments packed as the block pass wants them (few fields per call)."""
-    N = XW.shape[1]
-    nblk = BLK.shape[1]
-    aa, ab, slope = pk[0], pk[1], pk[2]
-    i0 = 0
-    while i0 < nblk:
-        o = BLK[0, i0]
-        i1 = i0
-        while i1 < nblk and BLK[0, i1] == o:
-            i1 += 1
-        f = BLK[1, i0]
-        for j in range(N):
-            XW[2, j] = G[m, o + 1, TIGHT, j]
-        pk[5] = G[m, o + 1, TIGHT, N]
-        pk[6] = G[m, o + 1, TIGHT, N + 1]
-        vr0 = XW[0, n + f]
-        pk[7] = XW[1, n + f] - vr0 + 0.5 * h * (aa + ab)
-        dD = XW[1, f] - XW[0, f] - vr0 * h
-        pk[8] = dD + aa * h * h / 2.0 + slope * h * h * h / 6.0
-        flags[4] = i0
-        flags[5] = i1
-        objects_on_substep(OR[m, o], OB[m, o], XW, MU, bstates, buf, rw, pk, flags)
-        i0 = i1
-
-
-@njit(cache=True, inline="always")
-def _rider_series(cs, K, D, z2w, w2, q, v, d, dv):
-    """Taylor series of a rider on a part from its state ``(q, q')`` there, driven by the floor
-    polynomial ``cs`` (degree ``K``, shifted to the part's start): ``d_0 = q, d_1 = q'``,
-    ``d_{k+2} = −(c_k + 2ξω(k+1) d_{k+1} + ω² d_k)/((k+1)(k+2))`` up to degree ``D``, and its
-    derivative's coefficients ``dv`` (degree ``D − 1``)."""
-    d[0] = q
-    d[1] = v
-    for k in range(D - 1):
-        ck = cs[k] if k <= K else 0.0
-        d[k + 2] = -(ck + z2w * (k + 1) * d[k + 1] + w2 * d[k]) / ((k + 1) * (k + 2))
-    for j in range(D):
-        dv[j] = (j + 1) * d[j + 1]
-    dv[D] = 0.0
-
-
-@njit(cache=True)
-def _oscillators(OR, OB, x, a_s, slope, L, K, osc_out, osc_w, osc_xi, osc_rho, S, P, D, c,
-                 CS, d, dv, da, work):  # fmt: skip
-    """Advance linear oscillators through a segment ``[0, L]`` on the floors of output rows
-    ``osc_out``: ``q'' + 2ξω q' + ω² q = −a_f(τ)`` with ``a_f`` the floor's Taylor polynomial
-    (degree ``K``). Oscillator ``i`` goes through the segment in equal parts no longer than
-    ``MAX_PHASE/osc_rho[i]`` (its own ``ρ·h ≤ 0.5``; the building keeps its own sub-steps):
-    on a part starting at ``τ_b`` the floor polynomial is shifted there (``CS``, one shift per
-    floor and part grid: oscillators come sorted by floor, then by ``osc_rho``) and ``q`` is
-    the series ``Σ d_j s^j`` of :func:`_rider_series` (exact to rounding at degree ``D``).
-    ``S[:, i] = (q, q')`` in/out; ``P[:, i]`` the peaks of ``|q|``, ``|q'|`` and of the
-    absolute acceleration ``|ω² q + 2ξω q'|``, searched inside a part only when the bound
-    ``Σ|d_j| h^j`` exceeds the peak so far.
-
-    This is the series path: segments of a sub-step with an event of the building, and every
-    sub-step when :func:`nonlinear_run` is told so (``osc_fast`` false); full sub-steps
-    otherwise take :func:`_riders_fast`."""
-    last = -1
-    last_parts = -1
-    for i in range(osc_w.size):
-        o = osc_out[i]
-        if o != last:
-            taylor_coefficients(OR[o], OB[o], x, a_s, slope, c)
-            last = o
-            last_parts = -1
-        parts = max(1, int(np.ceil(L * osc_rho[i] / 0.5 - 1e-12)))
-        hp = L / parts
-        if parts != last_parts:
-            for sp in range(parts):
-                _shift(c, K, sp * hp, CS[sp])
-            last_parts = parts
-        w = osc_w[i]
-        z2w = 2.0 * osc_xi[i] * w
-        w2 = w * w
-        for sp in range(parts):
-            _rider_series(CS[sp], K, D, z2w, w2, S[0, i], S[1, i], d, dv)
-            for j in range(D + 1):
-                da[j] = -(w2 * d[j] + z2w * dv[j])
-            if _bound_on(d, D, hp) > P[0, i]:
-                v, _ = max_abs_on(d, D, hp, P[0, i], work)
-                if v > P[0, i]:
-                    P[0, i] = v
-            if _bound_on(dv, D - 1, hp) > P[1, i]:
-                v, _ = max_abs_on(dv, D - 1, hp, P[1, i], work)
-                if v > P[1, i]:
-                    P[1, i] = v
-            if _bound_on(da, D, hp) > P[2, i]:
-                v, _ = max_abs_on(da, D, hp, P[2, i], work)
-                if v > P[2, i]:
-                    P[2, i] = v
-            S[0, i] = poly_val(d, D, hp)
-            S[1, i] = poly_val(dv, D - 1, hp)
-
-
-# rows of the riders' constants (see _rider_weights): ω, ω², 2ξω, 1/ω², 2ξ/ω³, ξω, 1/ω_d,
-# bounds of ∫_0^h |g| for g the impulse responses of q, q' and ω²q + 2ξωq', and 1 where the
-# filter of _rider_flags applies (ξ < 1), else 0
-R_W, R_W2, R_C2, R_IW2, R_AS, R_XIW, R_IWD, R_IH0, R_IH1, R_IH2, R_OK = range(11)
-NRC = 11
-MARGIN = 1.0 + 1e-6
-"""Relative margin of the bounds of :func:`_rider_flags` (for the rounding of the values they
-are formed from)."""
-
-
-@njit(cache=True)
-def _rider_weights(OR, OB, h, osc_out, osc_w, osc_xi, osc_rho, D):
-    """The riders' exact update over a full sub-step of length ``h`` on each branch, and the
-    constants of their peak filter (:func:`_rider_flags`).
-
-    On a sub-step without events the floor acceleration is linear in the building's start
-    state ``x``, the ground value ``a`` at the start and the ground's slope ``s``, and so is a
-    rider's response: ``(q, q')(h) = Φ·(q, q')(0) + W_m·[x; a; s]``. ``PH[:, i]`` holds
-    ``Φ`` (``Φ00, Φ01, Φ10, Φ11``) and ``OW[m, :, :, i]`` the ``2 × (N + 2)`` weights
-    ``W_m`` of branch ``m``, made by superposition: the series update of :func:`_oscillators`
-    (linear in its inputs) run on unit inputs, in the same parts. ``RC[:, i]``: the
-    constants (rows ``R_*``)."""
-    nb, N = OR.shape[0], OR.shape[3]
-    K = OR.shape[2] - 1
-    nosc = osc_w.size
-    PH = np.zeros((4, nosc))
-    OW = np.zeros((nb, 2, N + 2, nosc))
-    RC = np.zeros((NRC, nosc))
-    c = np.zeros(K + 1)
-    cs = np.zeros(K + 1)
-    d = np.zeros(D + 2)
-    dv = np.zeros(D + 2)
-    e = np.zeros(N)
-    for i in range(nosc):
-        w = osc_w[i]
-        xi = osc_xi[i]
-        z2w = 2.0 * xi * w
-        w2 = w * w
-        parts = max(1, int(np.ceil(h * osc_rho[i] / 0.5 - 1e-12)))
-        hp = h / parts
-        # Φ: the free response to a unit q, then a unit q'
-        for col in range(2):
-            q = 1.0 if col == 0 else 0.0
-            v = 1.0 - q
-            for j in range(K + 1):
-                cs[j] = 0.0
-            for _ in range(parts):
-                _rider_series(cs, K, D, z2w, w2, q, v, d, dv)
-                q = poly_val(d, D, hp)
-                v = poly_val(dv, D - 1, hp)
-            PH[col, i] = q
-            PH[2 + col, i] = v
-        # W_m: the response from rest to a unit x_j, a, s
-        o = osc_out[i]
-        for m in range(nb):
-            for col in range(N + 2):
-                for j in range(N):
-                    e[j] = 0.0
-                a = 0.0
-                s = 0.0
-                if col < N:
-                    e[col] = 1.0
-                elif col == N:
-                    a = 1.0
-                else:
-                    s = 1.0
-                taylor_coefficients(OR[m, o], OB[m, o], e, a, s, c)
-                q = 0.0
-                v = 0.0
-                for sp in range(parts):
-                    _shift(c, K, sp * hp, cs)
-                    _rider_series(cs, K, D, z2w, w2, q, v, d, dv)
-                    q = poly_val(d, D, hp)
-                    v = poly_val(dv, D - 1, hp)
-                OW[m, 0, col, i] = q
-                OW[m, 1, col, i] = v
-        RC[R_W, i] = w
-        RC[R_W2, i] = w2
-        RC[R_C2, i] = z2w
-        RC[R_IW2, i] = 1.0 / w2
-        RC[R_AS, i] = 2.0 * xi / (w2 * w)
-        RC[R_XIW, i] = xi * w
-        if xi < 1.0:
-            wd = w * np.sqrt(1.0 - xi * xi)
-            RC[R_IWD, i] = 1.0 / wd
-            RC[R_IH0, i] = h * min(0.5 * h, 1.0 / wd)
-            RC[R_IH1, i] = h * w / wd
-            RC[R_IH2, i] = h * w2 / wd
-            RC[R_OK, i] = 1.0
-    return PH, OW, RC
-
-
-@njit(cache=True, _nrt=False)
-def _rider_flags(i0, i1, S, P, PH, U, RC, S0, FL, f0, f1, fdev, h):
-    """The update and peak filter of :func:`_riders_fast` for the riders ``i0 … i1 − 1`` of
-    one floor on a full sub-step of length ``h``: ``S[:, i] ← Φ_i S[:, i] + U[:, i]``
-    (``U = W_m·[x; a; s]``; the start state is kept in ``S0``), the peaks raised to the end
-    values, and ``FL[i]`` the quantities whose peak may still grow inside the sub-step (bit 0:
-    ``|q|``, bit 1: ``|q'|``, bit 2: ``|A|``, ``A = ω² q + 2ξω q'``); returns the number of
-    flags set.
-
-    The floor acceleration is ``f0, f1`` at the ends and deviates from the chord between them
-    by ``δ(τ)``, ``|δ| ≤ fdev = h²/8·M_f`` (``M_f ≥ max|a_f''|``, the building's bound), so
-    ``|a_f| ≤ max(|f0|, |f1|) + fdev``, ``|δ''| ≤ M_f`` and ``|δ'| ≤ h·M_f`` (``δ`` vanishes
-    at both ends, so ``δ'`` vanishes in between). Inside the sub-step
-    ``q = α + βτ + e(τ) + q_δ(τ)``: the particular solution for the chord (``β = −ṡ/ω²``,
-    ``α = 2ξṡ/ω³ − f0/ω²``, ``ṡ`` its slope; no second derivative), a damped free vibration
-    ``e = Re(C e^{λτ})`` (``|λ| = ω``) with ``|e^(k)| ≤ |C| ω^k`` and
-    ``|(ω² e + 2ξω e')^(k)| ≤ |C|·|ω² + 2ξωλ|·ω^k = |C| ω^(k+2)``, and the response from rest
-    to the deviation, ``|q_δ| ≤ fdev·∫_0^h|g_0|``, ``|q_δ'| ≤ fdev·∫_0^h|g_1|``,
-    ``|A_δ| ≤ fdev·∫_0^h|g_A|`` (impulse responses bounded by ``|g_0| ≤ min(t, 1/ω_d)``,
-    ``|g_1| ≤ ω/ω_d``, ``|g_A| = |ω² g_0 + 2ξω g_1| ≤ ω²/ω_d``), and from its equation
-    ``q_δ'' = −δ − A_δ``, ``q_δ''' = −δ' − ω² q_δ' − 2ξω q_δ''``,
-    ``q_δ⁗ = −δ'' − ω² q_δ'' − 2ξω q_δ'''``: bounds ``D_2, D_3, D_4``. A quantity is flagged
-    only when all three tests fail:
-
-    - its bound (``max|α + βτ| + |C| + |q_δ|^``, ``|β| + ω|C| + |q_δ'|^``,
-      ``max(|f0|, |f1|) + ω²|C| + |A_δ|^``) exceeds its peak;
-    - its end values plus its chord deviation ``h²/8·max|f''|`` exceed the peak
-      (``|q''| ≤ ω²|C| + D_2``, ``|q'''| ≤ ω³|C| + D_3``,
-      ``|A''| ≤ ω⁴|C| + ω² D_2 + 2ξω D_3``);
-    - its derivative may vanish inside: it changes sign between the ends, or an end value is
-      within the derivative's own chord deviation of zero (``h²/8`` times ``|q'''|^``,
-      ``|q⁗| ≤ ω⁴|C| + D_4``, ``|A'''| ≤ ω⁵|C| + ω² D_3 + 2ξω D_4``). A derivative of one
-      sign at both ends farther from zero than its chord deviation cannot vanish: the
-      quantity is monotone and its ends, already in the peak, are its extremes.
-
-    Riders with ``ξ ≥ 1`` are always flagged (row ``R_OK``). The bounds carry the relative
-    margin :data:`MARGIN`. Three loops (update, peaks at the ends, filter) so that each
-    writes few arrays and the compiler vectorises the filter. Compiled without reference
-    counting."""
-    k8 = 0.125 * h * h * MARGIN
-    fsl = (f1 - f0) / h
-    amax = max(abs(f0), abs(f1))
-    mf = 8.0 * fdev / (h * h)  # the bound of |a_f''|
-    Sq, Sv, S0q, S0v = S[0], S[1], S0[0], S0[1]
-    Pd, Pv, Pa = P[0], P[1], P[2]
-    for i in range(i0, i1):
-        q0 = Sq[i]
-        v0 = Sv[i]
-        S0q[i] = q0
-        S0v[i] = v0
-        Sq[i] = PH[0, i] * q0 + PH[1, i] * v0 + U[0, i]
-        Sv[i] = PH[2, i] * q0 + PH[3, i] * v0 + U[1, i]
-    for i in range(i0, i1):
-        Pd[i] = max(Pd[i], abs(Sq[i]))
-        Pv[i] = max(Pv[i], abs(Sv[i]))
-        Pa[i] = max(Pa[i], abs(RC[R_W2, i] * Sq[i] + RC[R_C2, i] * Sv[i]))
-    nf = 0
-    for i in range(i0, i1):
-        q0 = S0q[i]
-        v0 = S0v[i]
-        q1 = Sq[i]
-        v1 = Sv[i]
-        w = RC[R_W, i]
-        w2 = RC[R_W2, i]
-        c2 = RC[R_C2, i]
-        A0 = w2 * q0 + c2 * v0
-        A1 = w2 * q1 + c2 * v1
-        iw2 = RC[R_IW2, i]
-        bet = -fsl * iw2
-        alp = fsl * RC[R_AS, i] - f0 * iw2
-        e0 = q0 - alp
-        ci = (v0 - bet + RC[R_XIW, i] * e0) * RC[R_IWD, i]
-        cm = np.sqrt(e0 * e0 + ci * ci) * MARGIN
-        # the response to the deviation and its derivatives
-        dq = fdev * RC[R_IH0, i]
-        dv = fdev * RC[R_IH1, i]
-        da = fdev * RC[R_IH2, i]
-        d2 = fdev + da
-        d3 = h * mf + w2 * dv + c2 * d2
-        d4 = mf + w2 * d2 + c2 * d3
-        w3 = w2 * w
-        w4 = w2 * w2
-        bd = (max(abs(alp), abs(alp + bet * h)) + cm + dq) * MARGIN
-        bv = (abs(bet) + w * cm + dv) * MARGIN
-        ba = (amax + w2 * cm + da) * MARGIN
-        m2 = w2 * cm + d2
-        m3 = w3 * cm + d3
-        m4 = w4 * cm + d4
-        m2a = w4 * cm + w2 * d2 + c2 * d3
-        m3a = w4 * w * cm + w2 * d3 + c2 * d4
-        d0 = -(f0 + A0)
-        d1 = -(f1 + A1)
-        ad0 = w2 * v0 + c2 * d0
-        ad1 = w2 * v1 + c2 * d1
-        zd = (v0 * v1 <= 0.0) | (min(abs(v0), abs(v1)) <= k8 * m3)
-        zv = (d0 * d1 <= 0.0) | (min(abs(d0), abs(d1)) <= k8 * m4)
-        za = (ad0 * ad1 <= 0.0) | (min(abs(ad0), abs(ad1)) <= k8 * m3a)
-        pd = Pd[i]
-        pv = Pv[i]
-        pa = Pa[i]
-        ld = max(abs(q0), abs(q1)) + k8 * m2 > pd
-        lv = max(abs(v0), abs(v1)) + k8 * m3 > pv
-        la = max(abs(A0), abs(A1)) + k8 * m2a > pa
-        no = RC[R_OK, i] == 0.0
-        fd = ((bd > pd) & ld & zd) | no
-        fv = ((bv > pv) & lv & zv) | no
-        fa = ((ba > pa) & la & za) | no
-        f = fd + 2 * fv + 4 * fa
-        FL[i] = f
-        nf += f
-    return nf
-
-
-@njit(cache=True, _nrt=False)
-def _riders_fast(m, GT, OR, OB, OW, x, ax, aa, slope, h, K, z0, z1, osc_out, osc_w, osc_xi,
-                 osc_rho, S, P, D, PH, RC, Z, U, S0, FL, c, CS, d, dv, da, work,
-                 stats):  # fmt: skip
-    """Advance the riders through a full sub-step without events (the common case) by their
-    exact linear update, and search inside it only the quantities whose peak a rigorous
-    filter cannot rule out (:func:`_rider_flags`), floor by floor.
-
-    ``OW[m]``: the weights ``W_m`` of branch ``m`` (:func:`_rider_weights`), applied to
-    ``Z = [x; a; s]``; ``z0[o + 1]``, ``z1[o + 1]``: the floor acceleration (output row ``o``)
-    at the sub-step's ends (:func:`_fast_substep`); its chord deviation is the building's
-    tight bound (:func:`_tight_deviation`; ``GT[m]`` the branch's chord rows). A flagged
-    quantity is searched as in :func:`_oscillators` (the series from the start state ``S0``,
-    in the same parts, a part only when its bound ``Σ|d_j| h^j`` exceeds the peak); the end
-    state stays the update's. ``stats`` counts sub-steps, rider·sub-steps, flagged
-    rider·sub-steps and polynomial searches. Compiled without reference counting (it runs on
-    every sub-step; the branch's blocks are taken here, where views cost nothing)."""
-    GTm, ORm, OBm, OWm = GT[m], OR[m], OB[m], OW[m]
-    N = x.size
-    nosc = osc_w.size
-    for j in range(N):
-        Z[j] = x[j]
-        ax[j] = abs(x[j])
-    Z[N] = aa
-    Z[N + 1] = slope
-    stats[0] += 1
-    stats[1] += nosc
-    i0 = 0
-    while i0 < nosc:
-        o = osc_out[i0]
-        i1 = i0
-        while i1 < nosc and osc_out[i1] == o:
-            i1 += 1
-        for r in range(2):
-            for i in range(i0, i1):
-                U[r, i] = 0.0
-            for j in range(N + 2):
-                zj = Z[j]
-                for i in range(i0, i1):
-                    U[r, i] += OWm[r, j, i] * zj
-        fdev = _tight_deviation(GTm, o + 1, x, ax, aa, slope, h)
-        nf = _rider_flags(i0, i1, S, P, PH, U, RC, S0, FL, z0[o + 1], z1[o + 1], fdev, h)
-        if nf > 0:
-            taylor_coefficients(ORm[o], OBm[o], x, aa, slope, c)
-            last_parts = -1
-            for i in range(i0, i1):
-                fl = FL[i]
-                if fl == 0:
-                    continue
-                stats[2] += 1
-                parts = max(1, int(np.ceil(h * osc_rho[i] / 0.5 - 1e-12)))
-                hp = h / parts
-                if parts != last_parts:
-                    for sp in range(parts):
-                        _shift(c, K, sp * hp, CS[sp])
-                    last_parts = parts
-                w = osc_w[i]
-                z2w = 2.0 * osc_xi[i] * w
-                w2 = w * w
-                q = S0[0, i]
-                v = S0[1, i]
-                for sp in range(parts):
-                    _rider_series(CS[sp], K, D, z2w, w2, q, v, d, dv)
-                    if fl & 1 and _bound_on(d, D, hp) > P[0, i]:
-                        stats[3] += 1
-                        val, _ = max_abs_on(d, D, hp, P[0, i], work)
-                        if val > P[0, i]:
-                            P[0, i] = val
-                    if fl & 2 and _bound_on(dv, D - 1, hp) > P[1, i]:
-                        stats[3] += 1
-                        val, _ = max_abs_on(dv, D - 1, hp, P[1, i], work)
-                        if val > P[1, i]:
-                            P[1, i] = val
-                    if fl & 4:
-                        for j in range(D + 1):
-                            da[j] = -(w2 * d[j] + z2w * dv[j])
-                        if _bound_on(da, D, hp) > P[2, i]:
-                            stats[3] += 1
-                            val, _ = max_abs_on(da, D, hp, P[2, i], work)
-                            if val > P[2, i]:
-                                P[2, i] = val
-                    if sp + 1 < parts:
-                        q = poly_val(d, D, hp)
-                        v = poly_val(dv, D - 1, hp)
-        i0 = i1
-
-
-@njit(cache=True)
-def _flexible(OR, OB, x, a_s, slope, L, K, t_abs, o2, w2, xi2, r2, g, mub2, muk2, S2, ho2, K2,
-              c2, cs, Y, poly, y, pk, work2):  # fmt: skip
-    """Advance 2-DOF sliding oscillators (one kind, many friction pairs) through a segment
-    ``[0, L]`` on the floor of output row ``o2``: in parts no longer than ``ho2`` (where the
-    oscillator's phases have ``ρ·h ≤ 0.5``), each by the 2-DOF kernel's own exact event-driven
-    step (:func:`floorslide.contents._oscillator_kernel._advance_part`)."""
-    kr = OR.shape[1] - 1
-    for j in range(K2 + 1):
-        c2[j] = 0.0
-    taylor_coefficients(OR[o2], OB[o2], x, a_s, slope, c2[: kr + 1])
-    parts = max(1, int(np.ceil(L / ho2 - 1e-12)))
-    hp = L / parts
-    for sp in range(parts):
-        base = sp * hp
-        for o in range(muk2.size):
-            _advance_part(c2, K2, base, hp, o, w2, xi2, r2, g, mub2, muk2, S2, t_abs + base,
-                          FLEX_MAX_EVENTS, cs, Y, poly, y, pk, work2)  # fmt: skip
-
-
 # columns of a function's chord-bound row (see _chord_rows), after its N state coefficients
 VALUE, C2, C3, TIGHT, LOOSE = 0, 1, 2, 3, 4
-
-
-@njit(cache=True)
-def _rockers(OR, OB, x, a0, slope, L, K, t0, rk_out, rk_par, rk_states, g, D, nonlinear, phase,
-             max_events, RB):  # fmt: skip
-    """Advance the rocking blocks riding along through a segment ``[0, L]`` of the building
-    from state ``x`` (ground ``a0 + slope·τ``): block ``i`` stands on the floor of output row
-    ``rk_out[i]`` (sorted), parameters ``rk_par[i]`` and state ``rk_states[i]`` (the columns
-    of :mod:`floorslide.contents._rocking_kernel`); each goes through the segment in parts
-    with ``p·L ≤ phase`` (:func:`~floorslide.contents._rocking_kernel.block_through`).
-    ``RB``: scratch rows (floor coefficients and their shifts, the series of θ, sin, cos, u, a
-    polynomial, the root-isolation work)."""
-    c, cs, cw = RB[0, : K + 1], RB[1, : K + 1], RB[2, : K + 1]
-    t, S, C, u = RB[3, : D + 1], RB[4, : D + 1], RB[5, : D + 1], RB[6, : D + 1]
-    q = RB[7]
-    work = RB[8:]
-    last = -1
-    reach = 0.0
-    for i in range(rk_out.size):
-        st = rk_states[i]
-        if st[RK_MODE] == RK_OVERTURNED:
-            continue
-        o = rk_out[i]
-        if o != last:
-            taylor_coefficients(OR[o], OB[o], x, a0, slope, c)
-            last = o
-            reach = 0.0
-            for j in range(K, -1, -1):
-                reach = reach * L + abs(c[j])
-        par = rk_par[i]
-        if st[RK_MODE] == 0.0 and reach <= g * par[P_TAN]:
-            continue
-        parts = max(1, int(np.ceil(par[P_P] * L / phase - 1e-12)))
-        block_through(st, par, c, K, L, parts, t0, g, D, nonlinear, max_events, cs, t, S, C, u,
-                      q, cw, work)  # fmt: skip
 
 
 @njit(cache=True)
@@ -788,60 +301,43 @@ def _fast_substep(branch, GT, x, y, ax, aa, ab, slope, h, p, dy, limit, peak, t_
     return count
 
 
-@njit(cache=True)
-def _flexible_sample(H2, k, S2, muk2, flex, g, af):
-    """Histories of the 2-DOF oscillators at record sample ``k``, as the linear path keeps them
-    (:func:`floorslide.contents._oscillator_kernel.oscillator_kernel`): base slide ``u``, spring
-    deformation ``z``, the top mass's absolute acceleration ``−(2ξω ż + ω² z)`` and the base's
-    (the floor's `af` while stuck; the spring and kinetic friction forces over its mass while
-    sliding)."""
-    w, xi, r = flex[1], flex[2], flex[3]
-    for o in range(S2.shape[0]):
-        q_ = 2.0 * xi * w * S2[o, O_ZD] + w * w * S2[o, O_Z]
-        H2[o, k, 0] = S2[o, O_U]
-        H2[o, k, 1] = S2[o, O_Z]
-        H2[o, k, 2] = -q_
-        mode = S2[o, O_MODE]
-        if mode == 0.0:
-            H2[o, k, 3] = af
-        else:
-            H2[o, k, 3] = q_ / r - mode * muk2[o] * g * (1.0 + r) / r
+# columns of a recorded segment: SI (integers) and SF (floats); see nonlinear_run
+S_ROW, S_MAT, S_WHOLE, S_ENDS = 0, 1, 2, 3
+F_A0, F_A1, F_SLOPE, F_LEN, F_T = 0, 1, 2, 3, 4
+
+
+@njit(cache=True, _nrt=False, inline="always")
+def _record(SI, SF, SX, SY, j, row, m, whole, x, y, a0, a1, slope, L, t):
+    """Record segment ``j`` (when the arrays have room for it; the caller counts)."""
+    if j < SI.shape[0]:
+        SI[j, S_ROW] = row
+        SI[j, S_MAT] = m
+        SI[j, S_WHOLE] = whole
+        SI[j, S_ENDS] = 0
+        SF[j, F_A0] = a0
+        SF[j, F_A1] = a1
+        SF[j, F_SLOPE] = slope
+        SF[j, F_LEN] = L
+        SF[j, F_T] = t
+        for i in range(x.size):
+            SX[j, i] = x[i]
+            SY[j, i] = y[i]
 
 
 @njit(cache=True, _nrt=False)
-def _fast_step(m, branch, PHT, PP, QQ, G, GT, x, y, ax, aa, ab, slope, h, iF, kk, dy, musW, peak,
-               t_peak, t0, z0, z1, need, dl, z_valid):  # fmt: skip
-    """One sub-step of :func:`_fast_run` when something rides along (the caller advances the
-    riders): the exact step to ``y``, then :func:`_fast_substep`; ``z0`` formed first unless
-    `z_valid`. Compiled without reference counting, apart from the caller's loop."""
-    _foh_t(PHT[m], PP[m], QQ[m], x, aa, ab, y)
-    p = -x[iF] / kk if branch == ELASTIC else 0.0
-    if not z_valid:
-        Gm = G[m]
-        for f in range(z0.size):
-            z0[f] = _value(Gm[f], x, aa)
-    return _fast_substep(
-        branch, GT[m], x, y, ax, aa, ab, slope, h, p, dy, musW, peak, t_peak, t0, z0, z1, need, dl
-    )
-
-
-@njit(cache=True, _nrt=False)
-def _fast_run(k, r, substeps, mat_of, PHT, PP, QQ, G, GT, acc, h, x, y, ax, branch, iF, kk, dy,
-              musW, peak, t_peak, z0, z1, need, dl, z_valid, X, BR, Yo, want_outputs, out,
-              riders, OR, OB, K, osc_out, osc_w, osc_xi, osc_rho, osc_S, osc_P, D, PH, OW, RC,
-              oZ, oU, oS0, oFL, oax, co, CS, d, dv, da, ow, osc_stats):  # fmt: skip
-    """The sub-steps of a building with nothing riding along but linear oscillators (when
-    `riders`; advanced by :func:`_riders_fast`, the arguments from ``OR`` on), from sub-step
-    ``r`` of record step ``k`` on, in one compiled loop while :func:`_fast_substep` clears
-    them (no event, no output search); the samples ``X``, ``BR``, ``Yo`` are written as it
-    goes. It stops
-    before a sub-step the bound cannot clear (``out = [k, r, -1]``, the state untouched) or
-    after one whose outputs need a search (``out = [k, r, count]``: ``x`` the start state,
-    ``y`` the end, ``z1`` the functions' end values; the caller finishes that sub-step);
-    ``out[2] = -2`` at the record's end. ``PHT``: the transition matrices transposed
-    (:func:`_foh_t`); ``GT``: :func:`_chord_rows` with the functions last. Compiled without
-    reference counting: the views made here cost nothing."""
-    npts = acc.size
+def _fast_run(k, r, k1, substeps, mat_of, PHT, PP, QQ, G, GT, acc, h, x, y, ax, branch, iF, kk,
+              dy, musW, peak, t_peak, z0, z1, need, dl, z_valid, X, BR, Yo, want_outputs, out,
+              SI, SF, SX, SY, nseg):  # fmt: skip
+    """The common sub-steps, from sub-step ``r`` of record step ``k`` on (up to record step
+    ``k1``), in one compiled loop while :func:`_fast_substep` clears them (no event, no output
+    search); the samples ``X``, ``BR``, ``Yo`` are written as it goes, and each sub-step is
+    recorded as a whole segment (:func:`_record`, from index ``nseg``). It stops before a
+    sub-step the bound cannot clear (``out = [k, r, -1, nseg]``, the state untouched) or after
+    one whose outputs need a search (``out = [k, r, count, nseg]``: ``x`` the start state,
+    ``y`` the end, ``z1`` the functions' end values; the caller finishes and records that
+    sub-step); ``out[2] = -2`` at record step ``k1``. ``PHT``: the transition matrices
+    transposed (:func:`_foh_t`); ``GT``: :func:`_chord_rows` with the functions last.
+    Compiled without reference counting: the views made here cost nothing."""
     m = mat_of[branch]
     Gm = G[m]
     GTm = GT[m]
@@ -854,25 +350,26 @@ def _fast_run(k, r, substeps, mat_of, PHT, PP, QQ, G, GT, acc, h, x, y, ax, bran
         aa = a + (a1 - a) * (r / substeps)
         for f in range(nout + 1):
             z0[f] = _value(Gm[f], x, aa)
-    while k < npts - 1:
+    while k < k1:
         a = acc[k]
         a1 = acc[k + 1]
         slope = (a1 - a) / (substeps * h)
         while r < substeps:
             aa = a + (a1 - a) * (r / substeps)
             ab = a + (a1 - a) * ((r + 1) / substeps) if r + 1 < substeps else a1
-            t0 = (k * substeps + r) * h
+            row = k * substeps + r
+            t0 = row * h
             _foh_t(pht, pp, qq, x, aa, ab, y)
             p = -x[iF] / kk if branch == ELASTIC else 0.0
             ns = _fast_substep(branch, GTm, x, y, ax, aa, ab, slope, h, p, dy, musW, peak, t_peak,
                                t0, z0, z1, need, dl)  # fmt: skip
             if ns != 0:
-                out[0], out[1], out[2] = k, r, ns
+                out[0], out[1], out[2], out[3] = k, r, ns, nseg
                 return
-            if riders:
-                _riders_fast(m, GT, OR, OB, OW, x, oax, aa, slope, h, K, z0, z1, osc_out,
-                             osc_w, osc_xi, osc_rho, osc_S, osc_P, D, PH, RC, oZ, oU, oS0,
-                             oFL, co, CS, d, dv, da, ow, osc_stats)  # fmt: skip
+            _record(SI, SF, SX, SY, nseg, row, m, 1, x, y, aa, ab, slope, h, t0)
+            if nseg < SI.shape[0]:
+                SI[nseg, S_ENDS] = 1
+            nseg += 1
             for i in range(N):
                 x[i] = y[i]
             for f in range(nout + 1):
@@ -886,107 +383,34 @@ def _fast_run(k, r, substeps, mat_of, PHT, PP, QQ, G, GT, acc, h, x, y, ax, bran
         if want_outputs:
             for i in range(nout):
                 Yo[k, i] = z0[i + 1]
-    out[0], out[1], out[2] = k, r, -2
+    out[0], out[1], out[2], out[3] = k, r, -2, nseg
 
 
 @njit(cache=True)
-def nonlinear_run(
-    mat_of,
-    PHI,
-    PP,
-    QQ,
-    RR,
-    BB,
-    ER,
-    EB,
-    OR,
-    OB,
-    K,
-    consts,
-    acc,
-    substeps,
-    h,
-    x0,
-    branch0,
-    X,
-    BR,
-    ev_row,
-    ev_tau,
-    ev_branch,
-    peak,
-    t_peak,
-    max_events,
-    blk_out,
-    blk_floor,
-    mub,
-    muk,
-    allow_pos,
-    allow_neg,
-    g,
-    bstates,
-    n,
-    hist_u,
-    osc_out,
-    osc_w,
-    osc_xi,
-    osc_rho,
-    osc_S,
-    osc_P,
-    D,
-    flex,
-    mub2,
-    muk2,
-    S2,
-    Yo,
-    H2,
-    rk_out,
-    rk_par,
-    rk_states,
-    rk_D,
-    rk_nonlinear,
-    rk_phase,
-    rk_hist,
-    osc_fast,
-    osc_stats,
-):
-    """Integrate the building over the record.
+def nonlinear_run(mat_of, PHI, PP, QQ, RR, BB, ER, EB, OR, OB, G, K, consts, acc, substeps, h, n,
+                  k0, k1, x, carry, X, BR, Yo, ev_row, ev_tau, ev_branch, peak, t_peak,
+                  max_events, SI, SF, SX, SY):  # fmt: skip
+    """Integrate the building over record steps ``k0 … k1 − 1``, from state ``x`` (updated).
 
     ``mat_of[branch]`` (−1 for a branch the layer does not have) is the index of the
-    branch's matrices in the stacks ``PHI, PP, QQ``
-    (exact sub-step recurrence), ``RR, BB`` (full-state Taylor rows), ``ER, EB`` (the friction
-    a stuck pendulum needs, as Taylor rows) and ``OR, OB`` (Taylor rows of the outputs whose
-    true peaks are tracked in ``peak``/``t_peak``). ``consts = [k1 − k2, D_y, Q, mu·W,
-    mu_s·W]`` and, from index 5, the linear functional of the needed friction (state
-    coefficients, then the ground's). ``X[k]``/``BR[k]`` receive the state and branch at
-    record sample ``k`` (memory O(samples)); events: the sub-step, the time in it and the
-    branch after. Returns the number of events, or ``-1 − row`` when more than
-    ``max_events`` happen in sub-step ``row``. The state is ``[u (n); u' (n); F0; extra]``:
-    ``n`` degrees of freedom of the building, the layer's constant force, then states that
-    ride along without acting back (response-spectrum oscillators on a floor).
+    branch's matrices in the stacks ``PHI, PP, QQ`` (exact sub-step recurrence), ``RR, BB``
+    (full-state Taylor rows), ``ER, EB`` (the friction a stuck pendulum needs, as Taylor rows),
+    ``OR, OB`` (Taylor rows of the outputs whose true peaks are tracked in ``peak``/``t_peak``)
+    and ``G`` (their chord-bound rows, :func:`_chord_rows`). ``consts = [k1 − k2, D_y, Q,
+    mu·W, mu_s·W]`` and, from index 5, the linear functional of the needed friction (state
+    coefficients, then the ground's). The state is ``[u (n); u' (n); F0; extra]``: ``n``
+    degrees of freedom of the building, the layer's constant force on the branch, then states
+    that ride along without acting back (an oscillator appended as states). ``carry = [branch,
+    fresh, events so far]`` is carried from one call to the next, as ``x``.
 
-    Rigid blocks ride along (none when ``muk`` is empty): block ``i`` stands on the floor of
-    output row ``blk_out[i]`` (sorted; ``blk_floor[i]`` the floor's state index), friction
-    ``mub``/``muk``, state ``bstates[i]`` (the columns of :mod:`floorslide.contents._kernels`),
-    advanced exactly through every segment (a sub-step without events of the building as on a
-    linear building, :func:`_blocks_substep`); when ``hist_u`` has a row per block, their
-    slides at the samples are written there. ``Yo[k]`` (when it has a row per sample)
-    receives the outputs' values at record sample ``k``; ``H2[o, k]`` (when it has a column per
-    sample) the 2-DOF oscillators' histories (:func:`_flexible_sample`).
-    Linear oscillators ride along the same way (none when ``osc_w`` is empty; see
-    :func:`_oscillators`): the floor response spectra of the floors of rows ``osc_out``,
-    states ``osc_S[:, i] = (q, q')`` and peaks ``osc_P[:, i]`` (``|q|, |q'|``, the absolute
-    acceleration). With ``osc_fast`` a sub-step without events advances them by their exact
-    linear update and searches only where a rigorous filter cannot rule out a new peak
-    (:func:`_riders_fast`); without it every segment takes the series path. ``osc_stats``
-    receives :func:`_riders_fast`'s counters.
-    2-DOF sliding oscillators too (none when ``muk2`` is empty): ``flex = [row, ω, ξ, r,
-    part length, degree]``, friction ``mub2``/``muk2``, states ``S2`` (the columns of
-    :mod:`floorslide.contents._oscillator_kernel`).
-    Rocking blocks too (none when ``rk_out`` is empty; :func:`_rockers`): on the floors of
-    output rows ``rk_out`` (sorted), parameters ``rk_par``, states ``rk_states`` (the columns
-    of :mod:`floorslide.contents._rocking_kernel`), series degree ``rk_D``, the full equation
-    when ``rk_nonlinear``, parts of ``p·L ≤ rk_phase``; ``rk_hist[i, k]`` (when it has a row
-    per block) receives ``θ`` at sample ``k`` (NaN once overturned).
+    ``X[k]``/``BR[k]``/``Yo[k]`` receive the state, branch and outputs at record sample ``k``
+    (``Yo`` when it has a row per sample); events (at most ``ev_row.size`` kept): the sub-step,
+    the time in it and the branch after. With rows in ``SI``, every segment of the motion is
+    recorded there (:func:`_record`): ``SI[j] = (row, matrices, whole sub-step, ends its
+    sub-step)``, ``SF[j] = (a_s, a_end, slope, L, t)`` (ground at its ends, its slope, length
+    and start time), ``SX[j]``/``SY[j]`` the states at its ends — the segments every consumer
+    reads. Returns the number of segments (more than ``SI`` holds: run again with room for
+    them), or ``-1 − row`` when more than ``max_events`` happen in sub-step ``row``.
 
     Just after an event the search for the next one starts ``EVENT_GAP·h`` later: a branch
     entered at a level crossing (a breakaway at exactly the friction limit, a stop at exactly
@@ -994,7 +418,7 @@ def nonlinear_run(
     an event (it would switch back at once, without end). A true event that close to the last
     one is seen as ``EVENT_GAP·h`` later, a rounding-level shift.
     """
-    N = x0.size
+    N = x.size
     iF = 2 * n  # the layer's constant force on the branch
     kk = consts[0]
     dy = consts[1]
@@ -1005,54 +429,7 @@ def nonlinear_run(
     fd = consts[5 + N]
     c = np.empty(K + 1)
     work = scratch(K + 1)
-    nblk = muk.size
-    rw = scratch(K + 3)
-    # packed arguments of the block pass (see _blocks_substep)
-    XW = np.zeros((3, N))
-    BLK = np.empty((2, nblk), dtype=np.int64)
-    MU = np.empty((2, nblk))
-    for i in range(nblk):
-        BLK[0, i] = blk_out[i]
-        BLK[1, i] = blk_floor[i]
-        MU[0, i] = mub[i]
-        MU[1, i] = muk[i]
-    buf = np.empty(5 * K + 17 + bstates.shape[1])
-    pk = np.zeros(16)
-    pk[9], pk[11], pk[12], pk[15] = g, g, g, g
-    flags = np.array([0, int(allow_pos), int(allow_neg), BLOCK_MAX_EVENTS, 0, 0], dtype=np.int64)
-    nosc = osc_w.size
-    co = np.empty(max(K, D) + 2)
-    most_parts = 1
-    for i in range(nosc):
-        most_parts = max(most_parts, int(np.ceil(h * osc_rho[i] / 0.5 - 1e-12)))
-    CS = np.zeros((most_parts, K + 1))
-    d = np.empty(D + 2)
-    dv = np.empty(D + 2)
-    da = np.empty(D + 2)
-    ow = scratch(D + 1)
-    fast_riders = nosc > 0 and osc_fast
-    if fast_riders:
-        PH, OW, RC = _rider_weights(OR, OB, h, osc_out, osc_w, osc_xi, osc_rho, D)
-    else:
-        PH, OW, RC = np.zeros((4, 0)), np.zeros((0, 2, N + 2, 0)), np.zeros((NRC, 0))
-    oZ = np.zeros(N + 2)
-    oU = np.zeros((2, nosc))
-    oS0 = np.zeros((2, nosc))
-    oFL = np.zeros(nosc, dtype=np.int64)
-    oax = np.zeros(N)
-    n2 = muk2.size
-    o2 = int(flex[0])
-    K2 = int(flex[5])
-    c2 = np.zeros(K2 + 1)
-    cs2 = np.zeros(K2 + 1)
-    Y2 = np.zeros((4, K2 + 1))
-    poly2 = np.zeros(K2 + 1)
-    y2 = np.zeros(4)
-    pk2 = np.zeros(4)
-    work2 = scratch(K2 + 1)
-    x = x0.copy()
     y = np.empty(N)
-    G = _chord_rows(RR, BB, ER, EB, OR, OB, n, h, mat_of)
     nout = peak.size
     ax = np.empty(N)
     z0 = np.empty(nout + 1)  # the event function, then the outputs
@@ -1062,43 +439,32 @@ def nonlinear_run(
     PHT = np.ascontiguousarray(PHI.transpose(0, 2, 1))
     need = np.zeros(nout, dtype=np.bool_)
     z_valid = False  # z0 holds the outputs' values at the sub-step's start
-    branch = branch0
-    npts = acc.size
-    n_ev = 0
-    for i in range(N):
-        X[0, i] = x[i]
-    BR[0] = branch
-    want_outputs = Yo.shape[0] == npts
-    if want_outputs:
-        for i in range(nout):
-            Yo[0, i] = _value(G[mat_of[branch], i + 1], x, acc[0])
-    want_h2 = n2 > 0 and H2.shape[1] == npts
-    if want_h2:
-        af0 = _value(G[mat_of[branch], o2 + 1], x, acc[0])
-        for o in range(n2):
-            H2[o, 0, 3] = af0
-    fresh = False
-    nrk = rk_out.size
-    sw = scratch(max(K, rk_D) + 2)  # the rockers' scratch rows, then their root-isolation work
-    RB = np.zeros((8 + sw.shape[0], max(sw.shape[1], max(K, rk_D) + 3)))
-    # nothing rides along but (with fast_riders) linear oscillators
-    alone = nblk == 0 and (nosc == 0 or fast_riders) and n2 == 0 and nrk == 0
-    fo = np.zeros(3, dtype=np.int64)
-    k = 0
+    branch = carry[0]
+    fresh = carry[1] != 0
+    n_ev = carry[2]
+    nseg = 0
+    want_outputs = Yo.shape[0] == acc.size
+    if k0 == 0:
+        for i in range(N):
+            X[0, i] = x[i]
+        BR[0] = branch
+        if want_outputs:
+            for i in range(nout):
+                Yo[0, i] = _value(G[mat_of[branch], i + 1], x, acc[0])
+    fo = np.zeros(4, dtype=np.int64)
+    k = k0
     r = 0
-    while k < npts - 1:
-        # a building alone (or carrying linear oscillators only) takes its common sub-steps in
-        # one compiled loop (_fast_run), which
-        # stops before a sub-step its bound cannot clear (then ``pre = -1``) or after one whose
-        # outputs need a search (``pre = 1``; ``x`` still the start state, ``y`` the end)
+    while k < k1:
+        # the common sub-steps in one compiled loop (_fast_run), which stops before a
+        # sub-step its bound cannot clear (then ``pre = -1``) or after one whose outputs need a
+        # search (``pre = 1``; ``x`` still the start state, ``y`` the end)
         pre = 0
-        if alone and not fresh:
-            _fast_run(k, r, substeps, mat_of, PHT, PP, QQ, G, GT, acc, h, x, y, ax, branch, iF,
-                      kk, dy, musW, peak, t_peak, z0, z1, need, dl, z_valid, X, BR, Yo,
-                      want_outputs, fo, fast_riders, OR, OB, K, osc_out, osc_w, osc_xi,
-                      osc_rho, osc_S, osc_P, D, PH, OW, RC, oZ, oU, oS0, oFL, oax, co, CS, d,
-                      dv, da, ow, osc_stats)  # fmt: skip
+        if not fresh:
+            _fast_run(k, r, k1, substeps, mat_of, PHT, PP, QQ, G, GT, acc, h, x, y, ax, branch,
+                      iF, kk, dy, musW, peak, t_peak, z0, z1, need, dl, z_valid, X, BR, Yo,
+                      want_outputs, fo, SI, SF, SX, SY, nseg)  # fmt: skip
             z_valid = True
+            nseg = fo[3]
             if fo[2] == -2:
                 break
             k = fo[0]
@@ -1112,48 +478,20 @@ def nonlinear_run(
         t0 = row * h
         s0 = 0.0
         events_here = 0
-        took_fast = False
-        if not fresh:
-            # the common case first: a rigorous bound shows no event on the whole sub-step;
-            # then the end state is the exact step's and only the outputs whose bound allows
-            # a new peak are searched
+        if pre > 0:
+            # a whole sub-step without events whose outputs need a search
             m = mat_of[branch]
-            if pre == 0:
-                nsearch = _fast_step(m, branch, PHT, PP, QQ, G, GT, x, y, ax, aa, ab, slope, h,
-                                     iF, kk, dy, musW, peak, t_peak, t0, z0, z1, need, dl,
-                                     z_valid)  # fmt: skip
-            else:
-                nsearch = fo[2] if pre > 0 else -1
-            if nsearch >= 0:
-                for i in range(nout if nsearch > 0 else 0):
-                    if need[i]:
-                        _search_peak(OR[m], OB[m], i, x, aa, slope, h, K, peak, t_peak, t0,
-                                     c, work)  # fmt: skip
-                if nblk > 0:
-                    _pack_segment(XW, pk, x, y, aa, ab, slope, h, t0, g)
-                    _blocks_substep(G, OR, OB, m, XW, BLK, MU, bstates, buf, rw, pk, flags,
-                                    n, h)  # fmt: skip
-                if fast_riders:
-                    _riders_fast(m, GT, OR, OB, OW, x, oax, aa, slope, h, K, z0, z1, osc_out,
-                                 osc_w, osc_xi, osc_rho, osc_S, osc_P, D, PH, RC, oZ, oU, oS0,
-                                 oFL, co, CS, d, dv, da, ow, osc_stats)  # fmt: skip
-                elif nosc > 0:
-                    _oscillators(OR[m], OB[m], x, aa, slope, h, K, osc_out, osc_w, osc_xi,
-                                 osc_rho, osc_S, osc_P, D, co, CS, d, dv, da, ow)  # fmt: skip
-                if n2 > 0:
-                    _flexible(OR[m], OB[m], x, aa, slope, h, K, t0, o2, flex[1], flex[2],
-                              flex[3], g, mub2, muk2, S2, flex[4], K2, c2, cs2, Y2, poly2,
-                              y2, pk2, work2)  # fmt: skip
-                if nrk > 0:
-                    _rockers(OR[m], OB[m], x, aa, slope, h, K, t0, rk_out, rk_par, rk_states, g,
-                             rk_D, rk_nonlinear, rk_phase, RK_MAX_EVENTS, RB)  # fmt: skip
-                for i in range(N):
-                    x[i] = y[i]
-                for f in range(nout + 1):
-                    z0[f] = z1[f]
-                z_valid = True
-                took_fast = True
-        if not took_fast:
+            for i in range(nout):
+                if need[i]:
+                    _search_peak(OR[m], OB[m], i, x, aa, slope, h, K, peak, t_peak, t0, c, work)
+            _record(SI, SF, SX, SY, nseg, row, m, 1, x, y, aa, ab, slope, h, t0)
+            nseg += 1
+            for i in range(N):
+                x[i] = y[i]
+            for f in range(nout + 1):
+                z0[f] = z1[f]
+            z_valid = True
+        else:
             z_valid = False
             while True:
                 m = mat_of[branch]
@@ -1175,52 +513,19 @@ def nonlinear_run(
                         a_end = a_s + slope * L
                     _segment_peaks(G[m], GT[m], OR[m], OB[m], x, y, ax, a_s, a_end, slope, L, K,
                                    peak, t_peak, t0 + s0, c, work)  # fmt: skip
-                    if nblk > 0:
-                        _pack_segment(XW, pk, x, y, a_s, a_end, slope, L, t0 + s0, g)
-                        _blocks_substep(G, OR, OB, m, XW, BLK, MU, bstates, buf, rw, pk, flags,
-                                        n, L)  # fmt: skip
-                    if fast_riders and events_here == 0:
-                        # no event after all: a whole sub-step of one branch, as on the fast
-                        # path (the functions' end values formed here)
-                        for f in range(nout + 1):
-                            z0[f] = _value(G[m, f], x, aa)
-                            z1[f] = _value(G[m, f], y, ab)
-                        _riders_fast(m, GT, OR, OB, OW, x, oax, aa, slope, h, K, z0, z1,
-                                     osc_out, osc_w, osc_xi, osc_rho, osc_S, osc_P, D, PH, RC,
-                                     oZ, oU, oS0, oFL, co, CS, d, dv, da, ow,
-                                     osc_stats)  # fmt: skip
-                    elif nosc > 0:
-                        _oscillators(OR[m], OB[m], x, a_s, slope, L, K, osc_out, osc_w, osc_xi,
-                                     osc_rho, osc_S, osc_P, D, co, CS, d, dv, da, ow)  # fmt: skip
-                    if n2 > 0:
-                        _flexible(OR[m], OB[m], x, a_s, slope, L, K, t0 + s0, o2, flex[1],
-                                  flex[2], flex[3], g, mub2, muk2, S2, flex[4], K2, c2, cs2, Y2,
-                                  poly2, y2, pk2, work2)  # fmt: skip
-                    if nrk > 0:
-                        _rockers(OR[m], OB[m], x, a_s, slope, L, K, t0 + s0, rk_out, rk_par,
-                                 rk_states, g, rk_D, rk_nonlinear, rk_phase, RK_MAX_EVENTS,
-                                 RB)  # fmt: skip
+                    whole = 1 if events_here == 0 else 0
+                    _record(SI, SF, SX, SY, nseg, row, m, whole, x, y, a_s, a_end, slope, L,
+                            t0 + s0)  # fmt: skip
+                    nseg += 1
                     for i in range(N):
                         x[i] = y[i]
                     break
                 _state_at(RR[m], BB[m], x, a_s, slope, te, K, y, c)
                 _segment_peaks(G[m], GT[m], OR[m], OB[m], x, y, ax, a_s, a_s + slope * te, slope,
                                te, K, peak, t_peak, t0 + s0, c, work)  # fmt: skip
-                if nblk > 0:
-                    _pack_segment(XW, pk, x, y, a_s, a_s + slope * te, slope, te, t0 + s0, g)
-                    _blocks_substep(G, OR, OB, m, XW, BLK, MU, bstates, buf, rw, pk, flags, n,
-                                    te)  # fmt: skip
-                if nosc > 0:
-                    _oscillators(OR[m], OB[m], x, a_s, slope, te, K, osc_out, osc_w, osc_xi,
-                                 osc_rho, osc_S, osc_P, D, co, CS, d, dv, da, ow)  # fmt: skip
-                if n2 > 0:
-                    _flexible(OR[m], OB[m], x, a_s, slope, te, K, t0 + s0, o2, flex[1],
-                              flex[2], flex[3], g, mub2, muk2, S2, flex[4], K2, c2, cs2, Y2,
-                              poly2, y2, pk2, work2)  # fmt: skip
-                if nrk > 0:
-                    _rockers(OR[m], OB[m], x, a_s, slope, te, K, t0 + s0, rk_out, rk_par,
-                             rk_states, g, rk_D, rk_nonlinear, rk_phase, RK_MAX_EVENTS,
-                             RB)  # fmt: skip
+                _record(SI, SF, SX, SY, nseg, row, m, 0, x, y, a_s, a_s + slope * te, slope, te,
+                        t0 + s0)  # fmt: skip
+                nseg += 1
                 for i in range(N):
                     x[i] = y[i]
                 a_e = a_s + slope * te
@@ -1266,6 +571,8 @@ def nonlinear_run(
                     return -1 - row
                 if s0 >= h:
                     break
+        if nseg - 1 < SI.shape[0]:
+            SI[nseg - 1, S_ENDS] = 1
         r += 1
         if r < substeps:
             continue
@@ -1277,20 +584,8 @@ def nonlinear_run(
             mk = mat_of[branch]
             for i in range(nout):
                 Yo[k + 1, i] = _value(G[mk, i + 1], x, a1)
-        if want_h2:
-            if want_outputs:
-                af = Yo[k + 1, o2]
-            else:
-                af = _value(G[mat_of[branch], o2 + 1], x, a1)
-            _flexible_sample(H2, k + 1, S2, muk2, flex, g, af)
-        if hist_u.shape[0] == nblk and nblk > 0:
-            for i in range(nblk):
-                hist_u[i, k + 1] = bstates[i, 2]
-        if nrk > 0 and rk_hist.shape[0] == nrk:
-            for i in range(nrk):
-                if rk_states[i, RK_MODE] == RK_OVERTURNED:
-                    rk_hist[i, k + 1] = np.nan
-                else:
-                    rk_hist[i, k + 1] = rk_states[i, RK_TH]
         k += 1
-    return n_ev
+    carry[0] = branch
+    carry[1] = 1 if fresh else 0
+    carry[2] = n_ev
+    return nseg

@@ -85,9 +85,16 @@ def per_direction(building) -> tuple[LinearBuilding | None, LinearBuilding | Non
         return bp.h1, bp.h2
     if isinstance(building, LinearBuilding):
         return building, building
+    if getattr(building, "segmented", False):
+        raise ModelError(
+            "two horizontal components on a building on nonlinear isolation are not available "
+            "yet: its bearings respond to both components together (nonlinear isolators couple "
+            "the two directions), and running each direction alone would misstate them",
+            "building",
+        )
     raise ModelError(
         f"building must be a linear building or a BuildingPair in the plane, got "
-        f"{type(building).__name__} (nonlinear isolators couple the two directions)",
+        f"{type(building).__name__}",
         "building",
     )
 

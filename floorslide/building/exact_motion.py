@@ -37,6 +37,7 @@ import numpy as np
 from floorslide.building._kernels import foh_peaks, foh_states, state_outputs
 from floorslide.building.exact import ExactStepper
 from floorslide.building.model import LinearBuilding
+from floorslide.building.nonlinear_motion import NonlinearFloorMotion
 from floorslide.errors import ModelError, NonFiniteError
 from floorslide.inputs import RecordLike, as_record
 
@@ -365,6 +366,8 @@ def building_motion(
     -------
     BuildingMotion
     """
+    if getattr(building, "segmented", False):  # on nonlinear isolation: its segments
+        return building.motion(ground_acc, dt, max_bytes=max_bytes)
     a, dt, notes = as_record(ground_acc, dt, "ground_acc")
     if copy:
         a = np.array(a, dtype=float)
@@ -433,11 +436,34 @@ def floor_motion(
     return building_motion(building, ground_acc, dt).floor(0 if building is None else floor)
 
 
+def check_building(building, consumer: str = "this function"):
+    """Refuse, in one line naming ``building``, what is not one building model: a
+    :class:`~floorslide.BuildingPair` (one model per direction: its consumers take two
+    components) or anything else."""
+    if building is None or isinstance(building, LinearBuilding):
+        return
+    if getattr(building, "segmented", False):
+        return
+    if hasattr(building, "h1") and hasattr(building, "h2"):
+        raise ModelError(
+            f"a BuildingPair (one model per direction) needs two horizontal components: use "
+            f"slide_plane or rotd_spectrum with a record pair, or give {consumer} one of its "
+            "models (pair.h1 or pair.h2)",
+            "building",
+        )
+    raise ModelError(
+        f"expected a ShearBuilding, IsolatedBuilding or NonlinearIsolatedBuilding, got "
+        f"{type(building).__name__}",
+        "building",
+    )
+
+
 def unwrap(acc, dt, building, floor, name: str = "acc"):
     """What a solver was given, as ``(FloorMotion or None, samples, dt, notes)``: a FloorMotion
     passed as the record (then `building`/`floor` must not be given, and `dt`, if given, must be
     its own), or a record with an optional building and floor."""
-    if isinstance(acc, FloorMotion):
+    check_building(building)
+    if isinstance(acc, FloorMotion | NonlinearFloorMotion):
         if building is not None or floor is not None:
             raise ModelError(
                 f"{name} is a FloorMotion: give building= and floor= when building it, not here",

@@ -15,7 +15,7 @@ import numpy as np
 from floorslide._jit import njit
 from floorslide.building._kernels import foh_outputs
 from floorslide.building.exact import foh_matrices
-from floorslide.building.exact_motion import building_motion, ground_peak, stepper
+from floorslide.building.exact_motion import building_motion, check_building, ground_peak, stepper
 from floorslide.building.model import LinearBuilding
 from floorslide.errors import ModelError
 from floorslide.inputs import RecordLike, as_record, check_record
@@ -72,6 +72,12 @@ def floor_motions(
     ----------
     Van Loan (1978); Chopra (2012), §5.4 (Newmark's method).
     """
+    if building is None:
+        raise ModelError(
+            "floor_motions needs a building (on the ground the motion is the record itself)",
+            "building",
+        )
+    check_building(building, "floor_motions")
     a, dt, _ = as_record(ground_acc, dt, "ground_acc")
     if method not in METHODS:
         raise ModelError(f"unknown method {method!r}; expected one of {', '.join(METHODS)}")
@@ -80,12 +86,22 @@ def floor_motions(
     oversample = int(oversample)
     kinds = [output] if isinstance(output, str) else list(output)
     floors = building.check_floors(floors)
-    C, D, _ = building.output_matrices(floors, kinds)
+    segmented = getattr(building, "segmented", False)
+    if not segmented:
+        C, D, _ = building.output_matrices(floors, kinds)
     if oversample > 1:
         t_old = np.arange(a.size)
         a = np.interp(np.arange((a.size - 1) * oversample + 1) / oversample, t_old, a)
         dt = dt / oversample
-    if method == "exact":
+    if segmented:
+        if method != "exact":
+            raise ModelError(
+                f"method={method!r} is not available on a building on nonlinear isolation (the "
+                "exact method is)",
+                "method",
+            )
+        Y = _segmented_samples(building, a, dt, floors, kinds)
+    elif method == "exact":
         Y = building_motion(building, a, dt, max_bytes=0, copy=False).samples(floors, kinds)
     elif method == "zoh":
         A, B = building.state_matrices()
@@ -165,13 +181,59 @@ def peak_floor_acceleration(
     Peaks
         With the unit conversion of a Trace, if any, in ``notes``.
     """
+    check_building(building, "peak_floor_acceleration")
     a, dt, notes = as_record(ground_acc, dt, "ground_acc")
     if building is None:
         peak, t = ground_peak(a, dt)
         return Peaks((0,), np.array([peak]), np.array([t]), notes)
     floors = building.check_floors(floors)
-    peak, tpk = building_motion(building, a, dt, max_bytes=0, copy=False).peaks(floors, output)
+    if getattr(building, "segmented", False):
+        if output != "acceleration":
+            raise ModelError(
+                "on a building on nonlinear isolation the true peaks are those of the floors' "
+                "absolute accelerations (output='acceleration'); the isolator's are in "
+                "isolator_response",
+                "output",
+            )
+        motion = building.motion(a, dt, floors=sorted(set(floors)), keep_segments=False)
+        peak, tpk = motion.peaks(floors)
+    else:
+        peak, tpk = building_motion(building, a, dt, max_bytes=0, copy=False).peaks(floors, output)
     return Peaks(tuple(floors), peak, tpk, notes)
+
+
+def _segmented_samples(building, a, dt, floors, kinds) -> np.ndarray:
+    """Rows of :func:`floor_motions` on a building on nonlinear isolation: the floors' absolute
+    accelerations from its motion; displacements, velocities and drifts (relative to the ground)
+    from its states at the samples; the isolator's displacement."""
+    motion = building.motion(a, dt, floors=sorted(set(floors)), keep_segments=False)
+    X = motion.states  # at the samples: [u (n); u' (n); F0]
+    n = building.n_dof
+    rows = []
+    for kind in kinds:
+        if kind == "isolator":
+            rows.append(X[:, 0])
+            continue
+        if kind not in ("acceleration", "displacement", "velocity", "drift"):
+            raise ModelError(
+                f"unknown output {kind!r}; expected one of acceleration, displacement, "
+                "velocity, drift, isolator",
+                "outputs",
+            )
+        for f in floors:
+            if kind == "acceleration":
+                rows.append(motion.samples([f])[0])
+            elif kind == "displacement":
+                rows.append(X[:, f])
+            elif kind == "velocity":
+                rows.append(X[:, n + f])
+            else:
+                if f == 0:
+                    raise ModelError(
+                        "drift is defined for floors 1..N (the storey below the floor)", "outputs"
+                    )
+                rows.append(X[:, f] - X[:, f - 1])
+    return np.array(rows).reshape(len(rows), a.size)
 
 
 def _newmark_outputs(building, a, dt, substeps, C, D):

@@ -26,7 +26,6 @@ from floorslide.building.exact import (
     ExactStepper,
     model_substeps,
     spectral_radius,
-    substeps_for,
 )
 from floorslide.building.isolators import (
     BRANCH_NAMES,
@@ -42,8 +41,14 @@ from floorslide.building.isolators import (
     small_angle_note,
 )
 from floorslide.building.model import ShearBuilding
+from floorslide.building.nonlinear_motion import (
+    MAX_SEGMENT_BYTES,
+    NonlinearMotion,
+    _Kernel,
+    integrate,
+)
 from floorslide.constants import G
-from floorslide.errors import ModelError, NonFiniteError, SolverLimitError
+from floorslide.errors import ModelError
 from floorslide.inputs import as_record
 
 MAX_EVENTS_PER_SUBSTEP = 64
@@ -61,6 +66,9 @@ class NonlinearIsolatedBuilding:
     isolator
         A :class:`BilinearIsolator` or :class:`FrictionPendulum`.
     """
+
+    segmented = True
+    """Its motion is a list of segments between isolator events (:class:`NonlinearMotion`)."""
 
     def __init__(self, superstructure: ShearBuilding, base_mass_ratio: float, isolator):
         if not isinstance(superstructure, ShearBuilding):
@@ -195,6 +203,34 @@ class NonlinearIsolatedBuilding:
         r[0] -= self.constants.get("k", 0.0)
         return r, -float(self.mass[0])
 
+    def check_floors(self, floors) -> list[int]:
+        """Validate a floor selection (any order, repeats allowed; 0 is the base mat); ``None``
+        means all floors."""
+        if floors is None or (isinstance(floors, str) and floors == "all"):
+            return list(self.floors)
+        floors = [floors] if np.isscalar(floors) else list(floors)
+        out = []
+        for f in floors:
+            if isinstance(f, bool) or not float(f).is_integer():
+                raise ModelError(f"floor numbers must be integers, got {f!r}", "floors")
+            f = int(f)
+            if not 0 <= f <= self.stories:
+                raise ModelError(
+                    f"floor {f} does not exist; floors are 0..{self.stories}", "floors"
+                )
+            out.append(f)
+        return out
+
+    def dof_of(self, floor: int) -> int:
+        """The degree of freedom of `floor` (every floor is one; 0 is the base mat)."""
+        (floor,) = self.check_floors([floor])
+        return floor
+
+    def motion(self, acc, dt: float | None = None, *, floors=None, **options):
+        """The building's exact motion under a record, for every consumer
+        (:func:`nonlinear_motion`)."""
+        return nonlinear_motion(self, acc, dt, floors=floors, **options)
+
     def output_rows(self, branch: int, floors) -> tuple[np.ndarray, np.ndarray]:
         """Rows ``C, D`` of the absolute accelerations of `floors`, then the isolator force,
         then the isolator displacement."""
@@ -270,23 +306,6 @@ class IsolatorResponse:
     :attr:`~floorslide.building.isolators.FrictionPendulum.small_angle_limit` (``0.2 R``),
     where its small-angle restoring force ``(W/R)·u`` is more than 2 % off."""
     notes: tuple[str, ...] = ()
-    block_states: np.ndarray | None = None
-    """Final states of the rigid blocks asked for (columns of ``floorslide.contents._kernels``)."""
-    block_slides: np.ndarray | None = None
-    """Their slides at the samples (with ``block_histories=True``), m."""
-    oscillator_peaks: np.ndarray | None = None
-    """Peaks ``max|q|, max|q'|, max|ω²q + 2ξωq'|`` of the oscillators asked for."""
-    flexible_states: np.ndarray | None = None
-    """Final states of the 2-DOF sliding oscillators asked for (columns of
-    ``floorslide.contents._oscillator_kernel``)."""
-    flexible_histories: np.ndarray | None = None
-    """With ``flexible_histories=True``: the 2-DOF oscillators' ``(u, z, top, base)`` at the
-    samples, ``(n, npts, 4)`` (as :func:`floorslide.slide_oscillator`'s histories)."""
-    rocker_states: np.ndarray | None = None
-    """Final states of the rocking blocks asked for (columns of
-    ``floorslide.contents._rocking_kernel``)."""
-    rocker_theta: np.ndarray | None = None
-    """With ``rocker_histories=True``: their ``θ`` at the samples (NaN once overturned), rad."""
 
     def branch_names(self) -> list[str]:
         return [BRANCH_NAMES[b] for b in self.branch]
@@ -345,14 +364,6 @@ def _initial(building: NonlinearIsolatedBuilding, x0: np.ndarray, a0: float) -> 
     return SLIP_POS if F > 0 else SLIP_NEG
 
 
-_OSCILLATORS_BY_SERIES = False
-"""Private switch: advance the riders of ``oscillators=`` by the series on every sub-step (the
-reference path of the tests) instead of their exact linear update on sub-steps without events
-(:func:`floorslide.building._nonlinear_kernel._riders_fast`)."""
-_LAST_RIDER_STATS = np.zeros(4, dtype=np.int64)
-"""Counters of the last call with riders (sub-steps on the fast path, rider·sub-steps there,
-flagged rider·sub-steps, polynomial searches): for profiling and tests."""
-
 _CACHE_SIZE = 32
 """Most buildings (with their floors, time step …) whose matrices are kept per cache."""
 _PREPARED_CACHE: dict = {}
@@ -388,7 +399,7 @@ def _prepared(key, building, floors, oscillator):
     return _memoised(_PREPARED_CACHE, key, make)
 
 
-def _assembled(key, systems, mats, outputs, r_f, d_f, dt, m):
+def _assembled(key, systems, mats, outputs, r_f, d_f, dt, m, n, mat_of):
     """The kernel's matrices for the branches `mats` (exact sub-step recurrences, Taylor rows
     of the states, of the needed friction and of the outputs), memoised on `key` — the bytes
     of the building's matrices and constants, the floors, the oscillator, dt and the sub-steps
@@ -420,90 +431,17 @@ def _assembled(key, systems, mats, outputs, r_f, d_f, dt, m):
                 ER[j], EB[j] = er[0], eb[0]
             C, D = outputs[j]
             OR[j], OB[j] = st.taylor_rows(C, D, order=K)
-        return PHI, PP, QQ, RR, BB, ER, EB, OR, OB, K
+        G = kern._chord_rows(RR, BB, ER, EB, OR, OB, n, dt / m, mat_of)
+        for a in (PHI, PP, QQ, RR, BB, ER, EB, OR, OB, G):
+            a.setflags(write=False)
+        return PHI, PP, QQ, RR, BB, ER, EB, OR, OB, K, G
 
     return _memoised(_ASSEMBLY_CACHE, key, make)
 
 
-def isolator_response(
-    building: NonlinearIsolatedBuilding,
-    acc,
-    dt: float | None = None,
-    *,
-    floors=None,
-    initial_displacement=None,
-    blocks=None,
-    oscillator=None,
-    block_histories: bool = False,
-    oscillators=None,
-    flexible=None,
-    flexible_histories: bool = False,
-    rockers=None,
-    rocker_histories: bool = False,
-) -> IsolatorResponse:
-    """Exact response of a building on nonlinear isolation to a piecewise-linear record.
-
-    Parameters
-    ----------
-    building
-        The building.
-    acc, dt
-        Ground acceleration (m/s²) and its time step, or a Trace.
-    floors
-        Floors whose absolute accelerations are returned (default all).
-    initial_displacement
-        Displacements relative to the ground at t = 0 (one per floor, 0 = the mat; default
-        rest), for free-vibration checks.
-    blocks
-        Rigid blocks riding along, ``(floor, mu_b, mu_k, direction)`` each (``mu_b`` the
-        breakaway coefficient ``max(mu_s, mu_k)``; direction ``"both"``, ``"positive"`` or
-        ``"negative"``): each advanced exactly, segment by segment, by the rigid-block kernel
-        on the floor's exact in-step acceleration (:func:`slide_on_isolation` wraps this).
-        Their final states are in ``block_states``.
-    oscillator
-        ``(floor, ω, ξ)``: a linear oscillator on `floor` riding along (it does not act
-        back), integrated with the building as two more states of every branch; its peaks
-        ``max|q|, max|q'|, max|ω²q + 2ξωq'|`` (SD, SV, SA) are then ``pfa`` instead of the
-        floors' (the augmented form; a reference for the next).
-    oscillators
-        ``[(floor, ω, ξ), …]``: linear oscillators riding along (they do not act back); their
-        peaks ``(SD, SV, SA)`` are in ``oscillator_peaks`` (:func:`floor_spectrum_on_isolation`
-        wraps this). On a sub-step without isolator events (the common case) each is advanced
-        by its exact linear update ``(q, q')(h) = Φ·(q, q')(0) + W_branch·[x; a_g; slope]``
-        and searched inside the sub-step only where a rigorous filter cannot rule out a new
-        peak; through a segment between events by the Taylor series of its exact response to
-        the floor's in-step polynomial (``_OSCILLATORS_BY_SERIES`` forces the series
-        everywhere: the reference of the tests).
-    flexible
-        ``(floor, f, ξ, r, mu_b, mu_k)``: 2-DOF sliding oscillators (frequency ``f`` Hz, damping
-        ξ, mass ratio ``r``; breakaway and kinetic friction arrays) riding along, advanced by
-        the 2-DOF kernel's exact step (:func:`slide_oscillator_on_isolation` wraps this);
-        final states in ``flexible_states``; with ``flexible_histories`` their histories at
-        the samples in ``flexible_histories``.
-    rockers
-        ``(floor, par, states, nonlinear)``: rocking blocks on `floor` riding along, parameters
-        ``par`` and initial states ``states`` as :func:`floorslide.rock` prepares them (the
-        columns of :mod:`floorslide.contents._rocking_kernel`), the full equation when
-        `nonlinear`; advanced by its exact part step on the floor's in-step polynomial
-        (:func:`floorslide.rock` wraps this); final states in ``rocker_states``, with
-        ``rocker_histories`` ``θ`` at the samples in ``rocker_theta``.
-
-    Returns
-    -------
-    IsolatorResponse
-
-    Raises
-    ------
-    SolverLimitError
-        More than :data:`MAX_EVENTS_PER_SUBSTEP` branch changes inside one sub-step.
-    """
-    acc, dt, _notes = as_record(acc, dt)
-    n = building.n_dof
-    N = 2 * n + 1
-    floors = list(building.floors) if floors is None else [int(f) for f in floors]
-    for f in floors:
-        if not 0 <= f < n:
-            raise ModelError(f"floor {f} does not exist; floors are 0..{n - 1}", "floors")
+def _kernel(building, acc, dt, floors, oscillator):
+    """The kernel's matrices and constants for `building` at record step `dt` with output rows
+    for `floors` (and an oscillator appended as states), and the sub-steps."""
     prep_key = (
         building.kind,
         building.mass.tobytes(),
@@ -515,30 +453,79 @@ def isolator_response(
     )
     systems, rho, mats, outputs, r_f, d_f = _prepared(prep_key, building, floors, oscillator)
     N = next(iter(systems.values()))[0].shape[0]
-    oscillators = [] if oscillators is None else list(oscillators)
     m = model_substeps(rho, dt, N)
-    from floorslide.contents.oscillator import phase_radius
-
-    if flexible is not None:
-        f_floor, f_hz, f_xi, f_r, f_mub, f_muk = flexible
-        w2 = 2 * np.pi * float(f_hz)
-        rho_obj = phase_radius(w2, float(f_xi), float(f_r))
-        h_b = dt / m
-        ho2 = h_b / substeps_for(rho_obj, h_b)
     mat_of = np.full(7, -1, dtype=np.int64)  # -1: not a branch of this layer
     for j, b in enumerate(mats):
         mat_of[b] = j
-    nout = 3 if oscillator is not None else len(floors) + 2
     key = (prep_key, float(dt), int(m))
-    assembled = _assembled(key, systems, mats, outputs, r_f, d_f, dt, m)
-    PHI, PP, QQ, RR, BB, ER, EB, OR, OB, K = assembled
+    PHI, PP, QQ, RR, BB, ER, EB, OR, OB, K, Gc = _assembled(
+        key, systems, mats, outputs, r_f, d_f, dt, m, building.n_dof, mat_of
+    )
     c = building.constants
-    W = c["W"]
     if building.kind == "bilinear":
         consts = [c["k1"] - c["k2"], c["D_y"], c["Q"], 0.0, 0.0]
     else:
-        consts = [1.0, 0.0, 0.0, c["mu"] * W, c["mu_s"] * W]
+        consts = [1.0, 0.0, 0.0, c["mu"] * c["W"], c["mu_s"] * c["W"]]
     consts = np.array(consts + list(r_f) + [d_f])
+    kn = _Kernel(mat_of, PHI, PP, QQ, RR, BB, ER, EB, OR, OB, Gc, K, consts, building.n_dof,
+                 MAX_EVENTS_PER_SUBSTEP)  # fmt: skip
+    return kn, m
+
+
+def nonlinear_motion(
+    building: NonlinearIsolatedBuilding,
+    acc,
+    dt: float | None = None,
+    *,
+    floors=None,
+    initial_displacement=None,
+    oscillator=None,
+    keep_segments: bool = True,
+    max_bytes: int = MAX_SEGMENT_BYTES,
+) -> NonlinearMotion:
+    """Integrate a building on nonlinear isolation once under a piecewise-linear record.
+
+    Parameters
+    ----------
+    building
+        The building.
+    acc, dt
+        Ground acceleration (m/s²) and its time step, or a Trace.
+    floors
+        Floors whose motion is kept (default all; 0 is the base mat): their absolute
+        accelerations at the samples and true peaks, and the rows every consumer on them reads.
+    initial_displacement
+        Displacements relative to the ground at t = 0 (one per floor, 0 = the mat; default
+        rest), for free-vibration checks.
+    oscillator
+        ``(floor, ω, ξ)``: a linear oscillator on `floor` integrated with the building as two
+        more states of every branch; its peaks ``max|q|, max|q'|, max|ω²q + 2ξωq'|`` (SD, SV,
+        SA) are then ``response.pfa`` instead of the floors' (the augmented form: an
+        independent reference for the floor spectra read from the segments).
+    keep_segments
+        Record the segments for consumers (default); ``False`` for the building's own response
+        only.
+    max_bytes
+        Largest segment record kept whole; a longer one is streamed (each consumer's pass
+        integrates the chunks again from checkpoints the first pass records).
+
+    Returns
+    -------
+    NonlinearMotion
+        With ``response`` (:class:`IsolatorResponse`).
+
+    Raises
+    ------
+    SolverLimitError
+        More than :data:`MAX_EVENTS_PER_SUBSTEP` branch changes inside one sub-step.
+    """
+    acc, dt, notes = as_record(acc, dt)
+    acc = np.array(acc, dtype=float)
+    acc.setflags(write=False)
+    n = building.n_dof
+    floors = building.check_floors(floors)
+    kn, m = _kernel(building, acc, dt, floors, oscillator)
+    N = kn.N
     x0 = np.zeros(N)
     if initial_displacement is not None:
         u = np.asarray(initial_displacement, dtype=float).ravel()
@@ -546,139 +533,37 @@ def isolator_response(
             raise ModelError(f"give {n} displacements (floors 0..{n - 1})", "initial_displacement")
         x0[:n] = u
     branch0 = _initial(building, x0, float(acc[0]))
-    X = np.empty((acc.size, N))
-    BR = np.empty(acc.size, dtype=np.int64)
-    cap = max(64, acc.size)
-    peak = np.zeros(nout)
-    t_peak = np.zeros(nout)
-    from floorslide.contents._kernels import LIMIT_AT, NCOL
-    from floorslide.contents.events import SLIDE_MAX_EVENTS
-
-    blocks = [] if blocks is None else list(blocks)
-    # oscillators by floor, then by their own rate (the kernel shares the floor polynomial's
-    # shifts between oscillators with the same part grid)
-    osc_out = np.array([floors.index(int(o[0])) for o in oscillators], dtype=np.int64)
-    osc_w = np.array([float(o[1]) for o in oscillators])
-    osc_xi = np.array([float(o[2]) for o in oscillators])
-    osc_rho = osc_w * np.where(osc_xi > 1.0, osc_xi + np.sqrt(np.abs(osc_xi**2 - 1.0)), 1.0)
-    osc_order = np.lexsort((osc_rho, osc_out))
-    osc_out, osc_w, osc_xi, osc_rho = (
-        osc_out[osc_order],
-        osc_w[osc_order],
-        osc_xi[osc_order],
-        osc_rho[osc_order],
+    motion = NonlinearMotion(
+        building, acc, float(dt), int(m), dt / m, tuple(floors), None, kn, notes=tuple(notes)
     )
-    from floorslide.building.exact import taylor_degree
+    X, BR, Yo, events, peak, _ = integrate(motion, x0, branch0, keep_segments, max_bytes)
+    motion.response = _response(building, motion, X, BR, Yo, events, peak, oscillator)
+    return motion
 
-    # each oscillator goes through a segment in parts with ρ·h ≤ MAX_PHASE (the kernel's 0.5)
-    phase = min(0.5, float(osc_rho.max()) * dt / m) if oscillators else 0.0
-    D = max(K, taylor_degree(phase)) + 2
-    from floorslide.contents._oscillator_kernel import O_LIMIT_AT, O_NCOL
 
-    if flexible is not None:
-        K2 = max(K, taylor_degree(max(rho, rho_obj) * ho2))
-        flex = np.array([floors.index(int(f_floor)), w2, float(f_xi), float(f_r), ho2, K2])
-        mub2 = np.ascontiguousarray(f_mub, dtype=float)
-        muk2 = np.ascontiguousarray(f_muk, dtype=float)
-    else:
-        flex = np.array([0.0, 1.0, 0.0, 1.0, 1.0, 3.0])
-        mub2 = np.zeros(0)
-        muk2 = np.zeros(0)
-    blk_out = np.array([floors.index(int(b[0])) for b in blocks], dtype=np.int64)
-    order = np.argsort(blk_out, kind="stable")
-    blk_out = blk_out[order]
-    blk_floor = np.array([int(blocks[i][0]) for i in order], dtype=np.int64)
-    mub = np.array([float(blocks[i][1]) for i in order])
-    muk = np.array([float(blocks[i][2]) for i in order])
-    dirs = {str(b[3]) for b in blocks} or {"both"}
-    if len(dirs) > 1:
-        raise ModelError("blocks of one call slide in one direction setting", "direction")
-    (direction,) = dirs
-    # the outputs (floors' accelerations, isolator force) at the samples, from the kernel; with
-    # an oscillator riding as states its outputs are the oscillator's, so the floors' are
-    # formed here afterwards
-    Yo = np.empty((acc.size, nout) if oscillator is None else (0, nout))
-    H2 = np.zeros((muk2.size, acc.size, 4) if flexible_histories else (0, 0, 4))
-    from floorslide.contents import _rocking_kernel as rk
-
-    if rockers is not None:
-        rk_floor, rk_par0, rk_states0, rk_nonlinear = rockers
-        rk_par = np.ascontiguousarray(rk_par0, dtype=float)
-        rk_out = np.full(rk_par.shape[0], floors.index(int(rk_floor)), dtype=np.int64)
-        rk_phase = rk.NONLINEAR_PHASE if rk_nonlinear else rk.LINEAR_PHASE
-        # parts of p·L ≤ rk_phase on every segment (the kernel splits each), the series degree
-        # as floorslide.rock chooses it for that phase
-        rk_D = max(K + 2, taylor_degree(rk_phase * (2.0 if rk_nonlinear else 1.0)))
-    else:
-        rk_par = np.zeros((0, rk.NPAR))
-        rk_states0 = np.zeros((0, rk.NCOL))
-        rk_out = np.zeros(0, dtype=np.int64)
-        rk_nonlinear, rk_phase, rk_D = False, rk.LINEAR_PHASE, 3
-    while True:
-        ev_row = np.empty(cap, dtype=np.int64)
-        ev_tau = np.empty(cap)
-        ev_branch = np.empty(cap, dtype=np.int64)
-        peak[:] = 0.0
-        bstates = np.zeros((len(blocks), NCOL))
-        bstates[:, LIMIT_AT] = -1.0
-        hist_u = np.zeros((len(blocks), acc.size) if block_histories else (0, 0))
-        osc_S = np.zeros((2, len(oscillators)))
-        osc_P = np.zeros((3, len(oscillators)))
-        osc_stats = np.zeros(4, dtype=np.int64)
-        S2 = np.zeros((muk2.size, O_NCOL))
-        S2[:, O_LIMIT_AT] = -1.0
-        rk_states = np.array(rk_states0, dtype=float, copy=True)
-        rk_hist = np.zeros((rk_out.size, acc.size) if rocker_histories else (0, 0))
-        n_ev = kern.nonlinear_run(
-            mat_of, PHI, PP, QQ, RR, BB, ER, EB, OR, OB, K, consts, acc, m, dt / m,
-            x0, branch0, X, BR, ev_row, ev_tau, ev_branch, peak, t_peak, MAX_EVENTS_PER_SUBSTEP,
-            blk_out, blk_floor, mub, muk, direction != "negative", direction != "positive", G,
-            bstates, n,
-            hist_u, osc_out, osc_w, osc_xi, osc_rho, osc_S, osc_P, D, flex, mub2, muk2, S2,
-            Yo, H2, rk_out, rk_par, rk_states, rk_D, bool(rk_nonlinear), rk_phase, rk_hist,
-            not _OSCILLATORS_BY_SERIES, osc_stats,
-        )  # fmt: skip
-        if len(blocks) and (bstates[:, LIMIT_AT] >= 0).any():
-            t = float(bstates[bstates[:, LIMIT_AT] >= 0, LIMIT_AT].min())
-            raise SolverLimitError(
-                f"more than {SLIDE_MAX_EVENTS} friction events of a block inside one segment at "
-                f"t = {t:.6g} s: stick-slip chatter the exact solver cannot resolve",
-                "blocks",
-            )
-        if n_ev < 0:
-            row = -1 - n_ev
-            raise SolverLimitError(
-                f"more than {MAX_EVENTS_PER_SUBSTEP} isolator events inside one sub-step at "
-                f"t = {row * dt / m:.6g} s: stick–slip chatter the exact solver cannot resolve",
-                "isolator",
-            )
-        if n_ev <= cap:
-            break
-        cap = n_ev
-    if oscillators:
-        _LAST_RIDER_STATS[:] = osc_stats
-    h = dt / m
-    samples = X
-    br = BR
-    if not (np.all(np.isfinite(peak)) and np.all(np.isfinite(samples[-1]))):
-        raise NonFiniteError(
-            "the building's response is not finite (it overflows float64)", "building"
-        )
+def _response(building, motion, X, BR, Yo, events, peak, oscillator) -> IsolatorResponse:
+    """The building's own response, from the first pass."""
+    n = building.n_dof
+    acc = motion.acc
+    floors = list(motion.floors)
     if oscillator is None:
         acc_out = np.ascontiguousarray(Yo[:, :-2].T)
         force = Yo[:, -2].copy()
     else:
+        # with an oscillator as states the outputs are the oscillator's: the floors' are formed
+        # here from the states at the samples
         acc_out = np.empty((len(floors), acc.size))
         force = np.empty(acc.size)
-        for b in mats:
-            sel = br == b
+        for b in sorted(set(building.branches())):
+            sel = BR == b
             if not sel.any():
                 continue
             C, D = building.output_rows(b, floors)
-            vals = C @ samples[sel, : 2 * n + 1].T + D[:, None] * acc[sel][None, :]
+            vals = C @ X[sel, : 2 * n + 1].T + D[:, None] * acc[sel][None, :]
             acc_out[:, sel] = vals[:-2]
             force[sel] = vals[-2]
-    times = ev_row[:n_ev] * h + ev_tau[:n_ev]
+    ev_row, ev_tau, ev_branch = events
+    times = ev_row * motion.h + ev_tau
     cap_m = building.isolator.capacity
     # (with `oscillator`, peak holds the oscillator's peaks, not the isolator's)
     peak_disp = float("nan") if oscillator is not None else float(peak[-1])
@@ -693,205 +578,45 @@ def isolator_response(
     small_angle = small_angle_exceeded(building.isolator, peak_disp)
     if small_angle:
         notes += (small_angle_note(peak_disp, building.isolator.R),)
+    W = building.constants["W"]
     return IsolatorResponse(
-        dt=float(dt),
-        substeps=int(m),
+        dt=float(motion.dt),
+        substeps=int(motion.substeps),
         floors=tuple(floors),
         floor_acceleration=acc_out,
         pfa=peak.copy() if oscillator is not None else peak[:-2].copy(),
-        isolator_displacement=samples[:, 0].copy(),
+        isolator_displacement=X[:, 0].copy(),
         isolator_force=force,
         peak_displacement=peak_disp,
-        residual_displacement=float(samples[-1, 0]),
+        residual_displacement=float(X[-1, 0]),
         peak_force_ratio=float("nan") if oscillator is not None else float(peak[-2] / W),
-        branch=br.copy(),
+        branch=BR.copy(),
         event_times=times,
-        event_branches=ev_branch[:n_ev].copy(),
+        event_branches=ev_branch.copy(),
         capacity_exceeded=exceeded,
         small_angle_exceeded=small_angle,
         notes=notes,
-        block_states=bstates[np.argsort(order, kind="stable")] if len(blocks) else None,
-        block_slides=hist_u[np.argsort(order, kind="stable")] if block_histories else None,
-        oscillator_peaks=osc_P.T[np.argsort(osc_order, kind="stable")] if oscillators else None,
-        flexible_states=S2 if flexible is not None else None,
-        flexible_histories=H2 if flexible is not None and flexible_histories else None,
-        rocker_states=rk_states if rockers is not None else None,
-        rocker_theta=rk_hist if rockers is not None and rocker_histories else None,
     )
 
 
-def slide_on_isolation(
+def isolator_response(
     building: NonlinearIsolatedBuilding,
     acc,
     dt: float | None = None,
-    mu_k=None,
-    mu_s=None,
     *,
-    floor: int,
-    direction: str = "both",
-    histories: bool = False,
-):
-    """Rigid blocks (Coulomb friction) on a floor of a building on nonlinear isolation, exact
-    end to end: ground → nonlinear building (events located inside steps) → block (the
-    rigid-block kernel on the floor's exact in-step acceleration, segment by segment).
-
-    Parameters as :func:`floorslide.slide` (``mu_k``, ``mu_s`` one value or one per object;
-    breakaway at ``max(mu_s, mu_k)·g``); no vertical shaking.
-
-    Returns
-    -------
-    SlideResult
-        With the isolator's response in ``notes``-free form (see :func:`isolator_response` for
-        the building itself).
-    """
-    from floorslide.contents._kernels import DISP as DISP_COL
-    from floorslide.contents._kernels import PEAK_ACC, PEAK_DISP, SLIDE_TIME, SLIPS, T_PEAK
-    from floorslide.contents.sliding import SlideResult
-
-    acc, dt, notes = as_record(acc, dt)
-    if direction not in ("both", "positive", "negative"):
-        raise ModelError(f"direction must be both, positive or negative, got {direction!r}")
-    mk = np.atleast_1d(np.asarray(mu_k, dtype=float))
-    ms = mk.copy() if mu_s is None else np.broadcast_to(np.asarray(mu_s, dtype=float), mk.shape)
-    if mk.size == 0 or np.any(~np.isfinite(mk)) or np.any(mk < 0) or np.any(ms < 0):
-        raise ModelError("friction coefficients must be finite and ≥ 0", "mu_k")
-    mb = np.maximum(mk, ms)
-    blocks = [(floor, mb[i], mk[i], direction) for i in range(mk.size)]
-    r = isolator_response(
-        building, acc, dt, floors=[floor], blocks=blocks, block_histories=histories
-    )
-    S = r.block_states
-    duration = (acc.size - 1) * dt
-    return SlideResult(
-        mu_k=mk,
-        mu_s=np.asarray(ms, dtype=float).copy(),
-        peak_slide=S[:, PEAK_DISP].copy(),
-        residual_slide=S[:, DISP_COL].copy(),
-        peak_abs_accel=S[:, PEAK_ACC].copy(),
-        slide_fraction=S[:, SLIDE_TIME] / duration if duration > 0 else np.zeros(mk.size),
-        slip_phases=S[:, SLIPS].astype(np.int64),
-        time_of_peak=S[:, T_PEAK].copy(),
-        liftoff_time=0.0,
-        liftoff_count=0,
-        duration=duration,
-        method="exact",
-        direction=direction,
-        u=r.block_slides,
-        notes=tuple(notes),
-    )
-
-
-def floor_spectrum_on_isolation(
-    building: NonlinearIsolatedBuilding,
-    acc,
-    dt: float | None = None,
-    periods=None,
-    damping=(0.05,),
-    *,
-    floor: int,
-):
-    """Floor response spectra of a building on nonlinear isolation, exact end to end.
-
-    Every oscillator ``(T, ξ)`` rides along one integration of the building (it does not act
-    back), and its peaks are found inside steps (:func:`isolator_response` with
-    ``oscillators=``): on a sub-step without isolator events by its exact linear update
-    (precomputed per branch) and a rigorous filter that leaves few sub-steps to search; through
-    a segment between events by the Taylor series of its exact response to the floor's
-    in-step polynomial. The building keeps its own sub-steps; each oscillator's series goes
-    through them in parts short for it (``ω h ≤ 0.5``).
-
-    Returns
-    -------
-    Spectrum
-        ``psa = ω²·SD``, ``sa``, ``sv``, ``sd``, ``psv = ω·SD``; a period of 0 gives the
-        floor's true peak acceleration.
-    """
-    from floorslide.spectra.core import Spectrum, check_oscillators, damping_ratios, period_grid
-
-    acc, dt, notes = as_record(acc, dt)
-    T = period_grid([0.1, 0.5, 1.0] if periods is None else periods)
-    Z = damping_ratios(damping)
-    check_oscillators(T, Z, dt)
-    shape = (Z.size, T.size)
-    sd, sv, sa = np.zeros(shape), np.zeros(shape), np.zeros(shape)
-    cells = [(i, j) for i in range(Z.size) for j in range(T.size) if T[j] > 0]
-    oscs = [(floor, 2 * np.pi / T[j], Z[i]) for i, j in cells]
-    r = isolator_response(building, acc, dt, floors=[floor], oscillators=oscs or None)
-    for (i, j), (q, v, a) in zip(cells, r.oscillator_peaks if oscs else [], strict=True):
-        sd[i, j], sv[i, j], sa[i, j] = q, v, a
-    sa[:, T == 0] = r.pfa[0]
-    w = np.where(T > 0, 2 * np.pi / np.where(T > 0, T, 1.0), 0.0)
-    psa = np.where(T > 0, w * w * sd, sa)
-    return Spectrum(T, Z, psa, sa, sv, sd, w * sd, method="exact", notes=tuple(notes))
-
-
-def slide_oscillator_on_isolation(
-    building: NonlinearIsolatedBuilding,
-    acc,
-    dt: float | None = None,
-    mu=None,
-    frequency: float | None = None,
-    damping: float = 0.02,
-    mass_ratio: float = 1.0,
-    *,
-    mu_s=None,
-    floor: int,
-    histories: bool = False,
-):
-    """2-DOF sliding oscillators (flexible equipment) on a floor of a building on nonlinear
-    isolation, exact end to end: the 2-DOF kernel's event-driven step runs on the floor's exact
-    in-step acceleration, segment by segment, inside the building's integration.
-
-    Parameters as :func:`floorslide.slide_oscillator` (``histories``: also the histories of
-    ``u``, ``z`` and both absolute accelerations at the samples).
-
-    Returns
-    -------
-    OscillatorResult
-    """
-    from floorslide.contents import _oscillator_kernel as cols
-    from floorslide.contents.events import OSCILLATOR_MAX_EVENTS
-    from floorslide.contents.oscillator import OscillatorResult
-
-    acc, dt, notes = as_record(acc, dt)
-    mk = np.atleast_1d(np.asarray(mu, dtype=float))
-    ms = mk.copy() if mu_s is None else np.broadcast_to(np.asarray(mu_s, dtype=float), mk.shape)
-    if mk.size == 0 or np.any(~np.isfinite(mk)) or np.any(mk < 0) or np.any(ms < 0):
-        raise ModelError("friction coefficients must be finite and ≥ 0", "mu")
-    f = float(frequency) if frequency is not None else float("nan")
-    if not (np.isfinite(f) and f > 0):
-        raise ModelError(f"frequency must be > 0 Hz, got {frequency}", "frequency")
-    mb = np.maximum(mk, ms)
-    r = isolator_response(
+    floors=None,
+    initial_displacement=None,
+    oscillator=None,
+) -> IsolatorResponse:
+    """Exact response of a building on nonlinear isolation to a piecewise-linear record: the
+    building's own outputs (:func:`nonlinear_motion` without keeping the segments; parameters
+    as there)."""
+    return nonlinear_motion(
         building,
         acc,
         dt,
-        floors=[floor],
-        flexible=(floor, f, float(damping), float(mass_ratio), mb, mk),
-        flexible_histories=histories,
-    )
-    S = r.flexible_states
-    H = r.flexible_histories
-    if (S[:, cols.O_LIMIT_AT] >= 0).any():
-        raise SolverLimitError(
-            f"more than {OSCILLATOR_MAX_EVENTS} friction events of a 2-DOF oscillator inside one "
-            "part: stick-slip chatter the exact solver cannot resolve",
-            "slide_oscillator",
-        )
-    duration = (acc.size - 1) * dt
-    return OscillatorResult(
-        mu_k=mk,
-        mu_s=np.asarray(ms, dtype=float).copy(),
-        peak_slide=S[:, cols.O_PEAK_U].copy(),
-        residual_slide=S[:, cols.O_U].copy(),
-        peak_deformation=S[:, cols.O_PEAK_Z].copy(),
-        peak_top_accel=S[:, cols.O_PEAK_TOP].copy(),
-        peak_base_accel=S[:, cols.O_PEAK_BASE].copy(),
-        slide_fraction=S[:, cols.O_SLIDE_TIME] / duration if duration > 0 else np.zeros(mk.size),
-        slip_phases=S[:, cols.O_SLIPS].astype(int),
-        u=H[:, :, 0].copy() if histories else None,
-        z=H[:, :, 1].copy() if histories else None,
-        top_accel=H[:, :, 2].copy() if histories else None,
-        base_accel=H[:, :, 3].copy() if histories else None,
-        notes=tuple(notes),
-    )
+        floors=floors,
+        initial_displacement=initial_displacement,
+        oscillator=oscillator,
+        keep_segments=False,
+    ).response

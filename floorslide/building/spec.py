@@ -16,10 +16,15 @@ with the superstructure of an isolated building inline:
     T_i, s, required), ``damping`` (ξ_i, default 0.10), ``base_mass_ratio`` (m_b/m, default 1);
     the superstructure as ``super_period`` (s) with ``stories``, ``super_damping`` (default
     0.05), ``mass``, ``profile`` — or as ``masses`` and ``stiffnesses`` with ``super_damping``;
-    ``isolator=friction_pendulum`` (``mu``, ``mu_s``, ``capacity``, and ``radius`` R in m or
-    ``period`` = 2π√(R/g): both must agree) or ``isolator=bilinear`` (``q_ratio``,
-    ``yield_disp`` or ``alpha``, ``capacity``; ``period`` = T_d) put it on a nonlinear layer
-    (:class:`~floorslide.building.nonlinear.NonlinearIsolatedBuilding`, ``damping`` default 0).
+    ``isolator`` (``linear``, default; ``friction_pendulum`` or ``bilinear``) puts it on a
+    nonlinear layer (:class:`~floorslide.building.nonlinear.NonlinearIsolatedBuilding`), as a
+    scene's ``isolator = {...}`` does: a friction pendulum takes ``mu`` (required), ``mu_s``,
+    ``radius`` (m) instead of ``period`` (the pendulum period), ``capacity`` (m), ``damping``
+    (default 0); a bilinear (lead-rubber) layer ``q_ratio`` (Q/W, required), ``period`` (the
+    post-yield period T_d), ``yield_disp`` (m) or ``alpha`` (k2/k1), ``capacity``, ``damping``
+    (default 0);
+``fps`` and ``lrb`` — ``isolated`` with ``isolator=friction_pendulum`` or ``bilinear``:
+    ``fps:period=3,mu=0.06,stories=3,super_period=0.4``.
 
 A list (``masses``, ``stiffnesses``, per-floor ``mass``, per-mode ``damping``) separates its
 values with ``/``: ``fixed:masses=2e5/2e5/1.5e5,stiffnesses=3e8/3e8/2e8,damping=0.03``.
@@ -38,8 +43,22 @@ from floorslide.building.model import IsolatedBuilding, LinearBuilding, ShearBui
 from floorslide.errors import ModelError
 from floorslide.text_numbers import parse_number
 
-KINDS = ("fixed", "isolated")
-"""Building kinds of a spec (the scene's ``kind``)."""
+KINDS = ("fixed", "isolated", "fps", "lrb")
+"""Building kinds of a spec (the scene's ``kind``; ``fps`` and ``lrb`` are isolated buildings on
+friction pendulums and lead-rubber bearings)."""
+
+ISOLATORS = {
+    "linear": "linear",
+    "friction_pendulum": "friction_pendulum",
+    "fps": "friction_pendulum",
+    "pendulum": "friction_pendulum",
+    "bilinear": "bilinear",
+    "lrb": "bilinear",
+    "lead_rubber": "bilinear",
+}
+"""Names of the isolation layer (``isolator=``) and the model each means."""
+_PENDULUM_KEYS = ("mu", "mu_s", "radius", "capacity")
+_BILINEAR_KEYS = ("q_ratio", "yield_disp", "alpha", "capacity")
 
 _SUPER_FORM = ("period", "stories", "mass", "profile")
 _STOREY_FORM = ("masses", "stiffnesses")
@@ -66,20 +85,15 @@ KEYS: dict[str, tuple[str, ...]] = {
         "capacity",
     ),
 }
+KEYS["fps"] = tuple(
+    k for k in KEYS["isolated"] if k not in ("isolator", "q_ratio", "yield_disp", "alpha")
+)
+KEYS["lrb"] = tuple(k for k in KEYS["isolated"] if k not in ("isolator", "mu", "mu_s", "radius"))
 """The keys each kind accepts."""
 
-ISOLATORS = ("linear", "friction_pendulum", "bilinear")
-"""Values of an isolated spec's ``isolator`` (the scene's ``isolator.model``)."""
-LAYER_KEYS = {
-    "linear": (),
-    "friction_pendulum": ("mu", "mu_s", "radius", "capacity"),
-    "bilinear": ("q_ratio", "yield_disp", "alpha", "capacity"),
-}
-"""The keys of each isolator's layer (beside ``period`` and ``damping``)."""
-
 PENDULUM_PERIOD_TOLERANCE = 1e-3
-"""A friction pendulum given both a radius and a period: they must agree to this relative
-difference in period (``T = 2π√(R/g)``)."""
+"""A friction pendulum given both a radius and a period in a scene: they must agree to this
+relative difference in period (``T = 2π√(R/g)``)."""
 
 
 def pendulum_period(radius: float, period: float | None = None) -> float:
@@ -113,6 +127,8 @@ EXAMPLES = (
     "fixed:period=0.4,stories=3,damping=0.05",
     "isolated:period=2.5,damping=0.1,super_period=0.4,stories=3",
     "fixed:masses=2e5/2e5/1.5e5,stiffnesses=3e8/3e8/2e8",
+    "fps:period=3,mu=0.06,super_period=0.4,stories=3",
+    "lrb:q_ratio=0.06,period=2.5,yield_disp=0.02,super_period=0.4,stories=3",
 )
 """Specs shown in help and error messages."""
 
@@ -125,8 +141,8 @@ def _split(text: str) -> tuple[str, dict[str, str]]:
     kind = kind.strip().lower()
     if kind not in KINDS:
         raise ModelError(
-            f"unknown kind {kind!r}; expected fixed or isolated (KIND:key=value,..., e.g. "
-            f"{EXAMPLES[0]!r})",
+            f"unknown kind {kind!r}; expected fixed, isolated, fps or lrb (KIND:key=value,..., "
+            f"e.g. {EXAMPLES[0]!r})",
             "kind",
         )
     values: dict[str, str] = {}
@@ -144,7 +160,8 @@ def _split(text: str) -> tuple[str, dict[str, str]]:
     if unknown:
         raise ModelError(
             f"unknown key{'s' if len(unknown) > 1 else ''} {', '.join(map(repr, unknown))} for "
-            f"a {kind} building; known keys: {', '.join(KEYS[kind])}",
+            f"{'an' if kind in ('isolated', 'fps', 'lrb') else 'a'} {kind} building; known keys: "
+            f"{', '.join(KEYS[kind])}",
             unknown[0],
         )
     return kind, values
@@ -237,7 +254,7 @@ def _superstructure(values: dict[str, str], kind: str) -> ShearBuilding:
     )
 
 
-def parse_building(text: str) -> LinearBuilding:
+def parse_building(text: str):
     """The building a one-line spec describes (see the module notes for the keys).
 
     Parameters
@@ -248,7 +265,7 @@ def parse_building(text: str) -> LinearBuilding:
 
     Returns
     -------
-    ShearBuilding or IsolatedBuilding
+    ShearBuilding, IsolatedBuilding or NonlinearIsolatedBuilding
 
     Raises
     ------
@@ -262,64 +279,72 @@ def parse_building(text: str) -> LinearBuilding:
     (3, 0.4)
     """
     kind, values = _split(text)
-    superstructure = _superstructure(values, kind)
+    superstructure = _superstructure(values, "isolated" if kind in ("fps", "lrb") else kind)
     if kind == "fixed":
         return superstructure
-    model = values.get("isolator", "linear").strip().lower()
-    if model not in ISOLATORS:
+    preset = {"fps": "friction_pendulum", "lrb": "bilinear"}.get(kind, "linear")
+    name = values.get("isolator", preset).strip().lower()
+    if name not in ISOLATORS:
         raise ModelError(
-            f"isolator={values['isolator']!r}; expected one of {', '.join(ISOLATORS)}", "isolator"
+            f"unknown isolator {name!r}; expected linear, friction_pendulum (fps) or bilinear "
+            "(lrb)",
+            "isolator",
         )
-    stray = [k for k in _LAYER_ONLY if k in values and k not in LAYER_KEYS[model]]
-    if stray:
-        raise ModelError(
-            f"{stray[0]}= is not a key of isolator={model} (its keys: "
-            f"{', '.join(LAYER_KEYS[model]) or 'period, damping'})",
-            stray[0],
-        )
-    if model == "friction_pendulum" and "radius" in values:
-        period = pendulum_period(
-            _number(values, "radius"),
-            _number(values, "period") if "period" in values else None,
-        )
-    elif "period" not in values:
-        what = {
-            "linear": "the isolation period T_i, s",
-            "bilinear": "the post-yield period T_d, s",
-            "friction_pendulum": "the pendulum period, s (or radius=, m)",
-        }[model]
-        raise ModelError(f"period is missing: {what}", "period")
-    else:
-        period = _number(values, "period")
-    ratio = _number(values, "base_mass_ratio", 1.0)
+    model = ISOLATORS[name]
+    base_mass_ratio = _number(values, "base_mass_ratio", 1.0)
     if model == "linear":
+        stray = [k for k in (*_PENDULUM_KEYS, *_BILINEAR_KEYS) if k in values]
+        if stray:
+            raise ModelError(
+                f"{stray[0]} is a key of a nonlinear isolation layer: add "
+                "isolator=friction_pendulum or isolator=bilinear (or write fps:/lrb:)",
+                stray[0],
+            )
+        if "period" not in values:
+            raise ModelError("period is missing: the isolation period T_i, s", "period")
         return IsolatedBuilding(
             superstructure,
-            base_mass_ratio=ratio,
-            period=period,
+            base_mass_ratio=base_mass_ratio,
+            period=_number(values, "period"),
             damping=_number(values, "damping", 0.10),
         )
+    return _nonlinear(superstructure, base_mass_ratio, model, values)
+
+
+def _nonlinear(superstructure, base_mass_ratio: float, model: str, values: dict[str, str]):
+    """The building on a nonlinear layer of a spec (keys as a scene's ``isolator`` table)."""
     from floorslide.building.isolators import BilinearIsolator, FrictionPendulum
     from floorslide.building.nonlinear import NonlinearIsolatedBuilding
 
-    params = {k: _number(values, k) for k in LAYER_KEYS[model] if k in values and k != "radius"}
-    damping = _number(values, "damping", 0.0)
+    own = _PENDULUM_KEYS if model == "friction_pendulum" else _BILINEAR_KEYS
+    other = _BILINEAR_KEYS if model == "friction_pendulum" else _PENDULUM_KEYS
+    stray = [k for k in other if k in values and k not in own]
+    if stray:
+        layer = "friction pendulum" if model == "friction_pendulum" else "bilinear layer"
+        raise ModelError(f"{stray[0]} is not a key of a {layer}", stray[0])
+    args: dict[str, float] = {"damping": _number(values, "damping", 0.0)}
+    for key in (*own, "period"):
+        if key in values:
+            args[key] = _number(values, key)
+    if model == "friction_pendulum":
+        if "mu" not in values:
+            raise ModelError("mu is missing: the pendulum's friction coefficient", "mu")
+        if "period" not in values and "radius" not in values:
+            raise ModelError("give the pendulum's period (s) or radius (m)", "period")
+        make = FrictionPendulum
+    else:
+        for key, what in (("q_ratio", "Q/W, the characteristic strength over the weight"),
+                          ("period", "the post-yield period T_d, s")):  # fmt: skip
+            if key not in values:
+                raise ModelError(f"{key} is missing: {what}", key)
+        make = BilinearIsolator
     try:
-        if model == "bilinear":
-            if "q_ratio" not in values:
-                raise ModelError("q_ratio is missing: the characteristic strength Q/W", "q_ratio")
-            layer = BilinearIsolator(period=period, damping=damping, **params)
-        else:
-            if "mu" not in values:
-                raise ModelError("mu is missing: the pendulum's friction coefficient", "mu")
-            layer = FrictionPendulum(period=period, damping=damping, **params)
+        layer = make(**args)
+        return NonlinearIsolatedBuilding(superstructure, base_mass_ratio, layer)
     except ModelError as exc:
-        where = (exc.where or "").removeprefix("isolator.")
-        raise ModelError(exc.message, where or "isolator") from None
-    return NonlinearIsolatedBuilding(superstructure, ratio, layer)
-
-
-_LAYER_ONLY = ("mu", "mu_s", "radius", "q_ratio", "yield_disp", "alpha", "capacity")
+        key = (exc.where or "isolator").removeprefix("isolator.")
+        message = exc.message.removeprefix(f"{exc.where}: ") if exc.where else exc.message
+        raise ModelError(message, key) from None
 
 
 def _damping_text(damping: object) -> str:
@@ -338,25 +363,23 @@ def describe_building(building: LinearBuilding) -> str:
     >>> describe_building(parse_building("fixed:period=0.4,stories=3"))
     'fixed-base, 3 storeys, T1 = 0.4 s, ξ = 0.05'
     """
-    layer = getattr(building, "isolator", None)
-    if layer is not None:
-        sup = building.superstructure
-        if hasattr(layer, "R"):
-            what = (
-                f"a friction pendulum, R = {layer.R:.4g} m, T = {layer.T:.4g} s, mu = {layer.mu:g}"
-            )
-        else:
-            what = f"a bilinear layer, T_d = {layer.period:g} s, Q/W = {layer.q_ratio:g}"
-        return (
-            f"isolated on {what}, m_b/m = {building.base_mass_ratio:g}; superstructure "
-            f"{describe_building(sup)}"
-        )
     if isinstance(building, IsolatedBuilding):
         sup = building.superstructure
         return (
             f"isolated, T_i = {building.isolation_period:g} s, "
             f"ξ_i = {building.isolation_damping:g}, m_b/m = {building.base_mass_ratio:g}, "
             f"T1 = {building.periods[0]:.4g} s; superstructure {describe_building(sup)}"
+        )
+    if getattr(building, "segmented", False):  # on a nonlinear isolation layer
+        iso = building.isolator
+        if building.kind == "friction_pendulum":
+            mu_s = f", mu_s = {iso.mu_s:g}" if iso.mu_s is not None else ""
+            layer = f"friction pendulums, mu = {iso.mu:g}{mu_s}, T = {iso.T:.4g} s"
+        else:
+            layer = f"lead-rubber (bilinear), Q/W = {iso.q_ratio:g}, T_d = {iso.period:g} s"
+        return (
+            f"isolated on {layer}, m_b/m = {building.base_mass_ratio:g}; superstructure "
+            f"{describe_building(building.superstructure)}"
         )
     storeys = "storey" if building.stories == 1 else "storeys"
     damping = _damping_text(getattr(building, "damping", None))

@@ -148,28 +148,34 @@ def slide_oscillator(
     Brochard, D., Gantenbein, F. (1989). Seismic response of a sliding structure. *Transactions
     SMiRT 10*, vol. K2, 1147–1152.
     """
-    from floorslide.building.nonlinear import (
-        NonlinearIsolatedBuilding,
-        slide_oscillator_on_isolation,
-    )
+    fm, a, dt, notes = unwrap(acc, dt, building, floor)
+    if getattr(fm, "segmented", False) or getattr(building, "segmented", False):
+        # a floor of a building on nonlinear isolation: its segments, integrated once
+        from floorslide.contents.segmented import oscillators_on_segments
 
-    if isinstance(building, NonlinearIsolatedBuilding):
-        # a building on nonlinear isolation: its own exact event-driven chain
         if method != "exact":
             raise ModelError(
                 "only the exact method is available on a building on nonlinear isolation",
                 "method",
             )
-        if floor is None:
-            raise ModelError("floor is required with building=", "floor")
         if mu is None or frequency is None:
             missing = "mu" if mu is None else "frequency"
             raise ModelError(f"slide_oscillator needs {missing}", missing)
-        return slide_oscillator_on_isolation(
-            building, acc, dt, mu, frequency, damping, mass_ratio, mu_s=mu_s, floor=floor,
-            histories=histories,
-        )  # fmt: skip
-    fm, a, dt, notes = unwrap(acc, dt, building, floor)
+        mk, ms = friction_pairs(mu, mu_s)
+        f = float(frequency)
+        if not (np.isfinite(f) and f > 0):
+            raise ModelError(f"frequency must be > 0 Hz, got {frequency}", "frequency")
+        if not (np.isfinite(float(damping)) and 0 <= float(damping) < 1):
+            raise ModelError(f"damping must be in [0, 1), got {damping}", "damping")
+        if not (np.isfinite(float(mass_ratio)) and float(mass_ratio) > 0):
+            raise ModelError(f"mass_ratio must be > 0, got {mass_ratio}", "mass_ratio")
+        if fm is None:
+            if floor is None:
+                raise ModelError("floor is required with building=", "floor")
+            fm = building.motion(a, dt, floors=[floor]).floor(floor)
+        return oscillators_on_segments(
+            fm, mk, ms, f, float(damping), float(mass_ratio), histories, notes
+        )
     if fm is not None:
         building, floor = fm.building, fm.floor
     if mu is None or frequency is None:

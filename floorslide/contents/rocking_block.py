@@ -233,23 +233,15 @@ def rock(
     Makris, N., Roussos, Y. S. (2000). Rocking response of rigid blocks under near-source ground
     motions. *Géotechnique* 50(3), 243–262.
     """
-    from floorslide.building.nonlinear import NonlinearIsolatedBuilding
-
     if method not in ROCK_METHODS:
         raise ModelError(
             f"unknown method {method!r}; expected one of {', '.join(ROCK_METHODS)}", "method"
         )
-    on_isolation = isinstance(building, NonlinearIsolatedBuilding)
-    if on_isolation:
-        from floorslide.inputs import as_record
-
-        fm = None
-        a, dt, notes = as_record(acc, dt)
-        notes = tuple(notes)
-    else:
-        fm, a, dt, notes = unwrap(acc, dt, building, floor)
-        if fm is not None:
-            building, floor = fm.building, fm.floor
+    fm, a, dt, notes = unwrap(acc, dt, building, floor)
+    if fm is not None:
+        building, floor = fm.building, fm.floor
+    # a floor of a building on nonlinear isolation: its segments, integrated once
+    on_isolation = getattr(building, "segmented", False)
     if building is None and floor not in (None, 0):
         raise ModelError("floor= needs building=", "floor")
     if building is not None and floor is None:
@@ -266,7 +258,10 @@ def rock(
     par[:, rk.P_R] = r
     par[:, rk.P_TAN] = B / H
     par[:, rk.P_PARTS] = 1
-    if not on_isolation:
+    if on_isolation:
+        if fm is None:
+            fm = building.motion(a, dt, floors=[floor]).floor(floor)
+    else:
         if fm is None:
             fm = single_use_motion(building, a, dt, floor)
         parts = np.maximum(1, np.ceil(p * fm.h / phase_max - 1e-12)).astype(int)
@@ -291,18 +286,9 @@ def rock(
         states[:, rk.T_PEAK] = np.where(th0 != 0.0, 0.0, np.nan)
     npts = a.size
     if on_isolation:
-        from floorslide.building.nonlinear import isolator_response
+        from floorslide.contents.segmented import rockers_on_segments
 
-        resp = isolator_response(
-            building,
-            a,
-            dt,
-            floors=[floor],
-            rockers=(floor, par, states, nonlinear),
-            rocker_histories=histories,
-        )
-        states = resp.rocker_states
-        hist = resp.rocker_theta if histories else None
+        hist = rockers_on_segments(fm, par, states, nonlinear, histories)
     else:
         hist = np.zeros((B.size, npts) if histories else (0, 0))
         for k0, X in fm.chunks():
@@ -365,20 +351,18 @@ def _approximate(acc, dt, building, floor, B, H, alpha, p, r, method, substeps, 
                  histories, initial_angle) -> RockResult:  # fmt: skip
     """:func:`rock` by an approximate method on the floor's samples."""
     from floorslide.building.exact_motion import floor_motion
-    from floorslide.building.nonlinear import NonlinearIsolatedBuilding, isolator_response
+    from floorslide.building.nonlinear_motion import NonlinearFloorMotion
     from floorslide.contents import rocking_approx as ra
 
     if histories or initial_angle is not None:
         raise ModelError(
             f"method={method!r} gives peaks only (no histories, no initial angle)", "method"
         )
-    if isinstance(acc, FloorMotion):
+    if isinstance(acc, FloorMotion | NonlinearFloorMotion):
         af, dt, notes = acc.samples(), acc.dt, acc.notes
-    elif isinstance(building, NonlinearIsolatedBuilding):
-        from floorslide.inputs import as_record
-
-        a, dt, notes = as_record(acc, dt)
-        af = isolator_response(building, a, dt, floors=[floor]).floor_acceleration[0]
+    elif getattr(building, "segmented", False):
+        fm = building.motion(acc, dt, floors=[floor]).floor(floor)
+        af, dt, notes = fm.samples(), fm.dt, fm.notes
     else:
         fm = floor_motion(building, acc, 0 if building is None else floor, dt)
         af, dt, notes = fm.samples(), fm.dt, fm.notes

@@ -220,25 +220,11 @@ def slide(
         result = _ground_fast(acc, dt, mu_k, mu_s, direction, histories)
         if result is not None:
             return result
-    from floorslide.building.nonlinear import NonlinearIsolatedBuilding, slide_on_isolation
-
-    if isinstance(building, NonlinearIsolatedBuilding):
-        # a building on nonlinear isolation: its own exact event-driven chain
-        if mu_k is None:
-            raise ModelError("mu_k (the kinetic friction coefficient or coefficients) is required")
-        if floor is None:
-            raise ModelError("floor is required with building=", "floor")
-        for name, value, default in (("vertical", vertical, None), ("method", method, "exact")):
-            if value is not default and value != default:
-                raise ModelError(
-                    f"{name}={value!r} is not available yet on a building on nonlinear "
-                    "isolation (exact sliding without vertical shaking is)",
-                    name,
-                )
-        return slide_on_isolation(
-            building, acc, dt, mu_k, mu_s, floor=floor, direction=direction, histories=histories
-        )
     fm, a, dt, notes = unwrap(acc, dt, building, floor)
+    if getattr(fm, "segmented", False) or getattr(building, "segmented", False):
+        # a floor of a building on nonlinear isolation: its segments, integrated once
+        return _slide_segmented(fm, a, dt, notes, building, floor, mu_k, mu_s, vertical, method,
+                                direction, histories)  # fmt: skip
     if fm is not None:
         building, floor = fm.building, fm.floor
     if mu_k is None:
@@ -454,3 +440,31 @@ def _result(
         v=hv if histories else None,
         abs_accel=ha if histories else None,
     )
+
+
+def _slide_segmented(fm, a, dt, notes, building, floor, mu_k, mu_s, vertical, method, direction,
+                     histories):  # fmt: skip
+    """:func:`slide` on a floor of a building on nonlinear isolation (a segmented motion)."""
+    from floorslide.contents.segmented import slide_on_segments
+
+    if mu_k is None:
+        raise ModelError("mu_k (the kinetic friction coefficient or coefficients) is required")
+    if method != "exact":
+        raise ModelError(
+            f"method={method!r} is not available on a building on nonlinear isolation (the "
+            "exact method is)",
+            "method",
+        )
+    if vertical is not None:
+        raise ModelError(
+            "vertical shaking on a building on nonlinear isolation is not available yet (it "
+            "changes the isolator's friction and restoring force too); run without vertical",
+            "vertical",
+        )
+    mk, ms = friction_pairs(mu_k, mu_s)
+    _allowed(direction)
+    if fm is None:
+        if floor is None:
+            raise ModelError("floor is required with building=", "floor")
+        fm = building.motion(a, dt, floors=[floor]).floor(floor)
+    return slide_on_segments(fm, mk, ms, direction, histories, notes)

@@ -304,15 +304,25 @@ def _run(task: Task, force: bool) -> TaskResult:
     if rec.is_pair:
         return _run_pair(task, force, t0)
     model = task.building.build()
-    if task.building.isolator_model not in ("", "linear"):
-        return _run_nonlinear(task, model, force, t0)
     floors = np.array(task.floors, dtype=np.int64)
-    # the building integrated once for this record: every floor peak, content, spectrum and
-    # history below reads this motion
+    # the building integrated once for this record — on linear or nonlinear isolation alike:
+    # every floor peak, content, spectrum and history below reads this motion
     motion = building_motion(model, acc, dt)
     pfa = motion.peaks(list(task.floors))[0] if floors.size else np.zeros(0)
     pfa_of = dict(zip(task.floors, pfa, strict=True))
-    result = TaskResult(task.task_id, _meta(task), floors, np.asarray(pfa, dtype=float))
+    meta = _meta(task)
+    iso = getattr(motion, "response", None)  # the isolator's own outputs (nonlinear isolation)
+    if iso is not None:
+        meta.update(
+            isolator=task.building.isolator_model,
+            **isolator_parameters(model),
+            isolator_peak_displacement=iso.peak_displacement,
+            isolator_residual_displacement=iso.residual_displacement,
+            isolator_peak_force_ratio=iso.peak_force_ratio,
+            isolator_capacity_exceeded=int(iso.capacity_exceeded),
+            isolator_small_angle_exceeded=int(iso.small_angle_exceeded),
+        )
+    result = TaskResult(task.task_id, meta, floors, np.asarray(pfa, dtype=float))
     hist_slides, hist_mu, hist_deform, hist_top, hist_rock = {}, {}, {}, {}, {}
     for content, floor in task.contents:
         with _naming(f"content {content.id} on floor {floor}"):
@@ -416,185 +426,16 @@ def _run(task: Task, force: bool) -> TaskResult:
     if task.histories:
         fl = np.array(task.floors, dtype=np.int64)
         motions = motion.samples(list(task.floors)) if fl.size else np.zeros((0, acc.size))
+        bearing = {}
+        if iso is not None:
+            bearing = dict(
+                isolator_displacement=iso.isolator_displacement,
+                isolator_force_ratio=iso.isolator_force / model.weight,
+            )
         result.histories = Histories(
-            dt, fl, motions, hist_slides, hist_mu, hist_deform, hist_top, rocking=hist_rock
-        )
-    result.seconds = time.perf_counter() - t0
-    return result
-
-
-def _run_nonlinear(task: Task, model, force: bool, t0: float) -> TaskResult:
-    """A task on a building on nonlinear isolation (:mod:`floorslide.building.nonlinear`): the
-    building with every rigid block riding along in one exact integration, then each floor
-    spectrum (its oscillators integrated with the building)."""
-    from floorslide.building.nonlinear import (
-        floor_spectrum_on_isolation,
-        isolator_response,
-        slide_oscillator_on_isolation,
-    )
-
-    rec = task.record
-    acc, dt = rec.acc, rec.dt
-    floors = list(task.floors)
-    # the floors' peaks first (the objects integrated depend on them, as on any building)
-    base = isolator_response(model, acc, dt, floors=floors)
-    pfa_of = dict(zip(floors, base.pfa, strict=True))
-    meta = _meta(task)
-    meta.update(
-        isolator=task.building.isolator_model,
-        **isolator_parameters(model),
-        isolator_peak_displacement=base.peak_displacement,
-        isolator_residual_displacement=base.residual_displacement,
-        isolator_peak_force_ratio=base.peak_force_ratio,
-        isolator_capacity_exceeded=int(base.capacity_exceeded),
-        isolator_small_angle_exceeded=int(base.small_angle_exceeded),
-    )
-    result = TaskResult(
-        task.task_id, meta, np.array(floors, dtype=np.int64), np.asarray(base.pfa, dtype=float)
-    )
-    plans = []
-    blocks = []
-    flex_results = {}
-    for content, floor in task.contents:
-        with _naming(f"content {content.id} on floor {floor}"):
-            mu, mu_s = _frictions(content)
-            modes, integrate, reasons = decide(content, pfa_of[floor], force)
-            idx = np.nonzero(integrate)[0]
-            if content.model == "oscillator":
-                if idx.size:
-                    flex_results[(content.id, floor)] = slide_oscillator_on_isolation(
-                        model, acc, dt, mu[idx], content.frequency, content.damping,
-                        content.mass_ratio, mu_s=mu_s[idx], floor=floor,
-                    )  # fmt: skip
-                plans.append((content, floor, mu, mu_s, modes, reasons, idx, -1))
-                continue
-            first = len(blocks)
-            blocks += [(floor, max(mu_s[i], mu[i]), mu[i], content.direction) for i in idx]
-            plans.append((content, floor, mu, mu_s, modes, reasons, idx, first))
-    by_direction: dict[str, list[int]] = {}
-    for j, b in enumerate(blocks):
-        by_direction.setdefault(b[3], []).append(j)
-    states = [None] * len(blocks)
-    slides = [None] * len(blocks)
-    for direction, js in by_direction.items():
-        riding = sorted(
-            {
-                f"{p[0].id} on floor {p[1]}"
-                for p in plans
-                if p[7] >= 0 and p[6].size and p[0].direction == direction
-            }
-        )
-        with _naming(f"content {', '.join(riding)} (rigid blocks riding along)"):
-            r = isolator_response(
-                model,
-                acc,
-                dt,
-                floors=floors,
-                blocks=[blocks[j] for j in js],
-                block_histories=task.histories,
-            )
-        for k, j in enumerate(js):
-            states[j] = r.block_states[k]
-            slides[j] = None if r.block_slides is None else r.block_slides[k]
-    from floorslide.contents._kernels import DISP, PEAK_ACC, PEAK_DISP, SLIDE_TIME, SLIPS
-
-    duration = (acc.size - 1) * dt
-    hist_slides, hist_mu, hist_deform, hist_top, hist_rock = {}, {}, {}, {}, {}
-    for content, floor, mu, mu_s, modes, reasons, idx, first in plans:
-        with _naming(f"content {content.id} on floor {floor}"):
-            n = mu.size
-            arrays = _slide_arrays(n, pfa_of[floor], modes)
-            peak, resid, acc_obj, frac, slips, rocks = arrays
-            deform = top = None
-            if first < 0:  # 2-DOF oscillators
-                deform = np.full(n, np.nan)
-                top = np.full(n, np.nan)
-                fr = flex_results.get((content.id, floor))
-                if fr is not None:
-                    peak[idx], resid[idx] = fr.peak_slide, fr.residual_slide
-                    acc_obj[idx], frac[idx], slips[idx] = (
-                        fr.peak_base_accel,
-                        fr.slide_fraction,
-                        fr.slip_phases,
-                    )
-                    deform[idx], top[idx] = fr.peak_deformation, fr.peak_top_accel
-            for k, i in enumerate(idx if first >= 0 else ()):
-                st = states[first + k]
-                peak[i], resid[i], acc_obj[i] = st[PEAK_DISP], st[DISP], st[PEAK_ACC]
-                frac[i] = st[SLIDE_TIME] / duration if duration > 0 else 0.0
-                slips[i] = int(st[SLIPS])
-            # rocking blocks ride along in the building's own integration (fs.rock on it)
-            rocking = rocking_results(
-                content,
-                modes,
-                lambda floor=floor, content=content: rock_blocks(
-                    acc,
-                    dt,
-                    width=content.width,
-                    height=content.height,
-                    restitution=content.restitution,
-                    method=content.rocking,
-                    histories=task.histories,
-                    building=model,
-                    floor=floor,
-                ),
-            )
-            rock_result = rocking.pop("result", None)
-            if task.histories and rock_result is not None:
-                hist_rock[f"{content.id}/floor_{floor}"] = (
-                    rock_result.theta[0] / rock_result.alpha[0]
-                )
-            extra = dict(peak_deformation=deform, peak_top_accel=top, **rocking)
-            result.contents.append(
-                _content_result(content, floor, modes, reasons, mu, mu_s, arrays, **extra)
-            )
-            if task.histories and first < 0:
-                # 2-DOF oscillators: their histories from a run of the picked friction values
-                pick = np.unique(np.linspace(0, n - 1, min(HISTORY_MU, n)).round().astype(int))
-                key = f"{content.id}/floor_{floor}"
-                rh = slide_oscillator_on_isolation(
-                    model, acc, dt, mu[pick], content.frequency, content.damping,
-                    content.mass_ratio, mu_s=mu_s[pick], floor=floor, histories=True,
-                )  # fmt: skip
-                hist_slides[key], hist_mu[key] = rh.u, mu[pick]
-                hist_deform[key], hist_top[key] = rh.z, rh.top_accel
-                # an object that rocks is not a slider: no slide history is drawn for it
-                for arr in (rh.u, rh.z, rh.top_accel):
-                    arr[rocks[pick]] = np.nan
-            if task.histories and first >= 0:
-                pick = np.unique(np.linspace(0, n - 1, min(HISTORY_MU, n)).round().astype(int))
-                key = f"{content.id}/floor_{floor}"
-                u = np.zeros((pick.size, acc.size))
-                where = {int(i): first + k for k, i in enumerate(idx)}
-                for row, i in enumerate(pick):
-                    if int(i) in where and slides[where[int(i)]] is not None:
-                        u[row] = slides[where[int(i)]]
-                    if rocks[i]:
-                        u[row] = np.nan
-                hist_slides[key], hist_mu[key] = u, mu[pick]
-    sc = task.spectra
-    for floor in task.spectra_floors:
-        with _naming(f"floor spectrum of floor {floor}"):
-            sp = floor_spectrum_on_isolation(
-                model, acc, dt, np.asarray(sc.periods), list(sc.damping), floor=floor
-            )
-            out = SpectrumResult(floor, sp.periods, sp.damping, sp.psa, sp.sa, sp.sv, sp.sd)
-            _broadened(out, sp, sc.broadening)
-            result.spectra.append(out)
-    if task.histories:
-        fl = np.array(floors, dtype=np.int64)
-        result.histories = Histories(
-            dt,
-            fl,
-            base.floor_acceleration,
-            hist_slides,
-            hist_mu,
-            hist_deform,
-            hist_top,
-            isolator_displacement=base.isolator_displacement,
-            isolator_force_ratio=base.isolator_force / model.weight,
-            rocking=hist_rock,
-        )
+            dt, fl, motions, hist_slides, hist_mu, hist_deform, hist_top, rocking=hist_rock,
+            **bearing,
+        )  # fmt: skip
     result.seconds = time.perf_counter() - t0
     return result
 

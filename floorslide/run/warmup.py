@@ -43,14 +43,20 @@ def _linear_tasks() -> None:
 
 
 def _nonlinear_tasks() -> None:
-    """One short call of the nonlinear-isolation kernel, blocks and spectrum oscillators riding
-    (every rider's code — rocking blocks' too — is part of the one kernel)."""
+    """One short call of each kernel a task on nonlinear isolation runs: the building's motion
+    (its segments), rigid blocks with and without histories, rocking blocks, 2-DOF oscillators
+    and floor spectra reading them."""
     import floorslide as fs
 
     sup = fs.ShearBuilding.from_period(stories=1, period=0.3, damping=0.03)
     b = fs.NonlinearIsolatedBuilding(sup, 1.0, fs.FrictionPendulum(mu=0.05, period=3.0))
     ag = np.sin(np.linspace(0.0, 6.0, 61)) * 2.0
-    fs.isolator_response(b, ag, 0.01, blocks=[(1, 0.1, 0.1, "both")], oscillators=[(1, 10.0, 0.05)])
+    fm = b.motion(ag, 0.01).floor(1)
+    fs.slide(fm, mu_k=[0.1])
+    fs.slide(fm, mu_k=[0.1], histories=True)
+    fs.rock(fm, width=0.01, height=1.0)
+    fs.slide_oscillator(fm, mu=[0.1], frequency=5.0)
+    fs.response_spectrum(fm, periods=[0.5])
 
 
 def family(task) -> str:
@@ -64,8 +70,14 @@ def _loaded(family: str) -> bool:
     """Whether this process has the family's kernels already."""
     if family == "nonlinear":
         from floorslide.building import _nonlinear_kernel as k
+        from floorslide.contents import _segment_kernels as c
+        from floorslide.spectra import _segment_kernels as sp
 
-        return bool(k.nonlinear_run.signatures)
+        return bool(
+            k.nonlinear_run.signatures
+            and c.blocks_on_segments.signatures
+            and sp.oscillators_on_segments.signatures
+        )
     from floorslide.contents import _kernels as k
 
     return bool(k.slide_kernel.signatures)

@@ -921,15 +921,10 @@ def plan(scene: Scene, *, force: bool = False, evaluate: bool = True) -> Plan:
                         p.runs["rocking blocks, planar in each component's direction"] += 1
                 continue
             model = t.building.build()
-            if t.building.isolator_model not in ("", "linear"):
-                from floorslide.building.nonlinear import isolator_response
-
+            if warming and warmup.family(t) == "nonlinear":
                 warmup.finish(warming)  # the nonlinear kernel is among them
                 warming = []
-                peaks = isolator_response(model, t.record.acc, t.record.dt, floors=floors).pfa
-            else:
-                pk = peak_floor_acceleration(model, t.record.acc, t.record.dt, floors=floors)
-                peaks = pk.peak
+            peaks = peak_floor_acceleration(model, t.record.acc, t.record.dt, floors=floors).peak
             pfa = dict(zip(floors, peaks, strict=True))
             for c, f in t.contents:
                 _modes, integrate, reasons = decide(c, pfa[f], force)

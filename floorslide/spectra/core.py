@@ -530,25 +530,27 @@ def response_spectrum(
     earthquake records. *Bull. Seismol. Soc. Am.* 59(2), 909–922.
     Van Loan (1978), Theorem 1 (the augmented matrix exponential).
     """
-    from floorslide.building.nonlinear import (
-        NonlinearIsolatedBuilding,
-        floor_spectrum_on_isolation,
-    )
+    fm, a, dt, notes = unwrap(acc, dt, building, floor)
+    if getattr(fm, "segmented", False) or getattr(building, "segmented", False):
+        # a floor of a building on nonlinear isolation: its segments, integrated once
+        from floorslide.spectra.segmented import spectrum_on_segments
 
-    if isinstance(building, NonlinearIsolatedBuilding):
-        # a building on nonlinear isolation: each oscillator integrated with it, exactly
         if method != "exact":
             raise ModelError(
-                f"method={method!r} is not available yet on a building on nonlinear isolation "
+                f"method={method!r} is not available on a building on nonlinear isolation "
                 "(the exact method is)",
                 "method",
             )
-        if floor is None:
-            raise ModelError("floor is required with building=", "floor")
         if periods is None:
             raise ModelError("periods are required: a list in s or {min, max, n}", "periods")
-        return floor_spectrum_on_isolation(building, acc, dt, periods, damping, floor=floor)
-    fm, a, dt, notes = unwrap(acc, dt, building, floor)
+        T = period_grid(periods)
+        Z = damping_ratios(damping)
+        check_oscillators(T, Z, dt)
+        if fm is None:
+            if floor is None:
+                raise ModelError("floor is required with building=", "floor")
+            fm = building.motion(a, dt, floors=[floor]).floor(floor)
+        return spectrum_on_segments(fm, T, Z, notes)
     if fm is not None:
         building, floor = fm.building, fm.floor
     if periods is None:

@@ -2,8 +2,9 @@
 
 On a sub-step without isolator events a rider (a response-spectrum oscillator on a floor) is
 advanced by its exact linear update, and searched inside the sub-step only where a rigorous
-filter cannot rule out a new peak (``_riders_fast`` in the kernel); the reference is the
-series path on every sub-step (``_OSCILLATORS_BY_SERIES``). The spectra agree to rounding,
+filter cannot rule out a new peak (``_riders_fast`` of ``floorslide.spectra._segment_kernels``,
+reading the building's segments); the reference is the series path on every segment
+(``floorslide.spectra.segmented.BY_SERIES``). The spectra agree to rounding,
 and their peaks are never below the rider's exact response sampled 64 times finer (the
 oscillator integrated as two more states of the building, on the record resampled at dt/64:
 the same piecewise-linear ground motion, so the same exact solution, at more samples).
@@ -15,8 +16,8 @@ import numpy as np
 import pytest
 
 import floorslide as fs
-from floorslide.building import _nonlinear_kernel as kern
 from floorslide.building import nonlinear as nl
+from floorslide.spectra import segmented as sg
 from tests.conftest import SLAMMER, G
 
 PERIODS = np.geomspace(0.02, 5.0, 12)
@@ -44,12 +45,12 @@ def building(isolator: str, stories: int):
 
 
 def spectrum(b, a, dt, floor, *, series: bool, periods=PERIODS, damping=DAMPING):
-    old = nl._OSCILLATORS_BY_SERIES
-    nl._OSCILLATORS_BY_SERIES = series
+    old = sg.BY_SERIES
+    sg.BY_SERIES = series
     try:
-        return nl.floor_spectrum_on_isolation(b, a, dt, periods, damping, floor=floor)
+        return fs.response_spectrum(a, dt, periods, damping, building=b, floor=floor)
     finally:
-        nl._OSCILLATORS_BY_SERIES = old
+        sg.BY_SERIES = old
 
 
 CASES = [
@@ -71,7 +72,7 @@ def test_fast_path_equals_the_series_path(isolator, stories, name):
     for floor in range(stories + 1):
         ref = spectrum(b, a, dt, floor, series=True)
         new = spectrum(b, a, dt, floor, series=False)
-        stats = nl._LAST_RIDER_STATS.copy()
+        stats = sg.LAST_STATS.copy()
         for q in ("psa", "sa", "sd", "sv"):
             r, v = getattr(ref, q), getattr(new, q)
             assert np.all(r > 0), q
@@ -90,23 +91,13 @@ def test_fast_path_equals_the_series_path(isolator, stories, name):
 def _sampled_peaks(b, a, dt, floor, w, xi):
     """``max|q|, max|q'|, max|ω² q + 2ξω q'|`` of the rider's exact response at the samples
     of the record resampled 64 times finer (the oscillator as two more states of every
-    branch; its states at the samples taken from the kernel's sample array)."""
+    branch; its states at the samples of the building's motion)."""
     t = np.arange(a.size) * dt
     tf = np.linspace(0.0, t[-1], (a.size - 1) * FINE + 1)
     fine = np.interp(tf, t, a)
-    grabbed = {}
-    run = kern.nonlinear_run
-
-    def grab(*args):
-        grabbed["X"] = args[17]
-        return run(*args)
-
-    kern.nonlinear_run = grab
-    try:
-        nl.isolator_response(b, fine, dt / FINE, floors=[floor], oscillator=(floor, w, xi))
-    finally:
-        kern.nonlinear_run = run
-    X = grabbed["X"]
+    X = nl.nonlinear_motion(
+        b, fine, dt / FINE, floors=[floor], oscillator=(floor, w, xi), keep_segments=False
+    ).states
     q, v = X[:, -2], X[:, -1]
     return np.array([np.abs(q).max(), np.abs(v).max(), np.abs(w * w * q + 2 * xi * w * v).max()])
 
@@ -142,21 +133,22 @@ def test_peaks_never_below_the_exact_response_sampled_finer(isolator, stories, n
 
 def test_overdamped_riders_take_the_series_search():
     """The filter needs ``ξ < 1`` (a free vibration of bounded derivatives): riders with
-    ``ξ ≥ 1`` (possible through ``isolator_response``) are searched on every sub-step, and
+    ``ξ ≥ 1`` (possible through the segment pass itself) are searched on every sub-step, and
     still agree with the series path."""
     a, dt = record("ImperialValley_1979_EMO-270.txt")
     a = a[:400]
     b = building("pendulum", 1)
-    oscs = [(1, 2 * np.pi / T, xi) for T in (0.05, 1.0) for xi in (0.05, 1.0, 2.0)]
+    fm = b.motion(a, dt, floors=[1]).floor(1)
     out = {}
     for series in (True, False):
-        nl._OSCILLATORS_BY_SERIES = series
-        try:
-            out[series] = nl.isolator_response(b, a, dt, floors=[1], oscillators=oscs)
+        sg.BY_SERIES = series
+        try:  # (fs.response_spectrum refuses ξ ≥ 1; the segment pass takes any)
+            out[series] = sg.spectrum_on_segments(
+                fm, np.array([0.05, 1.0]), np.array([0.05, 1.0, 2.0])
+            )
         finally:
-            nl._OSCILLATORS_BY_SERIES = False
-    stats = nl._LAST_RIDER_STATS
+            sg.BY_SERIES = False
+    stats = sg.LAST_STATS
     assert stats[2] >= 4 * stats[0]  # the four riders with ξ ≥ 1, on every fast sub-step
-    np.testing.assert_allclose(
-        out[False].oscillator_peaks, out[True].oscillator_peaks, rtol=1e-11, atol=0
-    )
+    for q in ("sd", "sv", "sa"):
+        np.testing.assert_allclose(getattr(out[False], q), getattr(out[True], q), rtol=1e-11)

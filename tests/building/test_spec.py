@@ -2,12 +2,17 @@
 
 from __future__ import annotations
 
-import re
-
 import numpy as np
 import pytest
 
-from floorslide.building import IsolatedBuilding, Rayleigh, ShearBuilding
+from floorslide.building import (
+    BilinearIsolator,
+    FrictionPendulum,
+    IsolatedBuilding,
+    NonlinearIsolatedBuilding,
+    Rayleigh,
+    ShearBuilding,
+)
 from floorslide.building.spec import describe_building, parse_building
 from floorslide.errors import ModelError
 
@@ -80,6 +85,21 @@ def test_defaults_are_the_scene_defaults():
         ("isolated:period=2,super_period=0", "super_period", "> 0"),
         ("isolated:period=2,super_period=0.4,damping=-1", "damping", "[0, 1)"),
         ("hotel:period=1", "kind", "unknown kind 'hotel'"),
+        ("isolated:period=3,mu=0.05,super_period=0.4", "mu", "isolator=friction_pendulum"),
+        ("fps:period=3,super_period=0.4", "mu", "mu is missing"),
+        ("fps:mu=0.05,super_period=0.4", "period", "period (s) or radius (m)"),
+        ("fps:period=3,radius=2,mu=0.05,super_period=0.4", "radius", "one of radius and period"),
+        ("fps:period=3,mu=-0.1,super_period=0.4", "mu", "≥ 0"),
+        ("fps:period=3,mu=0.05,q_ratio=0.1,super_period=0.4", "q_ratio", "an fps building"),
+        ("lrb:period=2.5,super_period=0.4", "q_ratio", "q_ratio is missing"),
+        ("lrb:q_ratio=0.06,period=2.5,super_period=0.4", "yield_disp", "yield_disp and alpha"),
+        ("isolated:period=2,isolator=rubber,super_period=0.4", "isolator", "unknown isolator"),
+        (
+            "isolated:period=2,isolator=bilinear,mu=0.1,q_ratio=0.1,yield_disp=0.01,"
+            "super_period=0.4",
+            "mu",
+            "not a key of a bilinear layer",
+        ),
     ],
 )
 def test_mistakes_name_the_key(spec, where, text):
@@ -100,22 +120,59 @@ def test_description():
     assert "Rayleigh ξ = 0.05" in describe_building(rayleigh)
 
 
-def test_a_friction_pendulum_by_radius_or_period():
-    """T = 2π√(R/g): radius=2 is the period 2.8375 s; both given must agree (0.1 %)."""
-    from floorslide.building.isolators import FrictionPendulum
+def _nonlinear_same(a, b) -> None:
+    assert type(a) is NonlinearIsolatedBuilding and type(b) is NonlinearIsolatedBuilding
+    np.testing.assert_array_equal(a.mass, b.mass)
+    np.testing.assert_array_equal(a.stiffness_matrix, b.stiffness_matrix)
+    np.testing.assert_array_equal(a.damping_matrix, b.damping_matrix)
+    assert a.isolator == b.isolator
+
+
+@pytest.mark.parametrize(
+    ("spec", "isolator"),
+    [
+        (
+            "fps:period=3,mu=0.06,super_period=0.4,stories=3",
+            FrictionPendulum(mu=0.06, period=3.0),
+        ),
+        (
+            "isolated:isolator=friction_pendulum,radius=2.2,mu=0.05,mu_s=0.08,capacity=0.4,"
+            "super_period=0.4,stories=3",
+            FrictionPendulum(mu=0.05, radius=2.2, mu_s=0.08, capacity=0.4),
+        ),
+        (
+            "lrb:q_ratio=0.06,period=2.5,yield_disp=0.02,super_period=0.4,stories=3",
+            BilinearIsolator(q_ratio=0.06, period=2.5, yield_disp=0.02),
+        ),
+        (
+            "isolated:isolator=bilinear,q_ratio=0.05,period=2.5,alpha=0.1,damping=0.02,"
+            "super_period=0.4,stories=3",
+            BilinearIsolator(q_ratio=0.05, period=2.5, alpha=0.1, damping=0.02),
+        ),
+    ],
+)
+def test_nonlinear_isolation_in_one_line(spec, isolator):
+    """``fps:``/``lrb:`` or ``isolator=`` put the superstructure on a nonlinear layer with the
+    keys of a scene's ``isolator`` table."""
+    got = parse_building(spec)
+    ref = NonlinearIsolatedBuilding(ShearBuilding.from_period(3, 0.4, 0.05), 1.0, isolator)
+    _nonlinear_same(got, ref)
+    text = describe_building(got)
+    assert text.startswith("isolated on ") and "superstructure fixed-base, 3 storeys" in text
+
+
+def test_pendulum_period_is_two_pi_root_r_over_g_and_checks_a_period_given_too():
+    """One rule for a pendulum given by its radius (the scene's isolator.radius): T = 2π√(R/g),
+    R = 2 m → 2.8375 s; a period given too must agree within 0.1 %."""
+    import re
+
     from floorslide.building.spec import pendulum_period
 
     assert pendulum_period(2.0) == pytest.approx(2 * np.pi * np.sqrt(2.0 / 9.80665), rel=1e-15)
-    sup = "super_period=0.4,stories=3"
-    by_r = parse_building(f"isolated:isolator=friction_pendulum,mu=0.05,radius=2,{sup}")
-    by_t = parse_building(f"isolated:isolator=friction_pendulum,mu=0.05,period=2.8375,{sup}")
-    assert isinstance(by_r.isolator, FrictionPendulum) and by_r.stories == 3
-    assert by_r.isolator.R == pytest.approx(2.0, rel=1e-12)
-    assert by_t.isolator.R == pytest.approx(2.0, rel=1e-4)
-    assert "friction pendulum, R = 2 m, T = 2.837 s" in describe_building(by_r)
+    assert pendulum_period(2.0, 2.8375) == 2.8375
     text = "gives the pendulum period 2π√(R/g) = 2.837 s, but period = 3 s; give one of radius"
     with pytest.raises(ModelError, match=re.escape(text)) as err:
-        parse_building(f"isolated:isolator=friction_pendulum,mu=0.05,radius=2,period=3,{sup}")
+        pendulum_period(2.0, 3.0)
     assert err.value.where == "radius"
-    with pytest.raises(ModelError, match="radius= is not a key of isolator=linear"):
-        parse_building(f"isolated:period=2.5,radius=2,{sup}")
+    by_r = parse_building("fps:mu=0.05,radius=2,super_period=0.4,stories=3")
+    assert by_r.isolator.T == pytest.approx(pendulum_period(2.0), rel=1e-12)

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import floorslide as fs
-from floorslide.building.nonlinear import isolator_response, slide_on_isolation
+from floorslide.building.nonlinear import isolator_response
 from tests.conftest import SLAMMER, G
 from tests.reference import rigid_block_ground
 
@@ -27,7 +27,7 @@ def test_frictionless_pendulum_equals_the_linear_isolated_roof(elc):
     b = building(fs.FrictionPendulum(mu=0.0, period=3.0))
     lin = fs.IsolatedBuilding(b.superstructure, 1.0, 3.0, 0.0)
     mus = [0.02, 0.05, 0.1, 0.2]
-    r = slide_on_isolation(b, elc, 0.01, mus, floor=2)
+    r = fs.slide(elc, 0.01, mus, building=b, floor=2)
     ref = fs.slide(elc, 0.01, mus, building=lin, floor=2)
     assert ref.peak_slide[:3].min() > 0.1  # they do slide
     np.testing.assert_allclose(r.peak_slide, ref.peak_slide, rtol=1e-11, atol=1e-14)
@@ -53,7 +53,7 @@ def test_against_a_block_on_finely_sampled_floor_motion(elc, isolator):
     dt = 0.01
     b = building(isolator)
     mus = [0.05, 0.1]
-    exact = slide_on_isolation(b, a, dt, mus, floor=2)
+    exact = fs.slide(a, dt, mus, building=b, floor=2)
     assert exact.peak_slide.min() > 0.01
     t = np.arange(a.size) * dt
     errors = []
@@ -70,19 +70,23 @@ def test_against_a_block_on_finely_sampled_floor_motion(elc, isolator):
 
 def test_a_block_that_never_slides_feels_the_true_peak_floor_acceleration(elc):
     b = building(fs.BilinearIsolator(q_ratio=0.06, period=2.5, yield_disp=0.02))
-    r = slide_on_isolation(b, elc, 0.01, [5.0], floor=2)
+    r = fs.slide(elc, 0.01, [5.0], building=b, floor=2)
     pfa = isolator_response(b, elc, 0.01, floors=[2]).pfa[0]
     assert r.peak_slide[0] == 0.0 and r.slip_phases[0] == 0
     assert r.peak_abs_accel[0] == pytest.approx(pfa, rel=1e-12)
 
 
-def test_fs_slide_takes_a_building_on_nonlinear_isolation(elc):
+def test_fs_slide_takes_a_building_or_its_floor_motion(elc):
+    """A building on nonlinear isolation with floor=, or a floor of its motion integrated once:
+    the same bits; the approximate methods and vertical shaking are refused in one line."""
     b = building(fs.FrictionPendulum(mu=0.06, period=3.0))
     via_slide = fs.slide(elc[:600], 0.01, [0.05, 0.1], building=b, floor=2)
-    direct = slide_on_isolation(b, elc[:600], 0.01, [0.05, 0.1], floor=2)
+    direct = fs.slide(b.motion(elc[:600], 0.01).floor(2), mu_k=[0.05, 0.1])
     np.testing.assert_array_equal(via_slide.peak_slide, direct.peak_slide)
-    with pytest.raises(fs.ModelError, match="not available yet"):
+    with pytest.raises(fs.ModelError, match="not available"):
         fs.slide(elc[:600], 0.01, 0.1, building=b, floor=2, method="newmark")
+    with pytest.raises(fs.ModelError, match="vertical shaking on a building on nonlinear"):
+        fs.slide(elc[:600], 0.01, 0.1, building=b, floor=2, vertical=0.3 * elc[:600])
 
 
 def test_flexible_equipment_on_a_frictionless_pendulum_equals_the_linear_isolated_roof(elc):

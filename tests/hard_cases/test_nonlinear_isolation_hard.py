@@ -101,3 +101,21 @@ def test_capacity_exceeded_is_reported(elc):
     ok = FrictionPendulum(mu=0.03, period=3.0, capacity=10.0)
     r = isolator_response(NonlinearIsolatedBuilding(one_storey(), 1.0, ok), elc, 0.01)
     assert not r.capacity_exceeded and r.notes == ()
+
+
+def test_a_million_samples_streamed_to_every_consumer(elc):
+    """A million samples on friction pendulums: the motion's segments do not fit the memory a
+    motion keeps whole, so it is streamed (each consumer's pass integrates the chunks again from
+    checkpoints); a block too rough to slide feels the floor's true PFA, and the spectrum's
+    zero period is that PFA too."""
+    a = np.tile(elc, 1_000_000 // elc.size + 1)[:1_000_000]
+    b = NonlinearIsolatedBuilding(one_storey(), 1.0, fs.FrictionPendulum(mu=0.05, period=3.0))
+    m = b.motion(a, 0.01, floors=[1], max_bytes=64 * 2**20)
+    assert not m.kept_whole and len(m._checkpoints) > 10
+    fm = m.floor(1)
+    pfa = fm.peak()[0]
+    s = fs.slide(fm, mu_k=[0.05, 5.0])
+    assert s.peak_slide[0] > 0 and s.peak_slide[1] == 0.0
+    assert s.peak_abs_accel[1] == pytest.approx(pfa, rel=1e-12)
+    sp = fs.response_spectrum(fm, periods=[0.0, 1.0])
+    assert sp.sa[0, 0] == pfa and np.isfinite(sp.psa).all()
