@@ -218,10 +218,27 @@ def _render(jobs: list[Callable[[], Figure | None]], workers: int) -> list[bytes
         return [_png(job()) for job in jobs]
     _JOBS[:] = jobs
     try:
-        with multiprocessing.get_context("fork").Pool(workers) as pool:
-            return pool.map(_draw, range(len(jobs)), chunksize=1)
+        with multiprocessing.get_context("fork").Pool(workers, initializer=_worker_signals) as pool:
+            out = pool.map(_draw, range(len(jobs)), chunksize=1)
+            # the workers end on their own (a terminate's SIGTERM could meet a handler the
+            # command installed, inherited by the fork, and leave a worker waiting for ever)
+            pool.close()
+            pool.join()
+            return out
     finally:
         _JOBS.clear()
+
+
+def _worker_signals() -> None:
+    """A figure worker leaves interruptions to the command: Ctrl-C (sent to the whole process
+    group) is ignored, SIGTERM and SIGHUP take their default action (the command's handlers,
+    inherited by the fork, would raise inside the pool's queue and could leave it locked)."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    for name in ("SIGTERM", "SIGHUP"):
+        if hasattr(signal, name):
+            signal.signal(getattr(signal, name), signal.SIG_DFL)
 
 
 # --------------------------------------------------------------------------------------------
