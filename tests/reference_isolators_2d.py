@@ -30,7 +30,10 @@ with ``|V| = 0`` to the root finder's accuracy (a turn at a speed below ``1e-9·
 where the direction of a rounding-size velocity wanders, is taken as the stop it is). At a
 stop the mat sticks if ``|F_needed|`` is inside the circle, else it slides on at once along
 ``F_needed/|F_needed|``. From rest the
-friction direction is ``e`` itself until ``|V|`` leaves zero (``V = c τ e + O(τ²)``).
+friction direction is ``e`` itself until ``|V|`` leaves zero (``V = c τ e + O(τ²)``), and so
+is it while the velocity's component across ``e`` is below ``1e-12`` of the one along it plus
+``1e-12·max|a|·dt`` (a rounding-size cross velocity would make the equations stiff near every
+stop and start, at the rate ``mu g/|V|``).
 
 Returns the mat's and floors' displacements and velocities at the samples, the mat's peak
 displacement magnitude (over the segment ends and the samples — a lower bound of the true peak
@@ -96,6 +99,7 @@ def isolated_response_2d(
     # a speed below this is a stop: near a stop the direction of a velocity of rounding size
     # wanders, and a "turn" there would restart the segment without end
     v_tol = 1e-9 * max(np.abs(ax).max(), np.abs(ay).max(), mu * G) * dt
+    q_tol = 1e-3 * v_tol  # a cross velocity below this is rounding (see the slide's direction)
     m0 = m[0]
 
     # state: [ux (n), uy (n), vx (n), vy (n), friction work]
@@ -143,10 +147,13 @@ def isolated_response_2d(
                 V = np.array([vx[0], vy[0]])
                 speed = np.hypot(V[0], V[1])
                 p = V @ e
-                if speed > 0.0:
-                    nvec = (1.0 if p >= 0 else -1.0) * V / speed
+                q = V[1] * e[0] - V[0] * e[1]
+                if abs(q) <= 1e-12 * abs(p) + q_tol or speed == 0.0:
+                    # along e to rounding: the direction is e (V/|V| would make a rounding-size
+                    # cross velocity stiff near a stop, at the rate mu g/|V|)
+                    nvec = e  # sign(p) V/|V| → e on both sides of the stop
                 else:
-                    nvec = e
+                    nvec = (1.0 if p >= 0 else -1.0) * V / speed
                 F = mu * W * nvec
                 axx[0] -= F[0] / m0
                 ayy[0] -= F[1] / m0
