@@ -68,8 +68,11 @@ def test_bad_building_pairs():
         BuildingPair(SOFT, fs.IsolatedBuilding(SOFT, 1.0, 2.5, 0.1))
     with pytest.raises(ModelError, match="pair of models"):
         per_direction((SOFT, SOFT, SOFT))
-    with pytest.raises(ModelError, match="couple"):
+    with pytest.raises(ModelError, match="got str"):
         per_direction("a building")
+    fps = fs.NonlinearIsolatedBuilding(SOFT, 1.0, fs.FrictionPendulum(mu=0.05, period=3.0))
+    with pytest.raises(ModelError, match="couple the two directions"):
+        per_direction(fps)
     with pytest.raises(ModelError, match="fewer"):
         fs.building_motion(STIFF, np.zeros(10), 0.01, substeps=1)
 
