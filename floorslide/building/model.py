@@ -180,6 +180,24 @@ def modal_damping_matrix(M: np.ndarray, K: np.ndarray, damping: DampingSpec) -> 
     return Mphi @ np.diag(2 * ratios * w) @ Mphi.T
 
 
+def check_floors(floors, stories: int) -> list[int]:
+    """A floor selection of a building of `stories` storeys validated (floors 0..stories, any
+    order, repeats allowed; ``None`` or ``"all"`` means all): the one rule of every building
+    kind."""
+    if floors is None or (isinstance(floors, str) and floors == "all"):
+        return list(range(stories + 1))
+    floors = [floors] if np.isscalar(floors) else list(floors)
+    out = []
+    for f in floors:
+        if isinstance(f, bool) or not float(f).is_integer():
+            raise ModelError(f"floor numbers must be integers, got {f!r}", "floors")
+        f = int(f)
+        if not 0 <= f <= stories:
+            raise ModelError(f"floor {f} does not exist; floors are 0..{stories}", "floors")
+        out.append(f)
+    return out
+
+
 @dataclass(frozen=True, eq=False)
 class LinearBuilding:
     """A linear lumped-mass building driven by horizontal ground acceleration.
@@ -235,20 +253,7 @@ class LinearBuilding:
 
     def check_floors(self, floors: Sequence[int] | int | None) -> list[int]:
         """Validate a floor selection (any order, repeats allowed); ``None`` means all floors."""
-        if floors is None or (isinstance(floors, str) and floors == "all"):
-            return list(self.floors)
-        floors = [floors] if np.isscalar(floors) else list(floors)
-        out = []
-        for f in floors:
-            if isinstance(f, bool) or not float(f).is_integer():
-                raise ModelError(f"floor numbers must be integers, got {f!r}", "floors")
-            f = int(f)
-            if not 0 <= f <= self.stories:
-                raise ModelError(
-                    f"floor {f} does not exist; floors are 0..{self.stories}", "floors"
-                )
-            out.append(f)
-        return out
+        return check_floors(floors, self.stories)
 
     # ----------------------------------------------------------------- modal properties
     def modal_properties(

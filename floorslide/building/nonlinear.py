@@ -40,7 +40,7 @@ from floorslide.building.isolators import (
     small_angle_exceeded,
     small_angle_note,
 )
-from floorslide.building.model import ShearBuilding
+from floorslide.building.model import ShearBuilding, check_floors
 from floorslide.building.nonlinear_motion import (
     MAX_SEGMENT_BYTES,
     NonlinearMotion,
@@ -206,20 +206,7 @@ class NonlinearIsolatedBuilding:
     def check_floors(self, floors) -> list[int]:
         """Validate a floor selection (any order, repeats allowed; 0 is the base mat); ``None``
         means all floors."""
-        if floors is None or (isinstance(floors, str) and floors == "all"):
-            return list(self.floors)
-        floors = [floors] if np.isscalar(floors) else list(floors)
-        out = []
-        for f in floors:
-            if isinstance(f, bool) or not float(f).is_integer():
-                raise ModelError(f"floor numbers must be integers, got {f!r}", "floors")
-            f = int(f)
-            if not 0 <= f <= self.stories:
-                raise ModelError(
-                    f"floor {f} does not exist; floors are 0..{self.stories}", "floors"
-                )
-            out.append(f)
-        return out
+        return check_floors(floors, self.stories)
 
     def dof_of(self, floor: int) -> int:
         """The degree of freedom of `floor` (every floor is one; 0 is the base mat)."""
