@@ -455,7 +455,7 @@ def _kernel(building, acc, dt, floors, oscillator):
         consts = [1.0, 0.0, 0.0, c["mu"] * c["W"], c["mu_s"] * c["W"]]
     consts = np.array(consts + list(r_f) + [d_f])
     kn = _Kernel(mat_of, PHI, PP, QQ, RR, BB, ER, EB, OR, OB, Gc, K, consts, building.n_dof,
-                 MAX_EVENTS_PER_SUBSTEP)  # fmt: skip
+                 MAX_EVENTS_PER_SUBSTEP, float(rho))  # fmt: skip
     return kn, m
 
 

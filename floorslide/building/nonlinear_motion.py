@@ -58,6 +58,8 @@ class _Kernel:
     consts: np.ndarray
     n: int
     max_events: int
+    rho: float
+    """The largest spectral radius of the branches' state matrices (what sets the sub-steps)."""
 
     @property
     def N(self) -> int:

@@ -108,7 +108,7 @@ def oscillators_on_segments(fm, mk, ms, frequency: float, damping: float, mass_r
     w2 = 2 * np.pi * float(frequency)
     rho_obj = phase_radius(w2, float(damping), float(mass_ratio))
     ho2 = mo.h / substeps_for(rho_obj, mo.h)
-    rho = _building_radius(mo)
+    rho = kn.rho  # the building's own (its sub-steps' ρ)
     K2 = max(kn.K, taylor_degree(max(rho, rho_obj) * ho2))
     flex = np.array([row, w2, float(damping), float(mass_ratio), ho2, K2])
     mub2 = np.ascontiguousarray(np.maximum(mk, ms), dtype=float)
@@ -172,12 +172,3 @@ def rockers_on_segments(fm, par: np.ndarray, states: np.ndarray, nonlinear: bool
                                states, G, D, nonlinear, phase, rk.ROCK_MAX_EVENTS, RB,
                                hist)  # fmt: skip
     return hist if histories else None
-
-
-def _building_radius(mo) -> float:
-    """The largest spectral radius of the building's branches (its sub-steps' ``ρ``)."""
-    from floorslide.building.exact import spectral_radius
-
-    return max(
-        spectral_radius(mo.building.branch_system(b)[0]) for b in set(mo.building.branches())
-    )
