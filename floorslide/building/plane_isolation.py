@@ -1,0 +1,393 @@
+"""A building on friction pendulums under two horizontal components (and optionally the
+vertical): the bearing's friction circle coupled with the superstructure in both directions,
+exact to rounding (docs/design.md, "isolators in the plane").
+
+:func:`plane_isolator_response` gives the bearing's own outputs (orbit, peak displacement and
+its direction, residual vector, peak force over weight, events, friction work);
+:class:`PlaneIsolatedMotion` is the building's exact motion as polynomial segments
+(:class:`~floorslide.building.poly_segments.PolySegments`), which every plane consumer reads.
+The compiled integrator is :mod:`floorslide.building._plane_isolation_kernel`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from dataclasses import dataclass
+
+import numpy as np
+
+from floorslide.building import _plane_isolation_kernel as pk
+from floorslide.building.isolators import (
+    SLIP_POS,
+    STICK,
+    FrictionPendulum,
+    small_angle_exceeded,
+    small_angle_note,
+)
+from floorslide.building.nonlinear import NonlinearIsolatedBuilding
+from floorslide.constants import G
+from floorslide.errors import ModelError, SolverLimitError
+
+CHUNK_STEPS = 2048
+"""Record steps per chunk of segments (:meth:`PlaneIsolatedMotion.poly_chunks`)."""
+MAX_EVENTS_KEPT = 100_000
+"""Most events whose times are kept."""
+
+
+def plane_layer(building) -> tuple[NonlinearIsolatedBuilding, NonlinearIsolatedBuilding]:
+    """The models along ``x`` and ``y`` of a building on friction pendulums under two
+    components: one :class:`NonlinearIsolatedBuilding` (the same superstructure both ways) or a
+    pair of them (a superstructure per direction on one mat and one layer). Anything else is
+    refused in one line naming ``building``."""
+    if isinstance(building, NonlinearIsolatedBuilding):
+        bx = by = building
+    elif isinstance(building, tuple | list) and len(building) == 2:
+        bx, by = building
+        for name, b in (("building[0]", bx), ("building[1]", by)):
+            if not isinstance(b, NonlinearIsolatedBuilding):
+                raise ModelError(
+                    f"a building per direction on nonlinear isolation is a pair of "
+                    f"NonlinearIsolatedBuilding, got {type(b).__name__}",
+                    name,
+                )
+        if bx.isolator != by.isolator:
+            raise ModelError(
+                "the two directions' models must stand on one isolation layer (the same "
+                "isolator): a bearing is one device in the plane",
+                "building[1].isolator",
+            )
+        if bx.mass.shape != by.mass.shape or not np.array_equal(bx.mass, by.mass):
+            raise ModelError(
+                "the two directions' models must share the base mat and the floor masses (one "
+                "building): got different masses or base_mass_ratio",
+                "building[1].base_mass_ratio",
+            )
+    else:
+        raise ModelError(
+            f"building must be a NonlinearIsolatedBuilding or a pair of them, got "
+            f"{type(building).__name__}",
+            "building",
+        )
+    if not isinstance(bx.isolator, FrictionPendulum):
+        raise ModelError(
+            "lead-rubber (bilinear) bearings under two components are not available yet: "
+            "only friction pendulums couple the two directions here",
+            "building",
+        )
+    return bx, by
+
+
+@dataclass(frozen=True)
+class _Setup:
+    """The compiled integrator's inputs for one building, record and vertical."""
+
+    A: np.ndarray
+    As: np.ndarray
+    bv: np.ndarray
+    consts: np.ndarray
+    acc1: np.ndarray
+    acc2: np.ndarray
+    accv: np.ndarray
+    has_vert: bool
+    substeps: int
+    h: float
+    n: int
+
+
+def _setup(bx, by, h1, h2, dt, vertical) -> _Setup:
+    n = bx.n_dof
+    N = 2 * n
+    A = np.zeros((2, N, N))
+    As = np.zeros((2, N, N))
+    bv = np.zeros((2, N))
+    for d, b in enumerate((bx, by)):
+        Ad, bd = b.branch_system(SLIP_POS)
+        A[d] = Ad[:N, :N]
+        bv[d] = bd[:N]
+        As[d] = b.branch_system(STICK)[0][:N, :N]
+    c = bx.constants
+    mb = float(bx.mass[0])
+    consts = np.array(
+        [n, mb, c["mu"] * c["W"], c["mu_s"] * c["W"], c["W"], c["k"] / (mb * G), c["W"] / G]
+    )
+    m = max(bx.substeps(dt), by.substeps(dt))
+    has_vert = vertical is not None
+    accv = np.ascontiguousarray(vertical, dtype=float) if has_vert else np.zeros(1)
+    return _Setup(A, As, bv, consts, h1, h2, accv, has_vert, m, dt / m, n)
+
+
+def _initial(s: _Setup, x: np.ndarray) -> tuple[int, int]:
+    """Mode and start order at t = 0 (the mat at rest unless `x` moves it)."""
+    n = s.n
+    mu, mus = s.consts[2], s.consts[3]
+    if x[0, n] != 0.0 or x[1, n] != 0.0:
+        return pk.SLIP, 0
+    if mu == 0.0 and mus == 0.0:
+        return pk.SLIP, 0
+    av = s.accv[0] if s.has_vert else 0.0
+    g = [
+        s.A[d, n] @ x[d] + s.bv[d, n] * (s.acc1[0] if d == 0 else s.acc2[0])
+        - s.consts[5] * av * x[d, 0]
+        for d in range(2)
+    ]  # fmt: skip
+    lim = mus / s.consts[4] * (s.consts[4] + s.consts[6] * av) / s.consts[1]
+    if np.hypot(*g) > lim:
+        return pk.SLIP, 1
+    return pk.STICK, 0
+
+
+@dataclass(frozen=True)
+class PlaneIsolatorResponse:
+    """The response of a building on friction pendulums to two horizontal components.
+
+    Attributes
+    ----------
+    dt, substeps
+        Record step and sub-steps per step.
+    displacement
+        The bearing's displacement vector at the samples, ``(npts, 2)``, m (its orbit).
+    velocity
+        The mat's velocity relative to the ground at the samples, ``(npts, 2)``, m/s.
+    floor_displacement
+        Every floor's displacement relative to the ground, ``(npts, n_dof, 2)`` (floor 0 the
+        mat).
+    floor_acceleration
+        Every floor's absolute acceleration at the samples, ``(npts, n_dof, 2)``, m/s².
+    peak_displacement
+        ``max_t |u_b(t)|`` inside steps, m; ``peak_direction`` its direction (degrees from
+        ``h1`` towards ``h2``) and ``peak_time`` its time, s.
+    residual
+        ``u_b`` at the end of the record, m (2-vector).
+    peak_force_ratio
+        The largest ``|f_b|/W`` (restoring plus friction) over the steps' ends.
+    friction_work
+        ``∫ mu N |V| dt``, J.
+    slide_fraction
+        Share of the record the bearing slides.
+    sliding
+        At each sample, whether the bearing slides.
+    event_times, event_kinds
+        Breakaways (``"slip"``), stops that stick (``"stick"``) and stops that slide on at once
+        (``"reverse"``).
+    """
+
+    dt: float
+    substeps: int
+    displacement: np.ndarray
+    velocity: np.ndarray
+    floor_displacement: np.ndarray
+    floor_acceleration: np.ndarray
+    peak_displacement: float
+    peak_direction: float
+    peak_time: float
+    residual: np.ndarray
+    peak_force_ratio: float
+    friction_work: float
+    slide_fraction: float
+    sliding: np.ndarray
+    event_times: np.ndarray
+    event_kinds: tuple[str, ...]
+    capacity_exceeded: bool = False
+    small_angle_exceeded: bool = False
+    notes: tuple[str, ...] = ()
+
+
+def _floor_accelerations(s: _Setup, XS, sliding, wdir, acc, av) -> np.ndarray:
+    """Every floor's absolute acceleration at the samples, ``(npts, n_dof, 2)``: the state's
+    derivative on the branch it is on after the sample (sliding: the kinetic friction along the
+    mat's velocity and the restoring force scaled by ``1 + a_v/g``; stuck: the mat moves with
+    the ground), plus the ground."""
+    n = s.n
+    out = np.empty((XS.shape[0], n, 2))
+    c = s.consts[2] * (1.0 + av / G) / s.consts[1]  # mu N / m_b
+    for d in range(2):
+        slip = XS[:, d] @ s.A[d, n:].T + acc[:, [d]] * s.bv[d, n:]
+        slip[:, 0] -= s.consts[5] * av * XS[:, d, 0] + c * wdir[:, d]
+        stick = XS[:, d] @ s.As[d, n:].T + acc[:, [d]] * s.bv[d, n:]
+        stick[:, 0] = 0.0
+        out[:, :, d] = np.where(sliding[:, None], slip, stick) + acc[:, [d]]
+    return out
+
+
+_KIND_NAMES = {pk.EV_BREAK: "slip", pk.EV_STICK: "stick", pk.EV_ON: "reverse"}
+
+
+class PlaneIsolatedMotion:
+    """The exact motion of a building on friction pendulums under two components (and the
+    vertical), integrated once for its own outputs (:attr:`response`) and again chunk by chunk
+    from checkpoints for the segments its consumers read (:meth:`poly_chunks`; the same bits).
+
+    Attributes: ``dt``, ``npts``, ``acc1``, ``acc2`` (the ground at the samples, m/s²),
+    ``vertical`` (or None), ``floors`` (every floor, 0 the mat), ``building`` (the pair of
+    models), ``response`` (:class:`PlaneIsolatorResponse`)."""
+
+    def __init__(self, building, h1, h2, dt: float, *, vertical=None, initial_displacement=None,
+                 initial_velocity=None):  # fmt: skip
+        bx, by = plane_layer(building)
+        h1 = np.ascontiguousarray(h1, dtype=float)
+        h2 = np.ascontiguousarray(h2, dtype=float)
+        if h1.shape != h2.shape or h1.ndim != 1 or h1.size < 2:
+            raise ModelError("the two components must be 1-D arrays of one length ≥ 2", "acc")
+        if vertical is not None:
+            vertical = np.ascontiguousarray(vertical, dtype=float)
+            if vertical.shape != h1.shape:
+                raise ModelError("vertical must have as many samples as the pair", "vertical")
+            low = np.flatnonzero(G + vertical <= 0.0)
+            if low.size:
+                raise ModelError(
+                    f"g + a_v ≤ 0 at t = {low[0] * dt:.6g} s: the bearing would lift off, which "
+                    "is not modelled",
+                    "vertical",
+                )
+        self.building = (bx, by)
+        self.dt = float(dt)
+        self.npts = h1.size
+        self.acc1, self.acc2, self.vertical = h1, h2, vertical
+        self.floors = tuple(range(bx.n_dof))
+        self._s = _setup(bx, by, h1, h2, self.dt, vertical)
+        n = bx.n_dof
+        x = np.zeros((2, 2 * n))
+        if initial_displacement is not None:
+            x[:, 0] = np.asarray(initial_displacement, dtype=float)
+            x[:, 1:n] = x[:, [0]]
+        if initial_velocity is not None:
+            x[:, n] = np.asarray(initial_velocity, dtype=float)
+        mode, start = _initial(self._s, x)
+        carry = np.array([mode, start, 0.0, 0.0, 0.0])
+        self._checkpoints = []
+        XS = np.zeros((self.npts, 2, 2 * n))
+        MODES = np.zeros(self.npts, dtype=np.int64)
+        peak = np.zeros(pk.NPEAK)
+        peak[pk.P_TIME] = 0.0
+        EV = np.zeros((MAX_EVENTS_KEPT, 2))
+        SEG = np.zeros((0, 4))
+        COEF = np.zeros((0, 1, 2, pk.DEGREE))
+        fl = np.array(self.floors, dtype=np.int64)
+        s = self._s
+        for k0 in range(0, self.npts - 1, CHUNK_STEPS):
+            k1 = min(k0 + CHUNK_STEPS, self.npts - 1)
+            self._checkpoints.append((k0, k1, x.copy(), carry.copy()))
+            out = pk.plane_run(s.A, s.bv, s.As, s.consts, fl, s.acc1, s.acc2, s.accv,
+                               s.has_vert, s.substeps, s.h, k0, k1, x, carry, XS, MODES, peak,
+                               EV, SEG, COEF)  # fmt: skip
+            if out < 0:
+                row = -1 - out
+                raise SolverLimitError(
+                    f"the friction pendulum needed more than {pk.MAX_STEPS} series steps in one "
+                    f"sub-step at t = {row * s.h:.6g} s (creep at the friction limit the solver "
+                    "cannot resolve)",
+                    "building",
+                )
+        self.response = self._response(XS, MODES, peak, EV, int(carry[pk.C_EVENTS]))
+
+    def _response(self, XS, MODES, peak, EV, n_ev) -> PlaneIsolatorResponse:
+        bx, _ = self.building
+        n = bx.n_dof
+        W = bx.weight
+        c = bx.constants
+        u = XS[:, :, 0].copy()
+        v = XS[:, :, n].copy()
+        # the bearing force at the samples: restoring + damping + friction (sliding: mu N
+        # along V; stuck: what the mat needs, m_b G)
+        av = self.vertical if self.vertical is not None else np.zeros(self.npts)
+        scale = 1.0 + av / G
+        force = c["k"] * scale[:, None] * u + c["c"] * v
+        sliding = MODES == pk.SLIP
+        speed = np.hypot(v[:, 0], v[:, 1])
+        with np.errstate(invalid="ignore", divide="ignore"):
+            wdir = np.where(speed[:, None] > 0, v / speed[:, None], 0.0)
+        force += np.where(sliding[:, None], c["mu"] * W * scale[:, None] * wdir, 0.0)
+        s = self._s
+        acc = np.stack([self.acc1, self.acc2], axis=1)
+        drive = np.einsum("dq,kdq->kd", s.A[:, n], XS) + s.bv[:, n] * acc
+        drive -= s.consts[5] * av[:, None] * u
+        force += np.where(sliding[:, None], 0.0, float(bx.mass[0]) * drive)
+        floor_acc = _floor_accelerations(s, XS, sliding, wdir, acc, av)
+        ratio = float(np.hypot(force[:, 0], force[:, 1]).max() / W)
+        cap = bx.isolator.capacity
+        exceeded = cap is not None and peak[pk.P_DISP] > cap
+        small = small_angle_exceeded(bx.isolator, float(peak[pk.P_DISP]))
+        notes = ()
+        if small:
+            notes = (small_angle_note(float(peak[pk.P_DISP]), bx.isolator.R),)
+        if exceeded:
+            notes += (
+                f"the bearing displacement {peak[pk.P_DISP]:.4g} m exceeds the capacity "
+                f"{cap:g} m (the impact that would follow is not modelled)",
+            )
+        kept = min(n_ev, EV.shape[0])
+        duration = (self.npts - 1) * self.dt
+        return PlaneIsolatorResponse(
+            dt=self.dt,
+            substeps=s.substeps,
+            displacement=u,
+            velocity=v,
+            floor_displacement=XS[:, :, :n].transpose(0, 2, 1).copy(),
+            floor_acceleration=floor_acc,
+            peak_displacement=float(peak[pk.P_DISP]),
+            peak_direction=float(np.degrees(peak[pk.P_ANGLE])),
+            peak_time=float(peak[pk.P_TIME]),
+            residual=u[-1].copy(),
+            peak_force_ratio=ratio,
+            friction_work=float(peak[pk.P_WORK]),
+            slide_fraction=float(peak[pk.P_SLIDE_TIME] / duration) if duration > 0 else 0.0,
+            sliding=sliding,
+            event_times=EV[:kept, 0].copy(),
+            event_kinds=tuple(_KIND_NAMES[int(k)] for k in EV[:kept, 1]),
+            capacity_exceeded=bool(exceeded),
+            small_angle_exceeded=bool(small),
+            notes=notes,
+        )
+
+    def poly_chunks(self) -> Iterator:
+        """The motion's segments chunk by chunk
+        (:class:`~floorslide.building.poly_segments.PolySegments`), integrated again from the
+        checkpoints of the first pass (the same bits)."""
+        from floorslide.building.poly_segments import PolySegments
+
+        s = self._s
+        fl = np.array(self.floors, dtype=np.int64)
+        n = s.n
+        for k0, k1, x0, carry0 in self._checkpoints:
+            cap = (k1 - k0) * s.substeps * 4 + 64
+            while True:
+                x = x0.copy()
+                carry = carry0.copy()
+                XS = np.zeros((self.npts, 2, 2 * n))
+                MODES = np.zeros(self.npts, dtype=np.int64)
+                SEG = np.zeros((cap, 4))
+                COEF = np.zeros((cap, fl.size, 2, pk.DEGREE))
+                got = pk.plane_run(s.A, s.bv, s.As, s.consts, fl, s.acc1, s.acc2, s.accv,
+                                   s.has_vert, s.substeps, s.h, k0, k1, x, carry, XS, MODES,
+                                   np.zeros(pk.NPEAK), np.zeros((0, 2)), SEG, COEF)  # fmt: skip
+                if got <= cap:
+                    break
+                cap = got
+            yield PolySegments(
+                t0=SEG[:got, 0].copy(),
+                length=SEG[:got, 1].copy(),
+                step=SEG[:got, 2].astype(np.int64),
+                ends=SEG[:got, 3] != 0.0,
+                coef=COEF[:got],
+                floors=self.floors,
+                k0=k0,
+                k1=k1,
+            )
+
+
+def plane_isolator_response(
+    building, h1, h2, dt: float, *, vertical=None, initial_displacement=None,
+    initial_velocity=None,
+) -> PlaneIsolatorResponse:  # fmt: skip
+    """Exact response of a building on friction pendulums to two horizontal components
+    ``h1``, ``h2`` (m/s², samples at ``k·dt``) and optionally the vertical (the friction and the
+    pendulum's restoring force scale with ``g + a_v``): the bearing's orbit, its peak
+    displacement and direction, the residual vector, the peak force over weight.
+
+    `building`: one :class:`~floorslide.building.nonlinear.NonlinearIsolatedBuilding` on a
+    :class:`~floorslide.building.isolators.FrictionPendulum` (its superstructure both ways) or a
+    pair of them (a superstructure per direction on one mat and layer)."""
+    return PlaneIsolatedMotion(
+        building, h1, h2, dt, vertical=vertical, initial_displacement=initial_displacement,
+        initial_velocity=initial_velocity,
+    ).response  # fmt: skip
