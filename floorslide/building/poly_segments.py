@@ -43,6 +43,7 @@ __all__ = [
     "LinearPolyMotion",
     "PolySegments",
     "check_segments",
+    "checked_chunks",
     "samples_on_poly",
 ]
 
@@ -146,6 +147,32 @@ def check_segments(seg: PolySegments, dt: float | None = None) -> None:
         tol_t = 1e-9 * dt
         if np.any(seg.t0 < lo - tol_t) or np.any(end > hi + tol_t):
             _bad(f"a segment lies outside its record step (dt = {dt:g} s)")
+
+
+def checked_chunks(motion) -> Iterator[PolySegments]:
+    """A poly motion's chunks, each validated (:func:`check_segments`), and together checked to
+    cover the record steps ``0 … npts − 2`` in order (each chunk starting where the last ended).
+
+    Raises
+    ------
+    ModelError
+        In one line naming what is wrong (key ``motion``).
+    """
+    dt = float(motion.dt)
+    npts = int(motion.npts)
+    if npts < 2:
+        _bad(f"the motion has {npts} samples: at least 2 are needed")
+    k = 0
+    for seg in motion.poly_chunks():
+        check_segments(seg, dt)
+        if seg.k0 != k:
+            _bad(f"a chunk starts at step {seg.k0}, where step {k} was expected")
+        if tuple(seg.floors) != tuple(motion.floors):
+            _bad(f"a chunk holds floors {tuple(seg.floors)}, the motion {tuple(motion.floors)}")
+        k = seg.k1
+        yield seg
+    if k != npts - 1:
+        _bad(f"the chunks end at step {k}, the record at step {npts - 1}")
 
 
 def _bad(message: str) -> None:
@@ -398,7 +425,7 @@ def samples_on_poly(motion, floors: Sequence[int] | int | None = None) -> np.nda
     rows = _floor_rows(motion, floors)
     out = np.full((len(rows), 2, motion.npts), np.nan)
     first = True
-    for seg in motion.poly_chunks():
+    for seg in checked_chunks(motion):
         c = seg.coef[:, rows]
         if first:
             out[:, :, 0] = c[0, :, :, 0]

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from floorslide.building.poly_segments import check_segments
+from floorslide.building.poly_segments import checked_chunks
 from floorslide.constants import G
 from floorslide.contents import _plane_kernel as pk
 from floorslide.contents._plane_segment_kernels import plane_segments_kernel
@@ -43,8 +43,7 @@ def _run(motion, row, MU, sx, sy, histories):
     states[:, pk.T_PEAK] = np.nan
     hist = np.zeros((MU.shape[1], motion.npts, 2) if histories else (0, 0, 2))
     first = True
-    for seg in motion.poly_chunks():
-        check_segments(seg, motion.dt)
+    for seg in checked_chunks(motion):
         t0, length, coef = (np.ascontiguousarray(a, dtype=float)
                             for a in (seg.t0, seg.length, seg.coef))  # fmt: skip
         plane_segments_kernel(

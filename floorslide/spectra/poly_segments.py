@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from floorslide.building.poly_segments import check_segments
+from floorslide.building.poly_segments import checked_chunks
 from floorslide.errors import ModelError
 from floorslide.spectra import _poly_segment_kernels as PK
 from floorslide.spectra.core import Spectrum, check_oscillators, damping_ratios, period_grid
@@ -76,8 +76,7 @@ def _grid(motion, periods, damping):
 
 def _chunks(motion):
     """The motion's chunks, validated, as contiguous float arrays ``(t0, length, coef)``."""
-    for seg in motion.poly_chunks():
-        check_segments(seg, motion.dt)
+    for seg in checked_chunks(motion):
         yield tuple(np.ascontiguousarray(a, dtype=float) for a in (seg.t0, seg.length, seg.coef))
 
 

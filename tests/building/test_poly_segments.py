@@ -106,3 +106,31 @@ def test_bad_chunks_are_refused_in_one_line(pair):
         check_segments(dataclasses.replace(seg, t0=seg.t0 + 0.5 * dt), dt)
     with pytest.raises(ModelError, match="floor 3"):
         samples_on_poly(GroundPolyMotion(h1, h2, dt), [3])
+
+
+class _Chunks:
+    """A poly motion handing out the given chunks."""
+
+    def __init__(self, chunks, dt, npts):
+        self.chunks, self.dt, self.npts = chunks, dt, npts
+        self.floors = (0,)
+        self.notes = ()
+
+    def poly_chunks(self):
+        yield from self.chunks
+
+
+def test_chunks_must_cover_the_record_in_order():
+    rng = np.random.default_rng(1)
+    h1, h2, dt = rng.normal(size=600), rng.normal(size=600), 0.01
+    chunks = list(GroundPolyMotion(h1, h2, dt).poly_chunks())
+    assert [(c.k0, c.k1) for c in chunks] == [(0, 256), (256, 512), (512, 599)]
+    assert samples_on_poly(_Chunks(chunks, dt, 600)).shape == (1, 2, 600)
+    for bad, what in (
+        (_Chunks(chunks[:2], dt, 600), "end at step 512"),
+        (_Chunks([chunks[0], chunks[2]], dt, 600), "starts at step 512"),
+        (_Chunks(chunks[1:], dt, 600), "starts at step 256"),
+        (_Chunks(chunks, dt, 1), "at least 2"),
+    ):
+        with pytest.raises(ModelError, match=what):
+            samples_on_poly(bad)
