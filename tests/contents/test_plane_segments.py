@@ -4,21 +4,15 @@ cut at arbitrary points; degree-23 segments of a circular motion give the closed
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 import pytest
 
 import floorslide as fs
-from floorslide.building.poly_segments import (
-    DEGREE,
-    GroundPolyMotion,
-    LinearPolyMotion,
-    PolySegments,
-)
+from floorslide.building.poly_segments import GroundPolyMotion, LinearPolyMotion
 from floorslide.contents.plane_segments import slide_plane_on_segments
 from floorslide.errors import ModelError
 from tests.conftest import ROOT
+from tests.poly_motions import Harmonic, Recut
 
 MUS = [0.05, 0.1, 0.2, 0.3]
 MUS_S = [0.06, 0.12, 0.24, 0.3]
@@ -83,34 +77,13 @@ def test_building_floor_segments_are_slide_plane(sylmar, split, pair):
     np.testing.assert_allclose(r.time_of_peak, ref.time_of_peak, rtol=0, atol=1e-8)
 
 
-class _Circle:
-    """``a = A(cos ωt, sin ωt)`` as exact degree-23 Taylor segments of length `dt` (its terms
-    beyond are below 1e-35 of A for ``ω dt ≤ 0.32``)."""
-
-    def __init__(self, A, om, dt, npts):
-        self.A, self.om, self.dt, self.npts = A, om, dt, npts
-        self.floors = (0,)
-        self.notes = ()
-
-    def poly_chunks(self):
-        k = np.arange(self.npts - 1, dtype=np.int64)
-        th = self.om * k * self.dt
-        j = np.arange(DEGREE)
-        w = self.A * self.om**j / np.array([math.factorial(i) for i in j], dtype=float)
-        coef = np.zeros((k.size, 1, 2, DEGREE))
-        coef[:, 0, 0] = np.cos(th[:, None] + j * np.pi / 2) * w
-        coef[:, 0, 1] = np.sin(th[:, None] + j * np.pi / 2) * w
-        ones = np.ones(k.size, dtype=bool)
-        yield PolySegments(k * self.dt, np.full(k.size, self.dt), k, ones, coef, (0,), 0, k.size)
-
-
 def test_circular_motion_settles_on_the_closed_form_orbit():
     """a = A(cos ωt, sin ωt), A = 3 m/s², ω = 2π, mu = 0.2: the orbit's radius
     √(A² − (mu g)²)/ω² = 0.0575014 m and speed ω times it (docs/design.md §10d). On exact
     degree-23 segments (not the sampled polygon of test_plane) measured: radius 4e-15, its
     spread 5e-14, final speed 1.3e-14 relative."""
     A, om, mu, dt = 3.0, 2 * np.pi, 0.2, 0.05
-    m = _Circle(A, om, dt, 801)
+    m = Harmonic(A, om, dt, 801)
     r = slide_plane_on_segments(m, None, mu, histories=True, compare_1d=False)
     t = np.arange(m.npts) * dt
     late = r.u[0][t > 30]
@@ -137,3 +110,15 @@ def test_refusals(sylmar):
         slide_plane_on_segments(m, None, 0.1)
     with pytest.raises(ModelError, match="mu_k"):
         slide_plane_on_segments(g, None)
+
+
+def test_tiny_segments(sylmar):
+    """Segments of 1e-9 of a step at both ends of every step: measured ≤ 1e-14 relative to the
+    aligned ground segments."""
+    h1, h2, dt = sylmar
+    g = GroundPolyMotion(h1, h2, dt)
+    ref = slide_plane_on_segments(g, None, MUS, MUS_S, histories=True)
+    r = slide_plane_on_segments(Recut(g, [1e-9, 0.5, 1 - 1e-9]), None, MUS, MUS_S,
+                                histories=True)  # fmt: skip
+    assert _worst(r, ref) <= 1e-12
+    assert np.max(np.abs(r.u - ref.u)) <= 1e-12 * np.max(np.abs(ref.u))

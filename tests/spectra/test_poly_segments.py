@@ -4,21 +4,15 @@ are fs.response_spectrum and fs.rotd_spectrum (independent exact recurrences) to
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 import pytest
 
 import floorslide as fs
-from floorslide.building.poly_segments import (
-    DEGREE,
-    GroundPolyMotion,
-    LinearPolyMotion,
-    PolySegments,
-)
+from floorslide.building.poly_segments import GroundPolyMotion, LinearPolyMotion
 from floorslide.errors import ModelError
 from floorslide.spectra.poly_segments import rotd_on_poly, spectrum_on_poly
 from tests.conftest import ROOT
+from tests.poly_motions import Harmonic, Recut
 
 T = [0.0, 0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 5.0]
 Z = [0.02, 0.05]
@@ -101,26 +95,6 @@ def test_refusals(sylmar):
         rotd_on_poly(g, None, [0.5], angles=1)
 
 
-class _Sine:
-    """``a_x = A sin Ωt`` (``a_y = 0``) as exact degree-23 Taylor segments of length `dt` (its
-    terms beyond are below 1e-28 of A for ``Ω dt ≤ 0.63``)."""
-
-    def __init__(self, A, om, dt, npts):
-        self.A, self.om, self.dt, self.npts = A, om, dt, npts
-        self.floors = (0,)
-        self.notes = ()
-
-    def poly_chunks(self):
-        k = np.arange(self.npts - 1, dtype=np.int64)
-        th = self.om * k * self.dt
-        j = np.arange(DEGREE)
-        w = self.A * self.om**j / np.array([math.factorial(i) for i in j], dtype=float)
-        coef = np.zeros((k.size, 1, 2, DEGREE))
-        coef[:, 0, 0] = np.sin(th[:, None] + j * np.pi / 2) * w
-        ones = np.ones(k.size, dtype=bool)
-        yield PolySegments(k * self.dt, np.full(k.size, self.dt), k, ones, coef, (0,), 0, k.size)
-
-
 def test_undamped_oscillator_under_a_sine_is_the_closed_form():
     """``q'' + ω² q = −A sin Ωt`` from rest: ``q = A/(ω² − Ω²)·((Ω/ω) sin ωt − sin Ωt)``, whose
     extrema are where ``cos ωt = cos Ωt``: ``t = 2πk/(ω ± Ω)``; so ``sd`` is known exactly. The
@@ -129,7 +103,7 @@ def test_undamped_oscillator_under_a_sine_is_the_closed_form():
     every second: its last peak carries the rounding of 300 pieces), the others ≤ 7e-16; the
     period 0 gives A (the sine's peak inside a segment) to 7e-16."""
     A, om, dt, t_end = 3.0, 2 * np.pi, 0.1, 10.0
-    m = _Sine(A, om, dt, 101)
+    m = Harmonic(A, om, dt, 101, -np.pi / 2, None)
     periods = [0.0, 0.3, 0.5, 0.7, 1.6, 3.0]
     r = spectrum_on_poly(m, None, periods, 0.0)
     assert r.sa[0, 0] == pytest.approx(A, rel=1e-14)
@@ -140,3 +114,16 @@ def test_undamped_oscillator_under_a_sine_is_the_closed_form():
         t = t[t <= t_end]
         q = A / (w**2 - om**2) * (om / w * np.sin(w * t) - np.sin(om * t))
         assert r.sd[0, i] == pytest.approx(np.max(np.abs(q)), rel=1e-13), T
+
+
+def test_tiny_segments(sylmar):
+    """Segments of 1e-9 of a step at both ends of every step (a building's events): measured
+    ≤ 2.3e-15 relative to the aligned segments on the ground and a floor."""
+    h1, h2, dt = sylmar
+    for kind in ("ground", "floor"):
+        m, fl = _motion(kind, h1, h2, dt, None)
+        ref = rotd_on_poly(m, fl, T, Z)
+        r = rotd_on_poly(Recut(m, [1e-9, 0.5, 1 - 1e-9]), fl, T, Z)
+        assert _rel(r.psa_angles, ref.psa_angles) <= 1e-13
+        assert _rel(r.h1.sd[:, 1:], ref.h1.sd[:, 1:]) <= 1e-13
+        assert _rel(r.h2.sv[:, 1:], ref.h2.sv[:, 1:]) <= 1e-13
