@@ -2,9 +2,10 @@
 segments (:mod:`floorslide.building.poly_segments`, docs/design.md §16).
 
 The same model and result as :func:`floorslide.slide_plane` (isotropic Coulomb friction,
-``u'' = −a(t) − mu_k·g·u'/|u'|`` while sliding, breakaway when ``|a| > max(mu_s, mu_k)·g``),
-advanced by the same exact step (:mod:`floorslide.contents._plane_kernel`) through each segment
-of the floor's motion: the polynomials are the motion, read as given.
+``u'' = −a(t) − mu_k·g·u'/|u'|`` while sliding, breakaway when ``|a| > max(mu_s, mu_k)·g``;
+with vertical shaking ``g + a_v`` in place of ``g`` and free flight where it is ≤ 0), advanced
+by the same exact step (:mod:`floorslide.contents._plane_kernel`) through each segment of the
+floor's motion: the polynomials are the motion, read as given.
 """
 
 from __future__ import annotations
@@ -15,7 +16,7 @@ from floorslide.building.poly_segments import checked_chunks
 from floorslide.constants import G
 from floorslide.contents import _plane_kernel as pk
 from floorslide.contents._plane_segment_kernels import plane_segments_kernel
-from floorslide.contents.plane import DEGREE, PlaneSlideResult
+from floorslide.contents.plane import DEGREE, PlaneSlideResult, _vertical, liftoff
 from floorslide.contents.sliding import friction_pairs
 from floorslide.errors import ModelError, SolverLimitError
 
@@ -35,9 +36,9 @@ def _floor_row(motion, floor) -> int:
     return floors.index(floor)
 
 
-def _run(motion, row, MU, sx, sy, histories):
+def _run(motion, row, MU, sx, sy, histories, vert):
     """The blocks' states (and histories) after the whole motion, one direction zeroed when
-    ``sx`` or ``sy`` is 0."""
+    ``sx`` or ``sy`` is 0; `vert` the vertical samples or None."""
     states = np.zeros((MU.shape[1], pk.NCOL))
     states[:, pk.LIMIT_AT] = -1.0
     states[:, pk.T_PEAK] = np.nan
@@ -48,7 +49,8 @@ def _run(motion, row, MU, sx, sy, histories):
                             for a in (seg.t0, seg.length, seg.coef))  # fmt: skip
         plane_segments_kernel(
             t0, length, seg.step, seg.ends, coef, row, sx, sy, first, G, MU, states, hist,
-            histories, DEGREE, pk.MAX_EVENTS,
+            histories, DEGREE, pk.MAX_EVENTS, vert if vert is not None else np.zeros(1),
+            vert is not None, float(motion.dt),
         )  # fmt: skip
         first = False
     hit = np.flatnonzero(states[:, pk.LIMIT_AT] >= 0.0)
@@ -88,7 +90,10 @@ def slide_plane_on_segments(
         Kinetic and static coefficients (as :func:`~floorslide.slide_plane`; breakaway at
         ``max(mu_s, mu_k)``); many values are advanced in one compiled loop.
     vertical
-        Not available: refused (:class:`~floorslide.errors.ModelError`).
+        Vertical ground acceleration samples (the motion's dt and length), m/s², or a Trace (as
+        :func:`~floorslide.slide_plane`): friction ``mu_k·(g + a_v)``, breakaway level
+        ``max(mu_s, mu_k)·(g + a_v)``, ``a_v`` linear between samples; where ``g + a_v ≤ 0``
+        (lift-off) the block flies free and is reported. The building is rigid vertically.
     histories
         Also return ``u`` at the samples.
     compare_1d
@@ -104,7 +109,7 @@ def slide_plane_on_segments(
     Raises
     ------
     ModelError
-        Invalid friction or floor; `vertical` given; segments that break the contract.
+        Invalid friction, floor or vertical; segments that break the contract.
     SolverLimitError
         More than :data:`~floorslide.contents._plane_kernel.MAX_EVENTS` stops and breakaways
         of one block inside one segment.
@@ -114,21 +119,18 @@ def slide_plane_on_segments(
     Jorba, À., Zou, M. (2005). A software package for the numerical integration of ODEs by means
     of high-order Taylor methods. *Experimental Mathematics* 14(1), 99–117.
     """
-    if vertical is not None:
-        raise ModelError(
-            "vertical shaking is not available on poly segments (slide_plane takes vertical=)",
-            "vertical",
-        )
     if mu_k is None:
         raise ModelError("mu_k (the kinetic friction coefficient or coefficients) is required")
     mk, ms = friction_pairs(mu_k, mu_s)
     row = _floor_row(motion, floor)
+    vert, notes = _vertical(vertical, motion)
     MU = np.vstack([np.maximum(mk, ms), mk])
-    states, hist = _run(motion, row, MU, 1.0, 1.0, histories)
+    states, hist = _run(motion, row, MU, 1.0, 1.0, histories, vert)
     one_d = np.full((mk.size, 2), np.nan)
     if compare_1d:
-        one_d[:, 0] = _run(motion, row, MU, 1.0, 0.0, False)[0][:, pk.PEAK]
-        one_d[:, 1] = _run(motion, row, MU, 0.0, 1.0, False)[0][:, pk.PEAK]
+        one_d[:, 0] = _run(motion, row, MU, 1.0, 0.0, False, vert)[0][:, pk.PEAK]
+        one_d[:, 1] = _run(motion, row, MU, 0.0, 1.0, False, vert)[0][:, pk.PEAK]
+    lift_time, lift_count = liftoff(vert, motion.dt) if vert is not None else (0.0, 0)
     big = one_d.max(axis=1)
     with np.errstate(divide="ignore", invalid="ignore"):
         ratio = np.where(big > 0, states[:, pk.PEAK] / big, np.nan)
@@ -150,6 +152,8 @@ def slide_plane_on_segments(
         final_velocity=states[:, [pk.VX, pk.VY]].copy(),
         duration=duration,
         u=hist if histories else None,
-        notes=tuple(motion.notes),
+        notes=tuple(notes),
         work_friction=mk * states[:, pk.NPATH],
+        liftoff_time=lift_time,
+        liftoff_count=lift_count,
     )
