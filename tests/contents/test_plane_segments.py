@@ -95,6 +95,10 @@ def test_circular_motion_settles_on_the_closed_form_orbit():
     assert radius.std() < 1e-12 * expect
     assert np.hypot(*r.final_velocity[0]) == pytest.approx(expect * om, rel=1e-12)
     assert r.slip_phases[0] == 1 and r.stops[0] == 0
+    # energy: ½|u'(end)|² = −mu_k g·path − work_floor (measured 1.3e-16 of the friction work)
+    kinetic = 0.5 * np.sum(r.final_velocity[0] ** 2)
+    friction = mu * fs.G * r.path[0]
+    assert abs(kinetic + friction + r.work_floor[0]) <= 1e-12 * friction
 
 
 @pytest.mark.parametrize("lift", [False, True])
