@@ -69,8 +69,7 @@ def test_spectrum_is_response_spectrum(sylmar, kind, split):
 @pytest.mark.parametrize("kind", ["ground", "floor", "pair"])
 def test_rotd_is_rotd_spectrum(sylmar, kind, split):
     """Measured ≤ 3.6e-14 elementwise relative (RotD50, RotD100, every angle's PSA; a model per
-    direction included); the angle of
-    RotD100 to 5e-13°, its time to 3e-15 s."""
+    direction included); the angle of RotD100 to 5e-13°, its time to 3e-15 s."""
     h1, h2, dt = sylmar
     m, fl = _motion(kind, h1, h2, dt, split)
     r = rotd_on_poly(m, fl, T, Z)
