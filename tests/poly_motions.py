@@ -53,3 +53,22 @@ class Recut:
             last = np.tile(np.arange(f.size) == f.size - 1, s.nseg)
             yield PolySegments(s.t0[i] + off, end - off, s.step[i], s.ends[i] & last,
                                _shift_rows(s.coef[i], off), s.floors, s.k0, s.k1)  # fmt: skip
+
+
+class OneSegment:
+    """A record of one step of length `L` whose ``x`` acceleration is the polynomial `coef`
+    (``y`` 0): the polynomial as given, whatever its terms."""
+
+    def __init__(self, coef, L):
+        self.coef = np.zeros(DEGREE)
+        self.coef[: len(coef)] = coef
+        self.dt, self.npts = float(L), 2
+        self.floors = (0,)
+        self.notes = ()
+
+    def poly_chunks(self):
+        coef = np.zeros((1, 1, 2, DEGREE))
+        coef[0, 0, 0] = self.coef
+        one = np.array([0], dtype=np.int64)
+        yield PolySegments(np.zeros(1), np.array([self.dt]), one, np.ones(1, dtype=bool), coef,
+                           (0,), 0, 1)  # fmt: skip

@@ -8,11 +8,12 @@ oscillator ``q'' + 2ξω q' + ω² q = −p`` — the state ``x = (q, q')``, ``x
 into equal pieces with ``ω·L ≤`` :data:`PHASE`, on which the series is summed until two
 consecutive terms (beyond the forcing's degree) are below :data:`TERM_TOL` of the terms so far:
 the homogeneous part then decays like ``(ωL)^j/j!`` and the polynomial equals the exact solution
-to rounding. On each piece the peaks of ``q``, ``q'``, ``ω²q + 2ξωq'`` (``q'' + p``: the
-absolute acceleration) — and for RotD of every rotated ``q_θ = q1 cos θ + q2 sin θ`` and of
-``q1² + q2²`` — are found by :func:`floorslide.numerics.polynomial.max_abs_on` (rigorous filters,
-then every critical point isolated), where a coefficient bound ``Σ_j |c_j| L^j`` allows a new
-peak.
+to rounding. A piece on which they have not decayed by degree :data:`NMAX` (a forcing whose own
+high terms are large on it) is halved until they do. On each piece the peaks of ``q``, ``q'``,
+``ω²q + 2ξωq'`` (``q'' + p``: the absolute acceleration) — and for RotD of every rotated
+``q_θ = q1 cos θ + q2 sin θ`` and of ``q1² + q2²`` — are found by
+:func:`floorslide.numerics.polynomial.max_abs_on` (rigorous filters, then every critical point
+isolated), where a coefficient bound ``Σ_j |c_j| L^j`` allows a new peak.
 
 References
 ----------
@@ -34,6 +35,9 @@ PHASE = 0.5
 NMAX = 31
 """Highest degree of an oscillator's series (``q1² + q2²`` then has degree ≤ 62, within the
 root isolation's 64)."""
+MAX_PIECES = 1 << 20
+"""Most pieces a segment is halved into for one oscillator (a guard against a forcing that is
+not finite: its series never converge)."""
 TERM_TOL = 1e-18
 """The series ends when two consecutive terms ``|q_j|L^j + |q'_j|L^{j+1}`` are below this
 fraction of the sum of the terms so far."""
@@ -55,7 +59,8 @@ def _degree(coef, s, f, cx, cy, p):
 def oscillator_series(p, K, w, xi, L, q0, v0, q, v):
     """Taylor coefficients ``q[0..N]``, ``v[0..N]`` of an oscillator's displacement and velocity
     on a piece ``[0, L]`` from ``(q0, v0)``, driven by ``−p`` (degree ``K``). Returns ``N``
-    (at most :data:`NMAX`)."""
+    (at most :data:`NMAX`), or −1 when the terms have not decayed by then (the piece is too
+    long for the forcing's own terms: the caller halves it)."""
     w2 = w * w
     zw = 2.0 * xi * w
     q[0] = q0
@@ -63,7 +68,7 @@ def oscillator_series(p, K, w, xi, L, q0, v0, q, v):
     total = abs(q0) + abs(v0) * L
     Lj = 1.0
     small = 0
-    N = NMAX
+    N = -1
     for j in range(NMAX):
         pj = p[j] if j <= K else 0.0
         inv = 1.0 / (j + 1)
@@ -117,9 +122,20 @@ def spectrum_segments_kernel(t0, length, coef, f, cx, cy, w, xi, S, out, rigid, 
             w2 = wo * wo
             npc = max(1, math.ceil(wo * L / PHASE))
             hp = L / npc
-            for r in range(npc):
-                taylor_shift(p, K, r * hp, pp)
+            r = 0
+            pos = 0.0
+            while r < npc:
+                taylor_shift(p, K, pos, pp)
                 N = oscillator_series(pp, K, wo, xi[o], hp, S[o, 0], S[o, 1], q, v)
+                if N < 0 and npc < MAX_PIECES:
+                    # not converged: this piece and the rest of the segment in twice as many
+                    npc = 2 * (npc - r)
+                    r = 0
+                    hp = (L - pos) / npc
+                    continue
+                N = NMAX if N < 0 else N
+                r += 1
+                pos = L - (npc - r) * hp
                 for j in range(N + 1):
                     s3[j] = w2 * q[j] + zw * v[j]
                 if _bound(q, N, hp) > out[o, 0]:
@@ -191,11 +207,24 @@ def rotd_segments_kernel(t0, length, coef, f, w, xi, cs, sn, S, M, R2, W, M0, R2
             wo = w[o]
             npc = max(1, math.ceil(wo * L / PHASE))
             hp = L / npc
-            for r in range(npc):
-                taylor_shift(p1, K, r * hp, pp1)
-                taylor_shift(p2, K, r * hp, pp2)
+            r = 0
+            pos = 0.0
+            while r < npc:
+                taylor_shift(p1, K, pos, pp1)
+                taylor_shift(p2, K, pos, pp2)
                 N1 = oscillator_series(pp1, K, wo, xi[o], hp, S[o, 0], S[o, 1], Q1, V1)
                 N2 = oscillator_series(pp2, K, wo, xi[o], hp, S[o, 2], S[o, 3], Q2, V2)
+                if (N1 < 0 or N2 < 0) and npc < MAX_PIECES:
+                    # not converged: this piece and the rest of the segment in twice as many
+                    npc = 2 * (npc - r)
+                    r = 0
+                    hp = (L - pos) / npc
+                    continue
+                N1 = NMAX if N1 < 0 else N1
+                N2 = NMAX if N2 < 0 else N2
+                t_piece = t0[s] + pos
+                r += 1
+                pos = L - (npc - r) * hp
                 N = max(N1, N2)
                 for j in range(N1 + 1, N + 1):
                     Q1[j] = 0.0
@@ -203,7 +232,7 @@ def rotd_segments_kernel(t0, length, coef, f, w, xi, cs, sn, S, M, R2, W, M0, R2
                 for j in range(N2 + 1, N + 1):
                     Q2[j] = 0.0
                     V2[j] = 0.0
-                _vector_and_angles(Q1, Q2, N, hp, t0[s] + r * hp, cs, sn, M, R2, W, o, r2, c,
+                _vector_and_angles(Q1, Q2, N, hp, t_piece, cs, sn, M, R2, W, o, r2, c,
                                    work)  # fmt: skip
                 S[o, 0] = poly_val(Q1, N, hp)
                 S[o, 1] = poly_val(V1, N, hp)
