@@ -57,18 +57,20 @@ class Recut:
 
 class OneSegment:
     """A record of one step of length `L` whose ``x`` acceleration is the polynomial `coef`
-    (``y`` 0): the polynomial as given, whatever its terms."""
+    (``y``: `coef_y`, or 0): the polynomials as given, whatever their terms."""
 
-    def __init__(self, coef, L):
-        self.coef = np.zeros(DEGREE)
-        self.coef[: len(coef)] = coef
+    def __init__(self, coef, L, coef_y=None):
+        self.coef = np.zeros((2, DEGREE))
+        self.coef[0, : len(coef)] = coef
+        if coef_y is not None:
+            self.coef[1, : len(coef_y)] = coef_y
         self.dt, self.npts = float(L), 2
         self.floors = (0,)
         self.notes = ()
 
     def poly_chunks(self):
         coef = np.zeros((1, 1, 2, DEGREE))
-        coef[0, 0, 0] = self.coef
+        coef[0, 0] = self.coef
         one = np.array([0], dtype=np.int64)
         yield PolySegments(np.zeros(1), np.array([self.dt]), one, np.ones(1, dtype=bool), coef,
                            (0,), 0, 1)  # fmt: skip

@@ -12,7 +12,7 @@ from floorslide.building.poly_segments import GroundPolyMotion, LinearPolyMotion
 from floorslide.contents.plane_segments import slide_plane_on_segments
 from floorslide.errors import ModelError
 from tests.conftest import ROOT
-from tests.poly_motions import Harmonic, Recut
+from tests.poly_motions import Harmonic, OneSegment, Recut
 
 MUS = [0.05, 0.1, 0.2, 0.3]
 MUS_S = [0.06, 0.12, 0.24, 0.3]
@@ -150,3 +150,26 @@ def test_tiny_segments(sylmar):
                                 histories=True)  # fmt: skip
     assert _worst(r, ref) <= 1e-12
     assert np.max(np.abs(r.u - ref.u)) <= 1e-12 * np.max(np.abs(ref.u))
+
+
+@pytest.mark.parametrize("mu_s", [0.2, 0.3])
+@pytest.mark.parametrize("L", [1.0, 1e-3])
+def test_a_large_degree_23_term(L, mu_s):
+    """One segment of ``a = 30 (τ/L)^23`` m/s² along the azimuth 30° (its whole weight in the
+    last coefficient, 3e70 for L = 1 ms): the block breaks away at ``τ_b = L (mu_b g/30)^(1/23)``
+    and slides along −30° with ``u'' = −a + mu_k g`` to the end — closed forms; measured
+    ≤ 1.3e-15 relative (peak slide, final speed, slide time)."""
+    A, mu = 30.0, 0.2
+    c = np.zeros(24)
+    c[23] = A / L**23
+    th = np.radians(30.0)
+    r = slide_plane_on_segments(OneSegment(c * np.cos(th), L, c * np.sin(th)), None, mu, mu_s)
+    tb = L * (max(mu, mu_s) * fs.G / A) ** (1 / 23)
+    a23 = A / L**23
+    u = -a23 / 24 * ((L**25 - tb**25) / 25 - tb**24 * (L - tb)) + mu * fs.G * (L - tb) ** 2 / 2
+    v = -a23 * (L**24 - tb**24) / 24 + mu * fs.G * (L - tb)
+    assert r.peak_slide[0] == pytest.approx(abs(u), rel=1e-14)
+    assert np.hypot(*r.final_velocity[0]) == pytest.approx(abs(v), rel=1e-14)
+    assert r.slide_fraction[0] * L == pytest.approx(L - tb, rel=1e-14)
+    assert r.peak_angle[0] == pytest.approx(-150.0, abs=1e-12)
+    assert (r.slip_phases[0], r.stops[0]) == (1, 0)
