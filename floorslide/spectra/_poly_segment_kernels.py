@@ -28,7 +28,13 @@ import math
 import numpy as np
 
 from floorslide._jit import njit
-from floorslide.numerics.polynomial import max_abs_on, poly_val, scratch, taylor_shift
+from floorslide.numerics.polynomial import (
+    curvature_bound,
+    max_abs_on,
+    poly_val,
+    scratch,
+    taylor_shift,
+)
 
 PHASE = 0.5
 """Longest piece of a segment, ``ω·L``, on which an oscillator's series is summed."""
@@ -89,11 +95,16 @@ def oscillator_series(p, K, w, xi, L, q0, v0, q, v):
 
 @njit(cache=True, inline="always")
 def _bound(c, N, L):
-    """``Σ_j |c_j| L^j`` ≥ ``max |c(τ)|`` on ``[0, L]``."""
+    """An upper bound of ``max |c(τ)|`` on ``[0, L]``: the smaller of ``Σ_j |c_j| L^j`` and
+    the larger end value plus ``L²/8·max|c''|`` (a polynomial deviates from its chord by at most
+    that; ``max|c''|`` bounded by :func:`~floorslide.numerics.polynomial.curvature_bound`)."""
     b = 0.0
+    e = 0.0
     for j in range(N, -1, -1):
         b = b * L + abs(c[j])
-    return b
+        e = e * L + c[j]
+    chord = max(abs(c[0]), abs(e)) + 0.125 * L * L * curvature_bound(c, N, L)
+    return min(b, chord)
 
 
 @njit(cache=True)
@@ -154,9 +165,11 @@ def new_scratch():
 
 
 @njit(cache=True)
-def _vector_and_angles(Q1, Q2, N, L, t_start, cs, sn, M, R2, W, o, r2, c, work):
+def _vector_and_angles(Q1, Q2, N, L, t_start, cs, sn, M, R2, W, o, r2, c, work, Mmin):
     """Raise oscillator (or rigid row) `o`'s peaks on one piece: ``R2[o] = max(q1² + q2²)`` and
-    ``W[o] = (time, q1, q2)`` there; ``M[o, j] = max|q1 cos θ_j + q2 sin θ_j|``."""
+    ``W[o] = (time, q1, q2)`` there; ``M[o, j] = max|q1 cos θ_j + q2 sin θ_j|``. ``Mmin[o]`` is
+    the smallest ``M[o, j]``: no angle is looked at while ``|q_θ| ≤ |q| ≤ √(B1² + B2²)``
+    (``B`` the coefficient bounds of ``q1``, ``q2``) stays below it."""
     B1 = _bound(Q1, N, L)
     B2 = _bound(Q2, N, L)
     if B1 * B1 + B2 * B2 > R2[o]:
@@ -171,13 +184,24 @@ def _vector_and_angles(Q1, Q2, N, L, t_start, cs, sn, M, R2, W, o, r2, c, work):
             W[o, 0] = t_start + t
             W[o, 1] = poly_val(Q1, N, t)
             W[o, 2] = poly_val(Q2, N, t)
+    if B1 * B1 + B2 * B2 <= Mmin[o] * Mmin[o]:
+        return
+    raised = False
     for a in range(cs.size):
         if abs(cs[a]) * B1 + abs(sn[a]) * B2 <= M[o, a]:
             continue
         for j in range(N + 1):
             c[j] = cs[a] * Q1[j] + sn[a] * Q2[j]
         if _bound(c, N, L) > M[o, a]:
-            M[o, a] = max(M[o, a], max_abs_on(c, N, L, M[o, a], work)[0])
+            m = max_abs_on(c, N, L, M[o, a], work)[0]
+            if m > M[o, a]:
+                M[o, a] = m
+                raised = True
+    if raised:
+        low = M[o, 0]
+        for a in range(1, cs.size):
+            low = min(low, M[o, a])
+        Mmin[o] = low
 
 
 @njit(cache=True)
@@ -197,12 +221,16 @@ def rotd_segments_kernel(t0, length, coef, f, w, xi, cs, sn, S, M, R2, W, M0, R2
     V2 = np.zeros(NMAX + 1)
     r2 = np.zeros(2 * NMAX + 1)
     c = np.zeros(max(NMAX, KM) + 1)
+    low = np.empty(w.size)
+    for o in range(w.size):
+        low[o] = M[o].min()
+    low0 = np.array([M0[0].min()])
     for s in range(t0.size):
         L = length[s]
         K1 = _degree(coef, s, f, 1.0, 0.0, p1)
         K2 = _degree(coef, s, f, 0.0, 1.0, p2)
         K = max(K1, K2)
-        _vector_and_angles(p1, p2, K, L, t0[s], cs, sn, M0, R20, W0, 0, r2, c, work)
+        _vector_and_angles(p1, p2, K, L, t0[s], cs, sn, M0, R20, W0, 0, r2, c, work, low0)
         for o in range(w.size):
             wo = w[o]
             npc = max(1, math.ceil(wo * L / PHASE))
@@ -233,7 +261,7 @@ def rotd_segments_kernel(t0, length, coef, f, w, xi, cs, sn, S, M, R2, W, M0, R2
                     Q2[j] = 0.0
                     V2[j] = 0.0
                 _vector_and_angles(Q1, Q2, N, hp, t_piece, cs, sn, M, R2, W, o, r2, c,
-                                   work)  # fmt: skip
+                                   work, low)  # fmt: skip
                 S[o, 0] = poly_val(Q1, N, hp)
                 S[o, 1] = poly_val(V1, N, hp)
                 S[o, 2] = poly_val(Q2, N, hp)
