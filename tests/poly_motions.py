@@ -74,3 +74,16 @@ class OneSegment:
         one = np.array([0], dtype=np.int64)
         yield PolySegments(np.zeros(1), np.array([self.dt]), one, np.ones(1, dtype=bool), coef,
                            (0,), 0, 1)  # fmt: skip
+
+
+class Counted:
+    """`motion`, counting the passes consumers make over it (``poly_chunks()`` calls)."""
+
+    def __init__(self, motion):
+        self.motion, self.passes = motion, 0
+        self.dt, self.npts = motion.dt, motion.npts
+        self.floors, self.notes = motion.floors, motion.notes
+
+    def poly_chunks(self):
+        self.passes += 1
+        yield from self.motion.poly_chunks()

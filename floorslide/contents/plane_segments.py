@@ -36,34 +36,46 @@ def _floor_row(motion, floor) -> int:
     return floors.index(floor)
 
 
-def _run(motion, row, MU, sx, sy, histories, vert):
-    """The blocks' states (and histories) after the whole motion, one direction zeroed when
-    ``sx`` or ``sy`` is 0; `vert` the vertical samples or None."""
-    states = np.zeros((MU.shape[1], pk.NCOL))
+def _new_states(n: int) -> np.ndarray:
+    """Blocks at rest, ``(n, NCOL)``."""
+    states = np.zeros((n, pk.NCOL))
     states[:, pk.LIMIT_AT] = -1.0
     states[:, pk.T_PEAK] = np.nan
+    return states
+
+
+def _run(motion, row, MU, directions, histories, vert):
+    """The blocks' states after the whole motion, read in one pass, for each ``(sx, sy)`` of
+    `directions` (1, 1: the plane; 1, 0 or 0, 1: a component alone), and the histories of the
+    first; `vert` the vertical samples or None."""
+    runs = [_new_states(MU.shape[1]) for _ in directions]
     hist = np.zeros((MU.shape[1], motion.npts, 2) if histories else (0, 0, 2))
+    none = np.zeros((0, 0, 2))
+    accv = vert if vert is not None else np.zeros(1)
     first = True
     for seg in checked_chunks(motion):
         t0, length, coef = (np.ascontiguousarray(a, dtype=float)
                             for a in (seg.t0, seg.length, seg.coef))  # fmt: skip
-        plane_segments_kernel(
-            t0, length, seg.step, seg.ends, coef, row, sx, sy, first, G, MU, states, hist,
-            histories, DEGREE, pk.MAX_EVENTS, vert if vert is not None else np.zeros(1),
-            vert is not None, float(motion.dt),
-        )  # fmt: skip
+        for i, ((sx, sy), states) in enumerate(zip(directions, runs, strict=True)):
+            want = histories and i == 0
+            plane_segments_kernel(
+                t0, length, seg.step, seg.ends, coef, row, sx, sy, first, G, MU, states,
+                hist if want else none, want, DEGREE, pk.MAX_EVENTS, accv, vert is not None,
+                float(motion.dt),
+            )  # fmt: skip
         first = False
-    hit = np.flatnonzero(states[:, pk.LIMIT_AT] >= 0.0)
-    if hit.size:
-        i = int(hit[0])
-        raise SolverLimitError(
-            f"slide_plane_on_segments: more than {pk.MAX_EVENTS} stops and breakaways, or "
-            f"{pk.MAX_STEPS} series steps, inside one segment at t = "
-            f"{states[i, pk.LIMIT_AT]:.6g} s (mu_k = {MU[1, i]:g}): stick-slip chatter or creep "
-            "the solver cannot resolve",
-            "mu_k",
-        )
-    return states, hist
+    for states in runs:
+        hit = np.flatnonzero(states[:, pk.LIMIT_AT] >= 0.0)
+        if hit.size:
+            i = int(hit[0])
+            raise SolverLimitError(
+                f"slide_plane_on_segments: more than {pk.MAX_EVENTS} stops and breakaways, or "
+                f"{pk.MAX_STEPS} series steps, inside one segment at t = "
+                f"{states[i, pk.LIMIT_AT]:.6g} s (mu_k = {MU[1, i]:g}): stick-slip chatter or "
+                "creep the solver cannot resolve",
+                "mu_k",
+            )
+    return runs, hist
 
 
 def slide_plane_on_segments(
@@ -99,7 +111,8 @@ def slide_plane_on_segments(
     compare_1d
         Also slide under each component alone (the same solver with the other component
         zeroed: along one axis the plane's law is the 1-D one) for ``peak_slide_1d`` and
-        ``ratio_2d_1d``.
+        ``ratio_2d_1d``, in the same pass over the motion (a producer that integrates a
+        building on every pass does it once).
 
     Returns
     -------
@@ -125,11 +138,13 @@ def slide_plane_on_segments(
     row = _floor_row(motion, floor)
     vert, notes = _vertical(vertical, motion)
     MU = np.vstack([np.maximum(mk, ms), mk])
-    states, hist = _run(motion, row, MU, 1.0, 1.0, histories, vert)
+    directions = [(1.0, 1.0), (1.0, 0.0), (0.0, 1.0)] if compare_1d else [(1.0, 1.0)]
+    runs, hist = _run(motion, row, MU, directions, histories, vert)
+    states = runs[0]
     one_d = np.full((mk.size, 2), np.nan)
     if compare_1d:
-        one_d[:, 0] = _run(motion, row, MU, 1.0, 0.0, False, vert)[0][:, pk.PEAK]
-        one_d[:, 1] = _run(motion, row, MU, 0.0, 1.0, False, vert)[0][:, pk.PEAK]
+        one_d[:, 0] = runs[1][:, pk.PEAK]
+        one_d[:, 1] = runs[2][:, pk.PEAK]
     lift_time, lift_count = liftoff(vert, motion.dt) if vert is not None else (0.0, 0)
     big = one_d.max(axis=1)
     with np.errstate(divide="ignore", invalid="ignore"):

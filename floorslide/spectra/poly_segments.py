@@ -113,22 +113,41 @@ def spectrum_on_poly(motion, floor: int | None, periods, damping=0.05, *,
     row = _floor_row(motion, floor)
     cx, cy = _direction(direction)
     T, Z, pos, w, xi = _grid(motion, periods, damping)
-    S = np.zeros((w.size, 2))
-    out = np.zeros((w.size, 3))
-    rigid = np.zeros(2)
+    acc = _SpectrumPeaks(w.size, cx, cy)
     work = PK.new_scratch()
     for t0, length, coef in _chunks(motion):
-        PK.spectrum_segments_kernel(t0, length, coef, row, cx, cy, w, xi, S, out, rigid, work)
-    shape = (Z.size, T.size)
-    sd, sv, sa = np.zeros(shape), np.zeros(shape), np.zeros(shape)
-    for arr, col in ((sd, 0), (sv, 1), (sa, 2)):
-        arr[:, pos] = out[:, col].reshape(Z.size, -1)
-    sa[:, ~pos] = rigid[0]
-    wT = np.where(pos, 2 * np.pi / np.where(pos, T, 1.0), 0.0)
-    psa = sd * wT**2
-    psa[:, ~pos] = sa[:, ~pos]
-    return Spectrum(periods=T, damping=Z, psa=psa, sa=sa, sv=sv, sd=sd, psv=sd * wT,
-                    method="exact", notes=tuple(motion.notes))  # fmt: skip
+        acc.advance(t0, length, coef, row, w, xi, work)
+    return acc.spectrum(T, Z, pos, motion.notes)
+
+
+class _SpectrumPeaks:
+    """The running peaks of one direction's oscillators (:func:`spectrum_on_poly`), advanced
+    chunk by chunk, so that several consumers share one pass over a motion."""
+
+    def __init__(self, nosc: int, cx: float, cy: float):
+        self.cx, self.cy = cx, cy
+        self.S = np.zeros((nosc, 2))
+        self.out = np.zeros((nosc, 3))
+        self.rigid = np.zeros(2)
+
+    def advance(self, t0, length, coef, row, w, xi, work) -> None:
+        """Through one chunk."""
+        PK.spectrum_segments_kernel(t0, length, coef, row, self.cx, self.cy, w, xi, self.S,
+                                    self.out, self.rigid, work)  # fmt: skip
+
+    def spectrum(self, T, Z, pos, notes) -> Spectrum:
+        """The :class:`~floorslide.spectra.core.Spectrum` of the peaks so far."""
+        out, rigid = self.out, self.rigid
+        shape = (Z.size, T.size)
+        sd, sv, sa = np.zeros(shape), np.zeros(shape), np.zeros(shape)
+        for arr, col in ((sd, 0), (sv, 1), (sa, 2)):
+            arr[:, pos] = out[:, col].reshape(Z.size, -1)
+        sa[:, ~pos] = rigid[0]
+        wT = np.where(pos, 2 * np.pi / np.where(pos, T, 1.0), 0.0)
+        psa = sd * wT**2
+        psa[:, ~pos] = sa[:, ~pos]
+        return Spectrum(periods=T, damping=Z, psa=psa, sa=sa, sv=sv, sd=sd, psv=sd * wT,
+                        method="exact", notes=tuple(notes))  # fmt: skip
 
 
 def rotd_on_poly(motion, floor: int | None, periods, damping=0.05, *, angles: int = 180,
@@ -148,7 +167,7 @@ def rotd_on_poly(motion, floor: int | None, periods, damping=0.05, *, angles: in
         Number ``n`` of angles ``θ_j = j·180°/n`` of RotD50.
     directions
         Also compute ``h1`` and ``h2``, the ordinary spectra along ``x`` and ``y``
-        (:func:`spectrum_on_poly`).
+        (:func:`spectrum_on_poly`), in the same pass over the motion.
 
     Returns
     -------
@@ -181,9 +200,12 @@ def rotd_on_poly(motion, floor: int | None, periods, damping=0.05, *, angles: in
     R20 = np.zeros(1)
     W0 = np.zeros((1, 3))
     work = PK.new_scratch()
+    comps = [_SpectrumPeaks(nosc, 1.0, 0.0), _SpectrumPeaks(nosc, 0.0, 1.0)] if directions else []
     for t0, length, coef in _chunks(motion):
         PK.rotd_segments_kernel(t0, length, coef, row, w, xi, cs, sn, S, M, R2, W, M0, R20, W0,
                                 work)  # fmt: skip
+        for comp in comps:
+            comp.advance(t0, length, coef, row, w, xi, work)
     shape = (Z.size, T.size)
     psa_angles = np.zeros((*shape, n_ang))
     rotd100 = np.zeros(shape)
@@ -201,9 +223,7 @@ def rotd_on_poly(motion, floor: int | None, periods, damping=0.05, *, angles: in
     angle100[(rotd100 == 0) | (angle100 >= 180.0)] = 0.0
     sp1 = sp2 = None
     if directions:
-        floor_ = motion.floors[row]
-        sp1 = spectrum_on_poly(motion, floor_, T, Z, direction=0)
-        sp2 = spectrum_on_poly(motion, floor_, T, Z, direction=1)
+        sp1, sp2 = (comp.spectrum(T, Z, pos, motion.notes) for comp in comps)
     return RotDSpectrum(
         periods=T,
         damping=Z,

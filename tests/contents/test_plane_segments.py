@@ -12,7 +12,7 @@ from floorslide.building.poly_segments import GroundPolyMotion, LinearPolyMotion
 from floorslide.contents.plane_segments import slide_plane_on_segments
 from floorslide.errors import ModelError
 from tests.conftest import ROOT
-from tests.poly_motions import Harmonic, OneSegment, Recut
+from tests.poly_motions import Counted, Harmonic, OneSegment, Recut
 
 MUS = [0.05, 0.1, 0.2, 0.3]
 MUS_S = [0.06, 0.12, 0.24, 0.3]
@@ -123,6 +123,15 @@ def test_vertical_shaking_is_slide_plane(sylmar, kind, lift):
         assert np.max(np.abs(r.u - ref.u)) <= 1e-12 * np.max(np.abs(ref.u))
         np.testing.assert_allclose(r.work_friction, ref.work_friction, rtol=1e-12)
         assert (r.liftoff_time, r.liftoff_count) == (ref.liftoff_time, ref.liftoff_count)
+
+
+def test_one_pass_over_the_motion(sylmar):
+    """The slide in the plane and the two 1-D comparisons read the motion once (a producer may
+    integrate a building on every pass)."""
+    h1, h2, dt = sylmar
+    m = Counted(GroundPolyMotion(h1[:300], h2[:300], dt))
+    r = slide_plane_on_segments(m, None, MUS, histories=True)
+    assert m.passes == 1 and np.isfinite(r.peak_slide_1d).all()
 
 
 def test_refusals(sylmar):

@@ -12,7 +12,7 @@ from floorslide.building.poly_segments import GroundPolyMotion, LinearPolyMotion
 from floorslide.errors import ModelError
 from floorslide.spectra.poly_segments import rotd_on_poly, spectrum_on_poly
 from tests.conftest import ROOT
-from tests.poly_motions import Harmonic, OneSegment, Recut
+from tests.poly_motions import Counted, Harmonic, OneSegment, Recut
 
 T = [0.0, 0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 5.0]
 Z = [0.02, 0.05]
@@ -81,6 +81,14 @@ def test_rotd_is_rotd_spectrum(sylmar, kind, split):
     np.testing.assert_allclose(r.time100, ref.time100, rtol=0, atol=1e-9)
     for mine, theirs in ((r.h1, ref.h1), (r.h2, ref.h2)):
         assert _rel(mine.psa, theirs.psa) <= 1e-12
+
+
+def test_one_pass_over_the_motion(sylmar):
+    """RotD and the two directions' spectra read the motion once."""
+    h1, h2, dt = sylmar
+    m = Counted(GroundPolyMotion(h1[:300], h2[:300], dt))
+    r = rotd_on_poly(m, None, T, Z)
+    assert m.passes == 1 and r.h1 is not None and r.h2 is not None
 
 
 def test_refusals(sylmar):
