@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 
-from floorslide.building.poly_segments import DEGREE, PolySegments, _shift_rows
+from floorslide.building.poly_segments import DEGREE, PolySegments, shift_rows
 
 
 class Harmonic:
@@ -52,7 +52,7 @@ class Recut:
             end = np.tile(nxt, s.nseg) * s.length[i]
             last = np.tile(np.arange(f.size) == f.size - 1, s.nseg)
             yield PolySegments(s.t0[i] + off, end - off, s.step[i], s.ends[i] & last,
-                               _shift_rows(s.coef[i], off), s.floors, s.k0, s.k1)  # fmt: skip
+                               shift_rows(s.coef[i], off), s.floors, s.k0, s.k1)  # fmt: skip
 
 
 class OneSegment:

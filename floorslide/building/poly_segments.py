@@ -45,6 +45,7 @@ __all__ = [
     "check_segments",
     "checked_chunks",
     "samples_on_poly",
+    "shift_rows",
 ]
 
 DEGREE = 24
@@ -193,9 +194,11 @@ def _pair(h1, h2, dt):
     return pair
 
 
-def _shift_rows(C: np.ndarray, s: np.ndarray) -> np.ndarray:
-    """Each polynomial ``C[i, ..., :]`` re-expanded about ``τ = s[i]`` (the synthetic divisions
-    of :func:`~floorslide.numerics.polynomial.taylor_shift`, vectorised over rows)."""
+def shift_rows(C: np.ndarray, s: np.ndarray) -> np.ndarray:
+    """Each polynomial ``C[i, ..., :]`` (coefficients on the last axis) re-expanded about
+    ``τ = s[i]``: the coefficients of a segment's polynomials from a point inside it, for a
+    producer that cuts segments (the synthetic divisions of
+    :func:`~floorslide.numerics.polynomial.taylor_shift`, vectorised over rows)."""
     out = np.array(C, dtype=float, copy=True)
     deg = out.shape[-1] - 1
     tau = s.reshape((-1,) + (1,) * (out.ndim - 2))
@@ -210,7 +213,7 @@ def _split(t0, length, step, ends, coef, rng):
     10–90 % of it), each piece's polynomial re-expanded about its start."""
     n = t0.size
     pieces = rng.integers(1, MAX_SPLIT + 1, size=n)
-    starts = []  # (segment, offset)
+    starts = []  # each segment's piece offsets
     for i in range(n):
         cuts = np.sort(rng.uniform(0.1, 0.9, size=pieces[i] - 1)) * length[i]
         starts.append(np.concatenate([[0.0], cuts]))
@@ -223,7 +226,7 @@ def _split(t0, length, step, ends, coef, rng):
         nxt - off,
         step[seg],
         ends[seg] & last,
-        _shift_rows(coef[seg], off),
+        shift_rows(coef[seg], off),
     )
 
 
