@@ -44,6 +44,7 @@ __all__ = [
     "PolySegments",
     "check_segments",
     "checked_chunks",
+    "poly_values",
     "samples_on_poly",
     "shift_rows",
 ]
