@@ -34,6 +34,15 @@ MAX_EVENTS_KEPT = 100_000
 """Most events whose times are kept."""
 
 
+def couples_directions(building) -> bool:
+    """Whether `building` is on nonlinear isolation (one model, or a pair of models): its
+    bearings respond to both horizontal components together, so plane consumers read its
+    :class:`PlaneIsolatedMotion` rather than one motion per direction."""
+    if isinstance(building, tuple | list) and len(building) == 2:
+        return any(isinstance(b, NonlinearIsolatedBuilding) for b in building)
+    return isinstance(building, NonlinearIsolatedBuilding)
+
+
 def plane_layer(building) -> tuple[NonlinearIsolatedBuilding, NonlinearIsolatedBuilding]:
     """The models along ``x`` and ``y`` of a building on friction pendulums under two
     components: one :class:`NonlinearIsolatedBuilding` (the same superstructure both ways) or a
@@ -219,7 +228,8 @@ class PlaneIsolatedMotion:
 
     Attributes: ``dt``, ``npts``, ``acc1``, ``acc2`` (the ground at the samples, m/s²),
     ``vertical`` (or None), ``floors`` (every floor, 0 the mat), ``building`` (the pair of
-    models), ``response`` (:class:`PlaneIsolatorResponse`)."""
+    models), ``response`` (:class:`PlaneIsolatorResponse`), ``notes`` (the bearing's: small
+    angle, capacity)."""
 
     def __init__(self, building, h1, h2, dt: float, *, vertical=None, initial_displacement=None,
                  initial_velocity=None):  # fmt: skip
@@ -279,6 +289,7 @@ class PlaneIsolatedMotion:
                     "building",
                 )
         self.response = self._response(XS, MODES, peak, EV, int(carry[pk.C_EVENTS]))
+        self.notes = self.response.notes
 
     def _response(self, XS, MODES, peak, EV, n_ev) -> PlaneIsolatorResponse:
         bx, _ = self.building

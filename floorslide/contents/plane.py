@@ -12,11 +12,13 @@ directions (the friction circle).
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from floorslide.building.directions import plane_motions
+from floorslide.building.plane_isolation import PlaneIsolatedMotion, couples_directions
 from floorslide.constants import G
 from floorslide.contents import _plane_kernel as pk
 from floorslide.contents import plane_approx
@@ -104,6 +106,37 @@ class PlaneSlideResult:
     liftoff_count: int = 0
 
 
+def _on_nonlinear_isolation(
+    pair, building, floor, mk, ms, vert, notes, method, histories, compare_1d
+) -> PlaneSlideResult:
+    """Blocks on a floor of a building on friction pendulums under the pair: the building's
+    exact motion in the plane (:class:`~floorslide.building.plane_isolation.PlaneIsolatedMotion`,
+    the vertical scaling its bearings' friction too), read by the plane solver on its segments
+    (:func:`~floorslide.contents.plane_segments.slide_plane_on_segments`)."""
+    from floorslide.contents.plane_segments import slide_plane_on_segments
+
+    if method != "exact":
+        raise ModelError(
+            f"method={method!r} is not available on nonlinear isolation in the plane (the "
+            "exact solver reads the building's motion)",
+            "method",
+        )
+    if vert is not None:
+        raise ModelError(
+            "vertical shaking with blocks on a building on friction pendulums in the plane is "
+            "not available yet (the bearing's own response takes it: "
+            "floorslide.building.plane_isolation.plane_isolator_response)",
+            "vertical",
+        )
+    motion = PlaneIsolatedMotion(building, pair.h1, pair.h2, pair.dt)
+    res = slide_plane_on_segments(
+        motion, 0 if floor is None else floor, mk, ms, vertical=vert, histories=histories,
+        compare_1d=compare_1d,
+    )  # fmt: skip
+    extra = tuple(notes)  # the pair's and the vertical's
+    return dataclasses.replace(res, notes=extra + tuple(n for n in res.notes if n not in extra))
+
+
 def slide_plane(
     acc,
     dt: float | None = None,
@@ -185,6 +218,10 @@ def slide_plane(
         raise ModelError(
             f"vertical= is not available with method={method!r} (the exact solver takes it)",
             "vertical",
+        )
+    if couples_directions(building):
+        return _on_nonlinear_isolation(
+            pair, building, floor, mk, ms, vert, notes, method, histories, compare_1d
         )
     fm1, fm2 = plane_motions(building, pair.h1, pair.h2, pair.dt, floor, max_bytes=0, copy=False)
     if method != "exact":

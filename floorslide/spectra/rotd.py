@@ -18,12 +18,14 @@ kernels of :mod:`floorslide.spectra._rotd_kernels`.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
 
 from floorslide.building.directions import plane_motions
 from floorslide.building.exact_motion import FloorMotion
+from floorslide.building.plane_isolation import PlaneIsolatedMotion, couples_directions
 from floorslide.errors import ModelError
 from floorslide.pair import as_pair
 from floorslide.spectra import _kernels as K
@@ -259,6 +261,19 @@ def rotd_spectrum(
         )
     if method not in METHODS:
         raise ModelError(f"unknown method {method!r}; expected one of {', '.join(METHODS)}")
+    if couples_directions(building):
+        if method != "exact":
+            raise ModelError(
+                f"method={method!r} is not available on nonlinear isolation in the plane",
+                "method",
+            )
+        from floorslide.spectra.poly_segments import rotd_on_poly
+
+        motion = PlaneIsolatedMotion(building, pair.h1, pair.h2, pair.dt)
+        res = rotd_on_poly(
+            motion, 0 if floor is None else floor, T, Z, angles=n_ang, directions=directions
+        )
+        return dataclasses.replace(res, notes=tuple(pair.notes) + tuple(res.notes))
     fm1, fm2 = plane_motions(building, pair.h1, pair.h2, pair.dt, floor)
     theta = np.arange(n_ang) * (180.0 / n_ang)
     psa_angles, rotd100, angle100, time100 = _peaks(fm1, fm2, T, Z, theta, method == "exact")
