@@ -1,5 +1,5 @@
 """The exact motion of floors as polynomial segments: the contract between buildings and
-consumers (docs/design.md §16), and two producers of it.
+consumers (docs/design.md §6 and §10b), and two producers of it.
 
 A *poly motion* is any object with attributes ``dt`` (record step, s), ``npts`` (samples),
 ``floors`` (the floors it holds), ``notes`` (what was done to the input, one line each) and a

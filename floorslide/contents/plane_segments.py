@@ -1,5 +1,5 @@
 """Rigid blocks sliding in the plane on a poly motion: any building's floors read as polynomial
-segments (:mod:`floorslide.building.poly_segments`, docs/design.md §16).
+segments (:mod:`floorslide.building.poly_segments`, docs/design.md §6 and §10b).
 
 The same model and result as :func:`floorslide.slide_plane` (isotropic Coulomb friction,
 ``u'' = −a(t) − mu_k·g·u'/|u'|`` while sliding, breakaway when ``|a| > max(mu_s, mu_k)·g``;

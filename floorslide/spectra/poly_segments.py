@@ -1,5 +1,5 @@
 """Response and RotD spectra on a poly motion: any building's floors read as polynomial
-segments (:mod:`floorslide.building.poly_segments`, docs/design.md §16).
+segments (:mod:`floorslide.building.poly_segments`, docs/design.md §6 and §10b).
 
 The same quantities as :func:`floorslide.response_spectrum` and :func:`floorslide.rotd_spectrum`
 (``sd = max|q|``, ``sv = max|q'|``, ``sa = max|ω²q + 2ξωq'|``, ``psa = ω²·sd``, ``psv = ω·sd``;

@@ -1,7 +1,7 @@
 """A building on friction pendulums under two horizontal components (the friction circle coupled
 with the superstructure, floorslide/building/_plane_isolation_kernel.py) against the 1-D
 building along any azimuth, closed forms, the linear layer without friction, and the
-independent reference tests/reference_isolators_2d.py on real pairs (docs/design.md §16)."""
+independent reference tests/reference_isolators_2d.py on real pairs (docs/design.md §10b)."""
 
 from __future__ import annotations
 

@@ -1,7 +1,7 @@
 """Consumers on a building on friction pendulums under two components: its exact motion in the
 plane (floorslide.building.plane_isolation.PlaneIsolatedMotion, polynomial segments) read by
 the plane slide and the spectra on segments — against the 1-D building along an azimuth, the
-linear building without friction, and the public API (docs/design.md §16)."""
+linear building without friction, and the public API (docs/design.md §10b)."""
 
 from __future__ import annotations
 
