@@ -79,7 +79,10 @@ RUNS = (
         and not (b == "lead-rubber" and c in ("slide_plane", "rotd_spectrum"))
     }
     | {("slide", b, True) for b in ("ground", "fixed", "linear isolated")}
-    | {("slide_plane", b, True) for b in ("ground", "fixed", "linear isolated", "a pair of models")}
+    | {
+        ("slide_plane", b, True)
+        for b in ("ground", "fixed", "linear isolated", "a pair of models", "friction pendulum")
+    }
 )
 """The cells that give a result today (consumer, building, with vertical shaking)."""
 

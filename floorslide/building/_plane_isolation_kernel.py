@@ -86,6 +86,9 @@ BREAK_TOL = 1e-14
 """The mat breaks away when ``|G|`` exceeds the friction circle by more than this share of it:
 a mat stuck exactly at the limit (a pendulum at rest at ``mu·R``) has ``|G|`` at the limit up
 to rounding, which is not a breakaway (it would break away and stop again without end)."""
+DROP_TOL = 2.0**-60
+"""A recorded floor coefficient whose term on its segment is at most this share of the
+polynomial's size there is set to zero (below rounding: :func:`_record`)."""
 MAX_STEPS = 200_000
 """Most series steps in one sub-step."""
 STICK, SLIP = 0, 1
@@ -397,12 +400,26 @@ def _record(SEG, COEF, nseg, X, D, n, floors, ga, t0, L, k, ends):
     SEG[nseg, 3] = 1.0 if ends else 0.0
     for f in range(floors.size):
         i = n + floors[f]
+        size = 0.0
         for d in range(2):
+            Lj = 1.0
             for j in range(D):
                 c = (j + 1) * X[d, j + 1, i]
                 if j < 2:
                     c += ga[d, j]
                 COEF[nseg, f, d, j] = c
+                size += abs(c) * Lj
+                Lj *= L
+        # terms below rounding on the segment are dropped: where the speed is small, the
+        # friction direction's series amplify the rounding of the cross velocity into large
+        # high-order coefficients whose contribution on [0, L] is nil, but which would make a
+        # consumer's own series (of the floor's derivatives) stiff
+        for d in range(2):
+            Lj = 1.0
+            for j in range(D):
+                if abs(COEF[nseg, f, d, j]) * Lj <= DROP_TOL * size:
+                    COEF[nseg, f, d, j] = 0.0
+                Lj *= L
 
 
 @njit(cache=True)

@@ -121,14 +121,7 @@ def _on_nonlinear_isolation(
             "exact solver reads the building's motion)",
             "method",
         )
-    if vert is not None:
-        raise ModelError(
-            "vertical shaking with blocks on a building on friction pendulums in the plane is "
-            "not available yet (the bearing's own response takes it: "
-            "floorslide.building.plane_isolation.plane_isolator_response)",
-            "vertical",
-        )
-    motion = PlaneIsolatedMotion(building, pair.h1, pair.h2, pair.dt)
+    motion = PlaneIsolatedMotion(building, pair.h1, pair.h2, pair.dt, vertical=vert)
     res = slide_plane_on_segments(
         motion, 0 if floor is None else floor, mk, ms, vertical=vert, histories=histories,
         compare_1d=compare_1d,
