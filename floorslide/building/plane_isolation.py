@@ -43,11 +43,14 @@ def couples_directions(building) -> bool:
     return isinstance(building, NonlinearIsolatedBuilding)
 
 
-def plane_layer(building) -> tuple[NonlinearIsolatedBuilding, NonlinearIsolatedBuilding]:
+def plane_layer(
+    building, *, bilinear: bool = False
+) -> tuple[NonlinearIsolatedBuilding, NonlinearIsolatedBuilding]:
     """The models along ``x`` and ``y`` of a building on friction pendulums under two
     components: one :class:`NonlinearIsolatedBuilding` (the same superstructure both ways) or a
     pair of them (a superstructure per direction on one mat and one layer). Anything else is
-    refused in one line naming ``building``."""
+    refused in one line naming ``building`` (lead-rubber too, unless `bilinear`: the
+    approximate solvers take it)."""
     if isinstance(building, NonlinearIsolatedBuilding):
         bx = by = building
     elif isinstance(building, tuple | list) and len(building) == 2:
@@ -77,7 +80,7 @@ def plane_layer(building) -> tuple[NonlinearIsolatedBuilding, NonlinearIsolatedB
             f"{type(building).__name__}",
             "building",
         )
-    if not isinstance(bx.isolator, FrictionPendulum):
+    if not bilinear and not isinstance(bx.isolator, FrictionPendulum):
         raise ModelError(
             "lead-rubber (bilinear) bearings under two components are not available yet: "
             "only friction pendulums couple the two directions here",
