@@ -596,6 +596,59 @@ def isolation_solver(key: str, title: str, isolator, ladder: Ladder) -> Solver:
     return Solver(key, title, metrics, tuple(methods), lambda acc, dt: {})
 
 
+def plane_isolation_solver(ladder: Ladder) -> Solver:
+    """The 3-storey building on friction pendulums (mu 0.06, T 3 s) under a pair of components:
+    the peak bearing displacement ``max |u_b|`` (the exact solver's true peak inside steps;
+    Newmark's over its sub-steps; the uncoupled model's at the samples) by the exact coupled
+    solver (:mod:`floorslide.building.plane_isolation`), against Newmark with Newton on a circular
+    yield surface at ``dt/16`` over the friction element's elastic displacement and the
+    uncoupled per-direction model (:mod:`floorslide.building.plane_isolation_approx`)."""
+    from floorslide.building.plane_isolation import plane_isolator_response
+    from floorslide.building.plane_isolation_approx import (
+        newmark_plane_isolator_response,
+        uncoupled_plane_isolator_response,
+    )
+
+    building = nonlinear_building(_pendulum())
+
+    def result(r) -> dict:
+        return {"isolator": np.array([r.peak_displacement])}
+
+    def exact(acc, dt, ctx):
+        return result(plane_isolator_response(building, acc[0], acc[1], dt))
+
+    def newmark(fy: float) -> Run:
+        return lambda acc, dt, ctx: result(
+            newmark_plane_isolator_response(
+                building, acc[0], acc[1], dt, substeps=16, friction_yield=fy
+            )
+        )
+
+    def uncoupled(acc, dt, ctx):
+        return result(uncoupled_plane_isolator_response(building, acc[0], acc[1], dt))
+
+    methods = [Method("exact", "exact", "", exact)]
+    methods += [
+        Method(
+            "newmark",
+            "Newmark + Newton, dt/16, circular friction",
+            f"yield {1000 * fy:g} mm",
+            newmark(fy),
+            16,
+        )
+        for fy in ((2.5e-4, 1e-5) if len(ladder.substeps) < 5 else (2.5e-4, 1e-4, 1e-5))
+    ]
+    methods.append(Method("uncoupled", "each direction alone (1-D exact)", "", uncoupled))
+    return Solver(
+        "isolation-pendulum-plane",
+        "3-storey building on friction pendulums (mu 0.06, T 3 s) under two components",
+        ("isolator",),
+        tuple(methods),
+        lambda acc, dt: {},
+        pair=True,
+    )
+
+
 def solvers(ladder: Ladder) -> tuple[Solver, ...]:
     """Every solver of the study, in the order of the table."""
     stiff, iso = stiff_building(), isolated_building()
@@ -659,6 +712,7 @@ def solvers(ladder: Ladder) -> tuple[Solver, ...]:
             _pendulum(),
             ladder,
         ),
+        plane_isolation_solver(ladder),
         rocking_solver(ladder),
         plane_solver(
             "plane-ground", "Rigid block sliding in the plane on the ground", None, 0, ladder

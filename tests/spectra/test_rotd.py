@@ -240,8 +240,9 @@ def test_bad_components():
         fs.rotd_spectrum((a, a), None, [0.5])
     with pytest.raises(fs.RecordError, match="NaN"):
         fs.rotd_spectrum((a, np.full(100, np.nan)), 0.01, [0.5])
-    nonlinear = fs.NonlinearIsolatedBuilding(SOFT, 1.0, fs.FrictionPendulum(mu=0.06, period=3.0))
-    with pytest.raises(ModelError, match="nonlinear isolators couple the two directions"):
+    lrb = fs.BilinearIsolator(q_ratio=0.06, period=2.5, yield_disp=0.02)
+    nonlinear = fs.NonlinearIsolatedBuilding(SOFT, 1.0, lrb)
+    with pytest.raises(ModelError, match="lead-rubber"):
         fs.rotd_spectrum((a, a), 0.01, [0.5], building=nonlinear, floor=1)
 
 
