@@ -27,6 +27,12 @@ from floorslide.contents._plane_kernel import (
 )
 from floorslide.numerics.polynomial import scratch
 
+JUMP_TOL = 1e-9
+"""A stuck block breaks away at a segment's start when the floor's acceleration there exceeds
+the breakaway level by more than this share: a jump (the mat of a building on friction
+pendulums, whose acceleration jumps at the bearing's stops and breakaways). A continuous floor
+motion reaches the level inside the segment before, where the solver locates it."""
+
 
 @njit(cache=True)
 def plane_segments_kernel(t0, length, step, ends, coef, f, sx, sy, first, g, MU, states, hist,
@@ -108,7 +114,15 @@ def _segment_steps(t0, length, step, ends, coef, f, sx, sy, first, g, MU, states
             vslope = (accv[k + 1] - accv[k]) / dt
             n0 = g + accv[k] + vslope * (t0[s] - k * dt)
             nlow = min(n0, n0 + vslope * h)
+        a0 = c1[0] * c1[0] + c2[0] * c2[0]
         for i in range(nobj):
+            if (states[i, MODE] == 0.0 and n0 > 0.0
+                    and a0 > (MU[0, i] * n0 * (1.0 + JUMP_TOL)) ** 2):  # fmt: skip
+                # the floor's acceleration jumped beyond the breakaway level at the segment's
+                # start (a bearing's stop or breakaway): the block starts to slide from rest
+                states[i, MODE] = 1.0
+                states[i, SLIPS] += 1.0
+                states[i, START] = 1.0
             if states[i, MODE] == 0.0 and nlow > 0.0 and reach <= MU[0, i] * nlow:
                 continue  # |a| ≤ Σ_j |c_j| h^j stays below the breakaway level
             st = states[i]

@@ -35,7 +35,8 @@ def test_along_an_azimuth_blocks_and_spectra_are_the_1d_buildings(strong, deg):
     b = building(stories=2, mu_s=0.07)
     th = np.radians(deg)
     motion = PlaneIsolatedMotion(b, a * np.cos(th), a * np.sin(th), dt)
-    for floor in (1, 2):
+    # the mat (floor 0) too, whose acceleration jumps at the bearing's stops, on the axes
+    for floor in (1, 2) if 0.0 < deg < 90.0 else (0, 1, 2):
         one = fs.slide(a, dt, MU, building=b, floor=floor)
         got = slide_plane_on_segments(motion, floor, MU, compare_1d=False)
         assert one.peak_slide.max() > 0.01

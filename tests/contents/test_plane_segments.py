@@ -182,3 +182,28 @@ def test_a_large_degree_23_term(L, mu_s):
     assert r.slide_fraction[0] * L == pytest.approx(L - tb, rel=1e-14)
     assert r.peak_angle[0] == pytest.approx(-150.0, abs=1e-12)
     assert (r.slip_phases[0], r.stops[0]) == (1, 0)
+
+
+def test_a_jump_of_the_floor_acceleration_at_a_segment_start_breaks_a_block_away():
+    """The mat of a building on friction pendulums jumps in acceleration at the bearing's stops:
+    a stuck block on it breaks away at the segment's start. Constant a = 0.2 then −1.75 m/s²
+    (each for half a step): the closed form of a block with mu = 0.03 from rest."""
+    from floorslide.building.poly_segments import DEGREE, PolySegments
+    from floorslide.constants import G
+
+    class Jumps:
+        dt, npts, floors, notes = 0.02, 2, (0,), ()
+
+        def poly_chunks(self):
+            coef = np.zeros((2, 1, 2, DEGREE))
+            coef[:, 0, 0, 0] = [0.2, -1.75]
+            yield PolySegments(np.array([0.0, 0.01]), np.array([0.01, 0.01]),
+                               np.zeros(2, dtype=np.int64), np.array([False, True]), coef,
+                               (0,), 0, 1)  # fmt: skip
+
+    mu = 0.03
+    r = slide_plane_on_segments(Jumps(), 0, [mu], compare_1d=False)
+    # u'' = 1.75 − mu g from rest for 0.01 s (the block stays stuck under 0.2 < mu g)
+    expect = 0.5 * (1.75 - mu * G) * 0.01**2
+    assert r.slip_phases[0] == 1
+    assert r.peak_slide[0] == pytest.approx(expect, rel=1e-12)
