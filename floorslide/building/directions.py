@@ -87,9 +87,9 @@ def per_direction(building) -> tuple[LinearBuilding | None, LinearBuilding | Non
         return building, building
     if getattr(building, "segmented", False):
         raise ModelError(
-            "two horizontal components on a building on nonlinear isolation are not available "
-            "yet: its bearings respond to both components together (nonlinear isolators couple "
-            "the two directions), and running each direction alone would misstate them",
+            "a building on nonlinear isolation has no motion per direction (nonlinear isolators "
+            "couple the two directions): fs.slide_plane and fs.rotd_spectrum read its coupled "
+            "plane motion; studies of pair sets on it are not available yet",
             "building",
         )
     raise ModelError(
