@@ -172,6 +172,9 @@ class PlaneIsolatorResponse:
         ``u_b`` at the end of the record, m (2-vector).
     peak_force_ratio
         The largest ``|f_b|/W`` (restoring plus friction) over the steps' ends.
+    force_ratio
+        The bearing's force vector over the weight at the samples, ``(npts, 2)`` (with
+        `displacement`, its hysteresis in each direction).
     friction_work
         ``∫ mu N |V| dt``, J.
     slide_fraction
@@ -199,6 +202,7 @@ class PlaneIsolatorResponse:
     sliding: np.ndarray
     event_times: np.ndarray
     event_kinds: tuple[str, ...]
+    force_ratio: np.ndarray | None = None
     capacity_exceeded: bool = False
     small_angle_exceeded: bool = False
     notes: tuple[str, ...] = ()
@@ -348,6 +352,7 @@ class PlaneIsolatedMotion:
             sliding=sliding,
             event_times=EV[:kept, 0].copy(),
             event_kinds=tuple(_KIND_NAMES[int(k)] for k in EV[:kept, 1]),
+            force_ratio=force / W,
             capacity_exceeded=bool(exceeded),
             small_angle_exceeded=bool(small),
             notes=notes,

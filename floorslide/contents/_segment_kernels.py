@@ -243,3 +243,45 @@ def rockers_on_segments(SI, SF, SX, nseg, substeps, OR, OB, K, rk_out, rk_par, r
                     rk_hist[i, k] = np.nan
                 else:
                     rk_hist[i, k] = rk_states[i, RK_TH]
+
+
+@njit(cache=True)
+def rockers_on_poly(t0, length, step, ends, C, rk_par, rk_states, g, D, nonlinear, phase,
+                    max_events, RB, rk_hist):  # fmt: skip
+    """Advance rocking blocks standing on one floor through one chunk of a poly motion's
+    segments (:mod:`floorslide.building.poly_segments`) along one component: on segment ``s``
+    the floor's acceleration is ``Σ_j C[s, j] τ^j``, ``τ ∈ [0, length[s]]``; each block goes
+    through it in parts with ``p·L ≤ phase``
+    (:func:`~floorslide.contents._rocking_kernel.block_through`), a block at rest skipped while
+    the coefficient bound stays below its uplift level. With a row of ``rk_hist`` per block,
+    ``θ`` at the samples (NaN once overturned)."""
+    K = C.shape[1] - 1
+    c, cs, cw = RB[0, : K + 1], RB[1, : K + 1], RB[2, : K + 1]
+    t, S, Cc, u = RB[3, : D + 1], RB[4, : D + 1], RB[5, : D + 1], RB[6, : D + 1]
+    q = RB[7]
+    work = RB[8:]
+    nrk = rk_par.shape[0]
+    want = nrk > 0 and rk_hist.shape[0] == nrk
+    for s in range(t0.size):
+        L = length[s]
+        reach = 0.0
+        for j in range(K, -1, -1):
+            c[j] = C[s, j]
+            reach = reach * L + abs(c[j])
+        for i in range(nrk):
+            st = rk_states[i]
+            if st[RK_MODE] == RK_OVERTURNED:
+                continue
+            par = rk_par[i]
+            if st[RK_MODE] == 0.0 and reach <= g * par[P_TAN]:
+                continue
+            parts = max(1, int(np.ceil(par[P_P] * L / phase - 1e-12)))
+            block_through(st, par, c, K, L, parts, t0[s], g, D, nonlinear, max_events, cs, t, S,
+                          Cc, u, q, cw, work)  # fmt: skip
+        if want and ends[s]:
+            k = step[s] + 1
+            for i in range(nrk):
+                if rk_states[i, RK_MODE] == RK_OVERTURNED:
+                    rk_hist[i, k] = np.nan
+                else:
+                    rk_hist[i, k] = rk_states[i, RK_TH]

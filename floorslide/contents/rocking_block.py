@@ -186,7 +186,10 @@ def rock(
     ----------
     acc
         Ground acceleration samples, m/s² (with `building`), or the motion the blocks stand on
-        (without), piecewise linear; an ObsPy Trace; or a :class:`~floorslide.FloorMotion`.
+        (without), piecewise linear; an ObsPy Trace; a :class:`~floorslide.FloorMotion`; or a
+        :class:`~floorslide.building.poly_peaks.PolyComponent` (one floor of a poly motion
+        along one component — a building on friction pendulums under a pair: the block's
+        faces along that component; exact methods only).
     dt
         Time step, s (as for :func:`~floorslide.slide`).
     width, height
@@ -237,7 +240,27 @@ def rock(
         raise ModelError(
             f"unknown method {method!r}; expected one of {', '.join(ROCK_METHODS)}", "method"
         )
-    fm, a, dt, notes = unwrap(acc, dt, building, floor)
+    from floorslide.building.poly_peaks import PolyComponent
+
+    poly = acc if isinstance(acc, PolyComponent) else None
+    if poly is not None:
+        if building is not None or floor is not None:
+            raise ModelError(
+                "acc is a PolyComponent (one floor along one component): give no building= "
+                "or floor=",
+                "building",
+            )
+        if dt is not None and not np.isclose(float(dt), poly.dt, rtol=1e-9, atol=0.0):
+            raise ModelError(f"dt={dt} differs from the PolyComponent's dt={poly.dt}", "dt")
+        if method in APPROXIMATE:
+            raise ModelError(
+                f"method={method!r} reads samples; a PolyComponent is rocked by 'exact' or "
+                "'nonlinear' (its polynomial segments)",
+                "method",
+            )
+        fm, a, dt, notes = None, None, poly.dt, tuple(getattr(poly.motion, "notes", ()))
+    else:
+        fm, a, dt, notes = unwrap(acc, dt, building, floor)
     if fm is not None:
         building, floor = fm.building, fm.floor
     # a floor of a building on nonlinear isolation: its segments, integrated once
@@ -258,7 +281,9 @@ def rock(
     par[:, rk.P_R] = r
     par[:, rk.P_TAN] = B / H
     par[:, rk.P_PARTS] = 1
-    if on_isolation:
+    if poly is not None:
+        pass
+    elif on_isolation:
         if fm is None:
             fm = building.motion(a, dt, floors=[floor]).floor(floor)
     else:
@@ -284,8 +309,10 @@ def rock(
         states[:, rk.MODE] = np.sign(th0)
         states[:, rk.PEAK] = np.abs(th0) / alpha
         states[:, rk.T_PEAK] = np.where(th0 != 0.0, 0.0, np.nan)
-    npts = a.size
-    if on_isolation:
+    npts = poly.npts if poly is not None else a.size
+    if poly is not None:
+        hist = _rock_on_poly(poly, par, states, nonlinear, histories)
+    elif on_isolation:
         from floorslide.contents.segmented import rockers_on_segments
 
         hist = rockers_on_segments(fm, par, states, nonlinear, histories)
@@ -345,6 +372,28 @@ def rock(
         theta=hist if histories else None,
     )
     return replace(result, notes=notes) if notes else result
+
+
+def _rock_on_poly(poly, par, states, nonlinear, histories):
+    """Rocking blocks on one floor of a poly motion along one component (its segments'
+    polynomials, :func:`~floorslide.contents._segment_kernels.rockers_on_poly`); ``θ`` at the
+    samples with `histories`."""
+    from floorslide.building.poly_segments import DEGREE, checked_chunks
+    from floorslide.contents import _segment_kernels as sk
+
+    K = DEGREE - 1
+    phase = rk.NONLINEAR_PHASE if nonlinear else rk.LINEAR_PHASE
+    D = max(K + 2, taylor_degree(phase * (2.0 if nonlinear else 1.0)))
+    hist = np.zeros((par.shape[0], poly.npts) if histories else (0, 0))
+    if histories:
+        hist[:, 0] = states[:, rk.TH]
+    RB = sk.rocker_workspace(K, D)
+    row, d = poly.row, poly.direction
+    for seg in checked_chunks(poly.motion):
+        C = np.ascontiguousarray(seg.coef[:, row, d])
+        sk.rockers_on_poly(seg.t0, seg.length, seg.step, seg.ends, C, par, states, G, D,
+                           nonlinear, phase, rk.ROCK_MAX_EVENTS, RB, hist)  # fmt: skip
+    return hist
 
 
 def _approximate(acc, dt, building, floor, B, H, alpha, p, r, method, substeps, rtol, integrator,

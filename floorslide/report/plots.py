@@ -554,10 +554,51 @@ def _hysteresis_tasks(study: Study, record_set: str) -> list[TaskResult]:
     )
 
 
+def _orbit_panel(ax, t: TaskResult) -> None:
+    """One building's bearing orbit under a pair (mm, along h1 and h2), its peak vector (inside
+    steps) and the capacity circle, when given (red when exceeded)."""
+    h, m = t.histories, t.meta
+    x = 1000.0 * np.asarray(h.isolator_displacement, dtype=float)
+    y = 1000.0 * np.asarray(h.isolator_displacement_h2, dtype=float)
+    ax.plot(x, y, lw=0.8, color="tab:blue", label="orbit (at the samples)")
+    ax.plot(x[-1:], y[-1:], "o", ms=4, color="tab:blue", mfc="white", label="end (residual)")
+    peak = 1000.0 * float(m.get("isolator_peak_displacement", math.nan))
+    th = math.radians(float(m.get("isolator_peak_direction", math.nan)))
+    reach = float(np.nanmax(np.hypot(x, y))) if x.size else 0.0
+    if math.isfinite(peak) and math.isfinite(th):
+        ax.plot([peak * math.cos(th)], [peak * math.sin(th)], "o", ms=5, color="0.3",
+                label=f"peak |u0| = {peak:.4g} mm at {math.degrees(th):.0f}°")  # fmt: skip
+        reach = max(reach, peak)
+    capacity = 1000.0 * float(m.get("isolator_capacity", math.nan))
+    if math.isfinite(capacity):
+        exceeded = bool(m.get("isolator_capacity_exceeded", 0))
+        phi = np.linspace(0.0, 2.0 * np.pi, 361)
+        ax.plot(capacity * np.cos(phi), capacity * np.sin(phi), ls=":", lw=1.4,
+                color="red" if exceeded else "tab:orange",
+                label=f"capacity {capacity:.4g} mm"
+                + (": EXCEEDED (impact not modelled)" if exceeded else ""))  # fmt: skip
+        reach = max(reach, capacity)
+    lim = 1.08 * reach if reach > 0 else 1.0
+    ax.set_xlim(-lim, lim)
+    ax.set_ylim(-lim, lim)
+    ax.set_aspect("equal", adjustable="box")
+    ax.axhline(0.0, color="0.6", lw=0.6)
+    ax.axvline(0.0, color="0.6", lw=0.6)
+    ax.set_xlabel("bearing displacement along h1 (mm)")
+    ax.set_ylabel("along h2 (mm)")
+    ax.set_title(f"{m['building']}, record {m['record']}\n{_layer_label(m)}", fontsize="medium")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize="small", loc="upper left")
+
+
 def _hysteresis_panel(ax, t: TaskResult) -> None:
     """One building's loop: force / W against isolator displacement (mm), with its peak
-    displacement (inside steps) and its capacity marked."""
+    displacement (inside steps) and its capacity marked; under a pair, the bearing's orbit in
+    the plane (:func:`_orbit_panel`)."""
     h, m = t.histories, t.meta
+    if getattr(h, "isolator_displacement_h2", None) is not None:
+        _orbit_panel(ax, t)
+        return
     x = 1000.0 * np.asarray(h.isolator_displacement, dtype=float)
     y = np.asarray(h.isolator_force_ratio, dtype=float)
     ax.plot(x, y, lw=0.8, color="tab:blue", label="loop (at the samples)")
@@ -594,7 +635,8 @@ def figure_hysteresis(study: Study, record_set: str) -> Figure | None:
     """Hysteresis loops of the set's history task(s) on nonlinear isolation, or None.
 
     One panel per building on nonlinear isolation that stored its loop (at most
-    :data:`MAX_BUILDING_PANELS`): the isolation layer's force over the total weight (V/W)
+    :data:`MAX_BUILDING_PANELS`; under a pair of components, its orbit in the plane with the
+    capacity circle instead): the isolation layer's force over the total weight (V/W)
     against the isolator displacement (mm) at the samples, the true peak displacement (found inside
     steps) as dashed lines and the layer's capacity, when given, dotted (red when exceeded:
     the impact that would follow is not modelled).
@@ -605,11 +647,16 @@ def figure_hysteresis(study: Study, record_set: str) -> Figure | None:
     tasks, cut = _pick(tasks, MAX_BUILDING_PANELS)
     fig, axes = _new_figure(len(tasks))
     records = sorted({str(t.meta["record"]) for t in tasks})
+    what = (
+        "Bearing orbit — isolator displacement in the plane of the pair"
+        if all(getattr(t.histories, "isolator_displacement_h2", None) is not None for t in tasks)
+        else "Isolator hysteresis — force / W versus isolator displacement"
+    )
     _suptitle(
         fig,
         study,
-        f"Isolator hysteresis — force / W versus isolator displacement, record "
-        f"{', '.join(records)}, set {record_set}" + (" (some buildings left out)" if cut else ""),
+        f"{what}, record {', '.join(records)}, set {record_set}"
+        + (" (some buildings left out)" if cut else ""),
     )
     for ax, t in zip(axes, tasks, strict=True):
         _hysteresis_panel(ax, t)

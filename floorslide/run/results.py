@@ -131,7 +131,10 @@ class Histories:
 
     For a pair of horizontal components ``floor_acceleration`` is along ``h1`` and
     ``floor_acceleration_h2`` along ``h2``; ``slides`` holds the slide's magnitude ``|u|`` and
-    ``plane`` the slide vector ``(u_h1, u_h2)`` (``(n_mu, npts, 2)``, the path in the plane).
+    ``plane`` the slide vector ``(u_h1, u_h2)`` (``(n_mu, npts, 2)``, the path in the plane);
+    on nonlinear isolation ``isolator_displacement``/``isolator_force_ratio`` are then along
+    ``h1`` and ``isolator_displacement_h2``/``isolator_force_ratio_h2`` along ``h2`` (the
+    bearing's orbit and its force vector over W).
     """
 
     dt: float
@@ -146,6 +149,8 @@ class Histories:
     rocking: dict[str, np.ndarray] = field(default_factory=dict)  # θ/α, (npts,), NaN overturned
     plane: dict[str, np.ndarray] = field(default_factory=dict)  # pairs: u, (n_mu, npts, 2), m
     floor_acceleration_h2: np.ndarray | None = None  # pairs: along h2, (n_floors, npts), m/s²
+    isolator_displacement_h2: np.ndarray | None = None  # pairs on nonlinear isolation, (npts,)
+    isolator_force_ratio_h2: np.ndarray | None = None  # pairs on nonlinear isolation, (npts,)
 
 
 @dataclass

@@ -23,6 +23,10 @@ Layout (every dataset carries a ``units`` attribute; ``1`` means dimensionless):
                              (pendulum), and the results isolator_peak_displacement (m),
                              isolator_residual_displacement (m), isolator_peak_force_ratio
                              (peak base shear / W), isolator_capacity_exceeded (0/1);
+                             under a pair (friction pendulums in the plane) the peak and
+                             residual are the vector's length, with isolator_peak_direction
+                             (degrees from h1 towards h2), isolator_residual_h1 and
+                             isolator_residual_h2 (m);
                              sha256 (the task's digest, written with it); done = 1, set last
       floors                 floors output (0 = ground or base mat)
       pfa                    true peak floor acceleration per floor (m/s**2); of a pair of
@@ -68,7 +72,9 @@ Layout (every dataset carries a ``units`` attribute; ``1`` means dimensionless):
                              overturned) for contents that rock under the record; for a pair
                              floor_acceleration_h2 (m/s**2, along h2; floor_acceleration is
                              along h1), and slides/.../u is |u|, u_plane (m, (n_mu, npts, 2))
-                             the path in the plane
+                             the path in the plane; on nonlinear isolation the bearing's
+                             histories above are along h1, isolator_displacement_h2 (m) and
+                             isolator_force_ratio_h2 (1) along h2 (its orbit)
 
 Reading stays backward compatible: a file written before the unbroadened spectra were kept
 has no ``broadening`` attr on ``spectra/floor_<f>``; if its scene asked for broadening, its
@@ -171,6 +177,8 @@ UNITS = {
     "top_accel": "m/s**2",
     "isolator_displacement": "m",
     "isolator_force_ratio": "1",
+    "isolator_displacement_h2": "m",
+    "isolator_force_ratio_h2": "1",
     "rock_peak_ratio": "1",
     "rock_impacts": "1",
     "rock_significant_impacts": "1",
@@ -201,7 +209,12 @@ SPECTRUM_FIELDS = ("periods", "damping", "psa", "sa", "sv", "sd")
 ORDINATE_FIELDS = ("psa", "sa", "sv", "sd")
 ROTD_FIELDS = ("rotd100", "psa_h1", "psa_h2")
 """The spectra of a pair beside RotD50 (``psa``): RotD100 and each direction's PSA."""
-ISOLATOR_HISTORIES = ("isolator_displacement", "isolator_force_ratio")
+ISOLATOR_HISTORIES = (
+    "isolator_displacement",
+    "isolator_force_ratio",
+    "isolator_displacement_h2",
+    "isolator_force_ratio_h2",
+)
 """Histories of a building on nonlinear isolation (absent for other buildings)."""
 
 DIGEST_ATTR = "sha256"

@@ -455,21 +455,66 @@ def _run_pair(task: Task, force: bool, t0: float) -> TaskResult:
     the plane (:func:`floorslide.slide_plane`), beside each component's 1-D slide; a floor's
     PFA is the true peak of its acceleration vector (:func:`~floorslide.building.directions.
     plane_peak`), its per-direction peaks are kept too; a block that rocks rocks in the plane of
-    each component (its faces along them), and the more severe of the two is reported."""
+    each component (its faces along them), and the more severe of the two is reported.
+
+    On friction pendulums the building is integrated once, coupled in the plane
+    (:class:`~floorslide.building.plane_isolation.PlaneIsolatedMotion`, its segments kept in
+    memory): every floor peak (:func:`~floorslide.building.poly_peaks.poly_peaks`), block,
+    rocker, spectrum and history reads that one motion, and the bearing's outputs (peak
+    displacement and direction, residual vector, peak force over W) go into the task's
+    attributes (docs/design.md §10b)."""
     from floorslide.building.directions import plane_motions, plane_peak
+    from floorslide.building.plane_isolation import PlaneIsolatedMotion, couples_directions
+    from floorslide.building.poly_peaks import KeptPolyMotion, PolyComponent, poly_peaks
+    from floorslide.building.poly_segments import samples_on_poly
     from floorslide.constants import G
     from floorslide.contents.plane import slide_plane
+    from floorslide.contents.plane_segments import slide_plane_on_segments
 
     rec = task.record
     dt = rec.dt
     model = task.building.build_plane()
     floors = list(task.floors)
-    motions = {f: plane_motions(model, rec.acc, rec.acc2, dt, f) for f in floors}
-    pfa = np.array([plane_peak(*motions[f])[0] for f in floors])
-    per_dir = np.array([[fm.peak()[0] for fm in motions[f]] for f in floors]).reshape(-1, 2)
+    meta = _meta(task)
+    coupled = None
+    if couples_directions(model):
+        coupled = KeptPolyMotion(PlaneIsolatedMotion(model, rec.acc, rec.acc2, dt))
+        peaks = poly_peaks(coupled, floors)
+        pfa, per_dir = peaks.peak, peaks.components
+        iso = coupled.response
+        bx = coupled.building[0]
+        meta.update(
+            isolator=task.building.isolator_model,
+            **isolator_parameters(bx),
+            isolator_peak_displacement=iso.peak_displacement,
+            isolator_peak_direction=iso.peak_direction,
+            isolator_residual_displacement=float(np.hypot(*iso.residual)),
+            isolator_residual_h1=float(iso.residual[0]),
+            isolator_residual_h2=float(iso.residual[1]),
+            isolator_peak_force_ratio=iso.peak_force_ratio,
+            isolator_capacity_exceeded=int(iso.capacity_exceeded),
+            isolator_small_angle_exceeded=int(iso.small_angle_exceeded),
+        )
+    else:
+        motions = {f: plane_motions(model, rec.acc, rec.acc2, dt, f) for f in floors}
+        pfa = np.array([plane_peak(*motions[f])[0] for f in floors])
+        per_dir = np.array([[fm.peak()[0] for fm in motions[f]] for f in floors]).reshape(-1, 2)
     pfa_of = dict(zip(floors, pfa, strict=True))
-    result = TaskResult(task.task_id, _meta(task), np.array(floors, dtype=np.int64), pfa)
+    result = TaskResult(task.task_id, meta, np.array(floors, dtype=np.int64), pfa)
     result.pfa_components = per_dir
+
+    def plane_slide(mu_k, mu_s, floor, vert, **kw):
+        if coupled is not None:
+            return slide_plane_on_segments(coupled, floor, mu_k, mu_s, vertical=vert, **kw)
+        return slide_plane((rec.acc, rec.acc2), dt, mu_k, mu_s, building=model,
+                           floor=floor if model is not None else None, vertical=vert,
+                           **kw)  # fmt: skip
+
+    def components(floor):
+        if coupled is not None:
+            return PolyComponent(coupled, floor, 0), PolyComponent(coupled, floor, 1)
+        return motions[floor]
+
     hist_slides, hist_mu, hist_plane, hist_rock = {}, {}, {}, {}
     for content, floor in task.contents:
         with _naming(f"content {content.id} on floor {floor}"):
@@ -484,12 +529,9 @@ def _run_pair(task: Task, force: bool, t0: float) -> TaskResult:
             for arr in (r1, r2, one_d):
                 arr[rocks] = np.nan
             idx = np.nonzero(integrate)[0]
-            fm1, fm2 = motions[floor]
             vert = rec.vertical if content.vertical else None
             if idx.size:
-                r = slide_plane((rec.acc, rec.acc2), dt, mu[idx], mu_s[idx], building=model,
-                                floor=floor if model is not None else None,
-                                vertical=vert)  # fmt: skip
+                r = plane_slide(mu[idx], mu_s[idx], floor, vert)
                 peak[idx], frac[idx], slips[idx] = r.peak_slide, r.slide_fraction, r.slip_phases
                 resid[idx] = np.hypot(r.residual[:, 0], r.residual[:, 1])
                 r1[idx], r2[idx] = r.residual[:, 0], r.residual[:, 1]
@@ -506,11 +548,13 @@ def _run_pair(task: Task, force: bool, t0: float) -> TaskResult:
                 if vert is not None:
                     acc_obj[idx[slid]] = np.nan
 
-            def rocker(fm1=fm1, fm2=fm2, content=content):
+            fms = components(floor)
+
+            def rocker(fms=fms, content=content):
                 kw = dict(width=content.width, height=content.height,
                           restitution=content.restitution, method=content.rocking,
                           histories=task.histories)  # fmt: skip
-                return _worse_rocking(rock_blocks(fm1, **kw), rock_blocks(fm2, **kw))
+                return _worse_rocking(rock_blocks(fms[0], **kw), rock_blocks(fms[1], **kw))
 
             rocking = rocking_results(content, modes, rocker)
             rock_result = rocking.pop("result", None)
@@ -537,9 +581,8 @@ def _run_pair(task: Task, force: bool, t0: float) -> TaskResult:
                 hist_rock[key] = rock_result.theta[0] / rock_result.alpha[0]
             if task.histories:
                 pick = np.unique(np.linspace(0, n - 1, min(HISTORY_MU, n)).round().astype(int))
-                r = slide_plane((rec.acc, rec.acc2), dt, mu[pick], mu_s[pick], building=model,
-                                floor=floor if model is not None else None, histories=True,
-                                compare_1d=False, vertical=vert)  # fmt: skip
+                r = plane_slide(mu[pick], mu_s[pick], floor, vert, histories=True,
+                                compare_1d=False)  # fmt: skip
                 u = r.u
                 u[rocks[pick]] = np.nan
                 hist_plane[key] = u
@@ -547,29 +590,46 @@ def _run_pair(task: Task, force: bool, t0: float) -> TaskResult:
                 hist_mu[key] = mu[pick]
     for floor in task.spectra_floors:
         with _naming(f"floor spectrum of floor {floor}"):
-            result.spectra.append(_pair_spectrum(task, model, floor))
+            result.spectra.append(_pair_spectrum(task, model, floor, coupled))
     if task.histories:
         fl = np.array(floors, dtype=np.int64)
-        acc1 = np.array([motions[f][0].samples() for f in floors]).reshape(-1, rec.acc.size)
-        acc2 = np.array([motions[f][1].samples() for f in floors]).reshape(-1, rec.acc.size)
+        bearing = {}
+        if coupled is not None:
+            both = samples_on_poly(coupled, floors).reshape(len(floors), 2, rec.acc.size)
+            acc1, acc2 = both[:, 0].copy(), both[:, 1].copy()
+            iso = coupled.response
+            bearing = dict(
+                isolator_displacement=iso.displacement[:, 0].copy(),
+                isolator_force_ratio=iso.force_ratio[:, 0].copy(),
+                isolator_displacement_h2=iso.displacement[:, 1].copy(),
+                isolator_force_ratio_h2=iso.force_ratio[:, 1].copy(),
+            )
+        else:
+            acc1 = np.array([motions[f][0].samples() for f in floors]).reshape(-1, rec.acc.size)
+            acc2 = np.array([motions[f][1].samples() for f in floors]).reshape(-1, rec.acc.size)
         result.histories = Histories(
             dt, fl, acc1, hist_slides, hist_mu, rocking=hist_rock,
-            plane=hist_plane, floor_acceleration_h2=acc2,
+            plane=hist_plane, floor_acceleration_h2=acc2, **bearing,
         )  # fmt: skip
     result.seconds = time.perf_counter() - t0
     return result
 
 
-def _pair_spectrum(task: Task, model, floor: int) -> SpectrumResult:
-    """The floor spectrum of a pair (:func:`floorslide.rotd_spectrum`): RotD50 as ``psa`` (and
-    ``sd = psa/ω²``), RotD100 and each direction's PSA beside it; ``sa`` and ``sv`` are NaN
-    (RotD is defined on the oscillator's displacement)."""
+def _pair_spectrum(task: Task, model, floor: int, coupled=None) -> SpectrumResult:
+    """The floor spectrum of a pair (:func:`floorslide.rotd_spectrum`; on the `coupled` poly
+    motion of a building on friction pendulums, :func:`~floorslide.spectra.poly_segments.
+    rotd_on_poly`): RotD50 as ``psa`` (and ``sd = psa/ω²``), RotD100 and each direction's PSA
+    beside it; ``sa`` and ``sv`` are NaN (RotD is defined on the oscillator's displacement)."""
     from floorslide.spectra.core import Spectrum
+    from floorslide.spectra.poly_segments import rotd_on_poly
     from floorslide.spectra.rotd import rotd_spectrum
 
     rec, sc = task.record, task.spectra
-    r = rotd_spectrum((rec.acc, rec.acc2), rec.dt, np.asarray(sc.periods), list(sc.damping),
-                      building=model, floor=floor if model is not None else None)  # fmt: skip
+    if coupled is not None:
+        r = rotd_on_poly(coupled, floor, np.asarray(sc.periods), list(sc.damping))
+    else:
+        r = rotd_spectrum((rec.acc, rec.acc2), rec.dt, np.asarray(sc.periods), list(sc.damping),
+                          building=model, floor=floor if model is not None else None)  # fmt: skip
     T = r.periods
     w2 = np.where(T > 0, (2 * np.pi / np.where(T > 0, T, 1.0)) ** 2, np.inf)
     psa = r.rotd50

@@ -802,6 +802,7 @@ def _check_buildings(scene: Scene, records: list[LoadedRecord]) -> None:
     user's patience, so it is an invalid scene, one line per building, before anything runs
     (``--dry-run`` says so too)."""
     from floorslide.building.directions import per_direction
+    from floorslide.building.plane_isolation import couples_directions, plane_layer
     from floorslide.errors import ModelError
 
     coarsest = max(records, key=lambda r: r.dt) if records else None
@@ -809,7 +810,12 @@ def _check_buildings(scene: Scene, records: list[LoadedRecord]) -> None:
     for b in scene.buildings:
         key = f"{_building_key(scene, b.base)} (building {b.id!r}"
         try:
-            models = per_direction(b.build_plane()) if b.two_way else (b.build(),)
+            if not b.two_way:
+                models = (b.build(),)
+            elif couples_directions(plane := b.build_plane()):
+                models = plane_layer(plane)  # friction pendulums in the plane (not lead-rubber)
+            else:
+                models = per_direction(plane)
             if coarsest is None:
                 continue
             key += f", under record {coarsest.label}"
@@ -904,12 +910,21 @@ def plan(scene: Scene, *, force: bool = False, evaluate: bool = True) -> Plan:
             floors = sorted({f for _, f in t.contents})
             if t.record.is_pair:
                 from floorslide.building.directions import plane_motions, plane_peak
+                from floorslide.building.plane_isolation import (
+                    PlaneIsolatedMotion,
+                    couples_directions,
+                )
+                from floorslide.building.poly_peaks import poly_peaks
 
                 model = t.building.build_plane()
                 r = t.record
-                peaks = [
-                    plane_peak(*plane_motions(model, r.acc, r.acc2, r.dt, f))[0] for f in floors
-                ]
+                if couples_directions(model):  # friction pendulums: one coupled motion
+                    motion = PlaneIsolatedMotion(model, r.acc, r.acc2, r.dt)
+                    peaks = poly_peaks(motion, floors).peak.tolist()
+                else:
+                    peaks = [
+                        plane_peak(*plane_motions(model, r.acc, r.acc2, r.dt, f))[0] for f in floors
+                    ]
                 pfa = dict(zip(floors, peaks, strict=True))
                 for c, f in t.contents:
                     _modes, integrate, reasons = decide(c, pfa[f], force)
