@@ -602,10 +602,13 @@ def plane_isolation_solver(ladder: Ladder) -> Solver:
     Newmark's over its sub-steps; the uncoupled model's at the samples) by the exact coupled
     solver (:mod:`floorslide.building.plane_isolation`), against Newmark with Newton on a circular
     yield surface at ``dt/16`` over the friction element's elastic displacement and the
-    uncoupled per-direction model (:mod:`floorslide.building.plane_isolation_approx`)."""
+    smoothed (Park–Wen) bidirectional bearing through ``solve_ivp`` over its elastic
+    displacement ``Y``, and the uncoupled per-direction model
+    (:mod:`floorslide.building.plane_isolation_approx`)."""
     from floorslide.building.plane_isolation import plane_isolator_response
     from floorslide.building.plane_isolation_approx import (
         newmark_plane_isolator_response,
+        smoothed_plane_isolator_response,
         uncoupled_plane_isolator_response,
     )
 
@@ -637,6 +640,22 @@ def plane_isolation_solver(ladder: Ladder) -> Solver:
             16,
         )
         for fy in ((2.5e-4, 1e-5) if len(ladder.substeps) < 5 else (2.5e-4, 1e-4, 1e-5))
+    ]
+
+    def smoothed(y: float) -> Run:
+        return lambda acc, dt, ctx: result(
+            smoothed_plane_isolator_response(building, acc[0], acc[1], dt, yield_disp=y)
+        )
+
+    methods += [
+        Method(
+            "smoothed",
+            "Park–Wen smoothed bearing, solve_ivp LSODA rtol 1e-8",
+            f"Y {1000 * y:g} mm",
+            smoothed(y),
+            rtol=1e-8,
+        )
+        for y in ((2.5e-4,) if len(ladder.substeps) < 5 else (1e-3, 2.5e-4, 2.5e-5))
     ]
     methods.append(Method("uncoupled", "each direction alone (1-D exact)", "", uncoupled))
     return Solver(

@@ -88,8 +88,8 @@ def per_direction(building) -> tuple[LinearBuilding | None, LinearBuilding | Non
     if getattr(building, "segmented", False):
         raise ModelError(
             "a building on nonlinear isolation has no motion per direction (nonlinear isolators "
-            "couple the two directions): fs.slide_plane and fs.rotd_spectrum read its coupled "
-            "plane motion; studies of pair sets on it are not available yet",
+            "couple the two directions): fs.slide_plane, fs.rotd_spectrum and scenes with pair "
+            "sets read its coupled plane motion (PlaneIsolatedMotion)",
             "building",
         )
     raise ModelError(
