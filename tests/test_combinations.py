@@ -78,7 +78,10 @@ RUNS = (
         and not (b == "a pair of models" and c not in ("slide_plane", "rotd_spectrum"))
         and not (b == "lead-rubber" and c in ("slide_plane", "rotd_spectrum"))
     }
-    | {("slide", b, True) for b in ("ground", "fixed", "linear isolated")}
+    | {
+        ("slide", b, True)
+        for b in ("ground", "fixed", "linear isolated", "friction pendulum", "lead-rubber")
+    }
     | {
         ("slide_plane", b, True)
         for b in ("ground", "fixed", "linear isolated", "a pair of models", "friction pendulum")

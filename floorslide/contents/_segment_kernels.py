@@ -167,22 +167,35 @@ def block_workspace(K, ncol, g, allow_pos, allow_neg):
 
 @njit(cache=True)
 def blocks_on_segments(SI, SF, SX, SY, nseg, substeps, G, OR, OB, n, BLK, MU, bstates, buf, rw,
-                       pk, flags, g, hist_u):  # fmt: skip
+                       pk, flags, g, hist_u, accv, has_vert, dt):  # fmt: skip
     """Advance rigid blocks through the segments ``0 … nseg − 1`` of a building's motion
     (``SI[s] = (row, branch matrices, whole sub-step, ends its sub-step)``, ``SF[s] = (a_s,
     a_end, slope, L, t)``, states ``SX[s]``, ``SY[s]`` at its ends): each by
     :func:`_blocks_substep`, as on a linear building. Block ``i`` stands on floor ``BLK[1, i]``
     (state index), output row ``BLK[0, i]`` (sorted), friction ``MU[:, i]`` (breakaway,
     kinetic); ``bstates`` the columns of :mod:`floorslide.contents._kernels`. With a row of
-    ``hist_u`` per block, the slides at the record samples a segment ends are written there."""
+    ``hist_u`` per block, the slides at the record samples a segment ends are written there.
+    With `has_vert`, the normal force per unit mass is ``g + a_v``, ``a_v`` the vertical record
+    ``accv`` linear between its samples (step `dt`): its value and slope at the segment's start,
+    its range and integrals over the segment go to the block pass as on a linear building
+    (:func:`floorslide.contents._kernels.slide_kernel`); the building is rigid vertically."""
     N = SX.shape[1]
     nblk = BLK.shape[1]
     XW = np.zeros((3, N))
     want = hist_u.shape[0] == nblk and nblk > 0
+    flags[0] = 1 if has_vert else 0
     for s in range(nseg):
         m = SI[s, 1]
         L = SF[s, 3]
         _pack_segment(XW, pk, SX[s], SY[s], SF[s, 0], SF[s, 1], SF[s, 2], L, SF[s, 4], g)
+        if has_vert:
+            k = SI[s, 0] // substeps
+            sn = (accv[k + 1] - accv[k]) / dt
+            n0 = g + accv[k] + sn * (SF[s, 4] - k * dt)
+            n1 = n0 + sn * L
+            pk[9], pk[10], pk[11], pk[12] = n0, sn, min(n0, n1), max(n0, n1)
+            pk[13] = 0.5 * (n0 + n1) * L
+            pk[14] = n0 * L * L / 2.0 + sn * L * L * L / 6.0
         _blocks_substep(G, OR, OB, m, XW, BLK, MU, bstates, buf, rw, pk, flags, n, L)
         if want and SI[s, 3] == 1 and (SI[s, 0] + 1) % substeps == 0:
             k = (SI[s, 0] + 1) // substeps

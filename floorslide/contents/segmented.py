@@ -33,10 +33,11 @@ def _rows(fm):
 
 
 def slide_on_segments(fm, mk: np.ndarray, ms: np.ndarray, direction: str, histories: bool,
-                      notes: tuple[str, ...] = ()):  # fmt: skip
+                      notes: tuple[str, ...] = (), vertical: np.ndarray | None = None):  # fmt: skip
     """Rigid blocks (kinetic ``mk``, static ``ms`` friction, one per block) on the floor `fm` of a
-    segmented motion; as :func:`floorslide.slide` (no vertical shaking). Returns a
-    :class:`~floorslide.contents.sliding.SlideResult`."""
+    segmented motion; as :func:`floorslide.slide`, with `vertical` (m/s², the record's samples)
+    scaling the blocks' friction by ``1 + a_v/g`` — for an isolation layer the vertical does not
+    act on (lead-rubber). Returns a :class:`~floorslide.contents.sliding.SlideResult`."""
     from floorslide.contents._kernels import (
         DISP,
         LIMIT_AT,
@@ -63,9 +64,12 @@ def slide_on_segments(fm, mk: np.ndarray, ms: np.ndarray, direction: str, histor
     buf, rw, pk, flags = sk.block_workspace(
         kn.K, NCOL, G, direction != "negative", direction != "positive"
     )
+    has_vert = vertical is not None
+    accv = np.ascontiguousarray(vertical, dtype=float) if has_vert else np.zeros(1)
     for SI, SF, SX, SY, count in mo.chunks():
         sk.blocks_on_segments(SI, SF, SX, SY, count, mo.substeps, kn.G, kn.OR, kn.OB, kn.n,
-                              BLK, MU, bstates, buf, rw, pk, flags, G, hist)  # fmt: skip
+                              BLK, MU, bstates, buf, rw, pk, flags, G, hist, accv, has_vert,
+                              mo.dt)  # fmt: skip
     if (bstates[:, LIMIT_AT] >= 0).any():
         t = float(bstates[bstates[:, LIMIT_AT] >= 0, LIMIT_AT].min())
         raise SolverLimitError(
@@ -75,6 +79,11 @@ def slide_on_segments(fm, mk: np.ndarray, ms: np.ndarray, direction: str, histor
         )
     duration = (mo.npts - 1) * mo.dt
     S = bstates
+    lift = (0.0, 0)
+    if has_vert:
+        from floorslide.contents.plane import liftoff
+
+        lift = liftoff(accv, mo.dt)
     return SlideResult(
         mu_k=mk,
         mu_s=np.asarray(ms, dtype=float).copy(),
@@ -84,8 +93,8 @@ def slide_on_segments(fm, mk: np.ndarray, ms: np.ndarray, direction: str, histor
         slide_fraction=S[:, SLIDE_TIME] / duration if duration > 0 else np.zeros(nblk),
         slip_phases=S[:, SLIPS].astype(np.int64),
         time_of_peak=S[:, T_PEAK].copy(),
-        liftoff_time=0.0,
-        liftoff_count=0,
+        liftoff_time=lift[0],
+        liftoff_count=lift[1],
         duration=duration,
         method="exact",
         direction=direction,

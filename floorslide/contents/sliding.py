@@ -239,17 +239,8 @@ def slide(
         raise ModelError("floor is required with building=", "floor")
     vert = None
     if vertical is not None:
-        samples = not (is_trace(vertical) or is_stream(vertical))
-        vert, vdt, vnotes = as_record(vertical, dt if samples else None, "vertical")
-        if not abs(vdt - dt) <= DT_RTOL * dt:
-            raise ModelError(
-                f"vertical has dt = {vdt:g} s, the horizontal record {dt:g} s", "vertical"
-            )
+        vert, vnotes = _vertical_samples(vertical, dt, a.size)
         notes += vnotes
-        if vert.size != a.size:
-            raise ModelError(
-                f"vertical has {vert.size} samples, the horizontal record {a.size}", "vertical"
-            )
     if method != "exact":
         from floorslide.contents import approximate
 
@@ -442,9 +433,75 @@ def _result(
     )
 
 
+def _vertical_samples(vertical, dt: float, npts: int):
+    """The vertical record's samples and notes, checked against the horizontal one (its dt and
+    length)."""
+    samples = not (is_trace(vertical) or is_stream(vertical))
+    vert, vdt, vnotes = as_record(vertical, dt if samples else None, "vertical")
+    if not abs(vdt - dt) <= DT_RTOL * dt:
+        raise ModelError(f"vertical has dt = {vdt:g} s, the horizontal record {dt:g} s", "vertical")
+    if vert.size != npts:
+        raise ModelError(
+            f"vertical has {vert.size} samples, the horizontal record {npts}", "vertical"
+        )
+    return np.ascontiguousarray(vert, dtype=float), vnotes
+
+
+def _slide_on_pendulums_vertical(building, a, dt, notes, floor, mk, ms, vert, direction,
+                                 histories) -> SlideResult:  # fmt: skip
+    """:func:`slide` with vertical shaking on a floor of a building on friction pendulums: the
+    bearing's friction and restoring force scale with ``g + a_v`` (docs/design.md §10b), which
+    the coupled plane integrator carries (:class:`~floorslide.building.plane_isolation.
+    PlaneIsolatedMotion` under the record and a still second component); the blocks slide on
+    its segments (:func:`~floorslide.contents.plane_segments.slide_plane_on_segments`), which
+    along one axis is the 1-D law exactly. The blocks' peak absolute acceleration is not
+    tracked there (NaN, said in the notes)."""
+    from floorslide.building.plane_isolation import PlaneIsolatedMotion
+    from floorslide.contents.plane_segments import slide_plane_on_segments
+
+    if direction != "both":
+        raise ModelError(
+            "one-way sliding with vertical shaking on friction pendulums is not available (the "
+            "bearing's vertical response is integrated by the plane solver, whose blocks slide "
+            "both ways)",
+            "direction",
+        )
+    motion = PlaneIsolatedMotion(building, a, np.zeros_like(a), dt, vertical=vert)
+    r = slide_plane_on_segments(motion, floor, mk, ms, vertical=vert, histories=histories,
+                                compare_1d=False)  # fmt: skip
+    extra = (
+        "vertical shaking on friction pendulums: the bearing's friction and restoring force "
+        "scale with g + a_v (the coupled plane solver, second component still); "
+        "peak_abs_accel is not tracked there (NaN)",
+    )
+    return SlideResult(
+        mu_k=mk,
+        mu_s=ms,
+        peak_slide=r.peak_slide,
+        residual_slide=r.residual[:, 0].copy(),
+        peak_abs_accel=np.full(mk.size, np.nan),
+        slide_fraction=r.slide_fraction,
+        # breakaways and reversals, as 1-D counts them: each stop of the plane solver is
+        # followed by one or the other, and a block still sliding at the end had one more
+        slip_phases=(r.stops + (np.abs(r.final_velocity[:, 0]) > 0.0)).astype(int),
+        time_of_peak=r.time_of_peak,
+        liftoff_time=r.liftoff_time,
+        liftoff_count=r.liftoff_count,
+        duration=r.duration,
+        method="exact",
+        direction=direction,
+        u=r.u[:, :, 0].copy() if histories else None,
+        notes=tuple(notes) + tuple(motion.notes) + extra,
+    )
+
+
 def _slide_segmented(fm, a, dt, notes, building, floor, mu_k, mu_s, vertical, method, direction,
                      histories):  # fmt: skip
-    """:func:`slide` on a floor of a building on nonlinear isolation (a segmented motion)."""
+    """:func:`slide` on a floor of a building on nonlinear isolation (a segmented motion);
+    with vertical shaking, on lead-rubber the blocks' friction scales with ``g + a_v`` on the
+    building's segments, on friction pendulums the bearing's too
+    (:func:`_slide_on_pendulums_vertical`)."""
+    from floorslide.building.isolators import FrictionPendulum
     from floorslide.contents.segmented import slide_on_segments
 
     if mu_k is None:
@@ -455,16 +512,26 @@ def _slide_segmented(fm, a, dt, notes, building, floor, mu_k, mu_s, vertical, me
             "exact method is)",
             "method",
         )
-    if vertical is not None:
-        raise ModelError(
-            "vertical shaking on a building on nonlinear isolation is not available yet (it "
-            "changes the isolator's friction and restoring force too); run without vertical",
-            "vertical",
-        )
     mk, ms = friction_pairs(mu_k, mu_s)
     _allowed(direction)
+    vert = None
+    if vertical is not None:
+        vert, vnotes = _vertical_samples(vertical, dt, a.size)
+        notes = tuple(notes) + tuple(vnotes)
+        if isinstance((building if fm is None else fm.building).isolator, FrictionPendulum):
+            if fm is not None:
+                raise ModelError(
+                    "this floor motion of a building on friction pendulums was integrated "
+                    "without the vertical, which scales its bearing's friction and restoring "
+                    "force: give the record with building= and floor= instead",
+                    "vertical",
+                )
+            if floor is None:
+                raise ModelError("floor is required with building=", "floor")
+            return _slide_on_pendulums_vertical(building, a, dt, notes, int(floor), mk, ms,
+                                                vert, direction, histories)  # fmt: skip
     if fm is None:
         if floor is None:
             raise ModelError("floor is required with building=", "floor")
         fm = building.motion(a, dt, floors=[floor]).floor(floor)
-    return slide_on_segments(fm, mk, ms, direction, histories, notes)
+    return slide_on_segments(fm, mk, ms, direction, histories, notes, vertical=vert)

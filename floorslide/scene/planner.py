@@ -591,12 +591,12 @@ def _load_set(
                 horizontal = picked[0]
             else:
                 horizontal = stream[0]
+            vtr = None
             if rs.vertical_component is not None:
                 picked = [tr for tr in stream if tr.stats.channel.endswith(rs.vertical_component)]
                 if not picked:
                     raise RecordError(f"no vertical component {rs.vertical_component!r}", label)
                 vtr = picked[0]
-            vtr = None
             tr = process(horizontal, **processing) if processing else horizontal
             if rs.vertical_component is not None:
                 vtr = process(vtr, **processing) if processing else vtr

@@ -609,14 +609,18 @@ def parse_scene(text: str, path: str | Path = "scene.toml") -> Scene:
     report = _report(
         doc.get("report", {}), ck, building_ids, buildings, record_ids, spectra=spectra
     )
-    nonlinear = [b.id for b in buildings if b.isolator_model not in ("", "linear")]
-    if nonlinear:
+    # a lead-rubber layer does not feel the vertical (its blocks do: they run); a pendulum's
+    # friction and restoring force scale with it, which fs.slide(..., vertical=) integrates but a
+    # study (one building motion for all its contents) does not yet
+    pendulums = [b.id for b in buildings if b.isolator_model == "friction_pendulum"]
+    if pendulums:
         for i, c in enumerate(contents):
             if c.vertical:
                 ck.add(
                     f"contents[{i}].vertical",
-                    f"vertical shaking on a building on nonlinear isolation ({nonlinear[0]}) "
-                    "is not available yet (rigid blocks and 2-DOF oscillators without it are)",
+                    f"vertical shaking on a building on friction pendulums ({pendulums[0]}) is "
+                    "not available in studies yet (fs.slide(..., vertical=, building=) runs it; "
+                    "blocks without it, and on lead-rubber with it, run)",
                 )
     pair_sets = [r.set for r in records if r.pairs]
     if pair_sets:

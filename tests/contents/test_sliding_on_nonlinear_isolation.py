@@ -78,15 +78,17 @@ def test_a_block_that_never_slides_feels_the_true_peak_floor_acceleration(elc):
 
 def test_fs_slide_takes_a_building_or_its_floor_motion(elc):
     """A building on nonlinear isolation with floor=, or a floor of its motion integrated once:
-    the same bits; the approximate methods and vertical shaking are refused in one line."""
+    the same bits; the approximate methods are refused in one line, and vertical shaking
+    scales the bearing too (tests/contents/test_vertical_on_isolation.py): a motion integrated
+    without it is refused."""
     b = building(fs.FrictionPendulum(mu=0.06, period=3.0))
     via_slide = fs.slide(elc[:600], 0.01, [0.05, 0.1], building=b, floor=2)
     direct = fs.slide(b.motion(elc[:600], 0.01).floor(2), mu_k=[0.05, 0.1])
     np.testing.assert_array_equal(via_slide.peak_slide, direct.peak_slide)
     with pytest.raises(fs.ModelError, match="not available"):
         fs.slide(elc[:600], 0.01, 0.1, building=b, floor=2, method="newmark")
-    with pytest.raises(fs.ModelError, match="vertical shaking on a building on nonlinear"):
-        fs.slide(elc[:600], 0.01, 0.1, building=b, floor=2, vertical=0.3 * elc[:600])
+    with pytest.raises(fs.ModelError, match="integrated without the vertical"):
+        fs.slide(b.motion(elc[:600], 0.01).floor(2), mu_k=0.1, vertical=0.3 * elc[:600])
 
 
 def test_flexible_equipment_on_a_frictionless_pendulum_equals_the_linear_isolated_roof(elc):

@@ -88,7 +88,7 @@ def test_isolator_tables_sweep_and_name_variants():
         (
             '{ model = "friction_pendulum", mu = 0.05 }',
             "vertical = true",
-            r"contents\[0\]\.vertical: vertical shaking on a building on nonlinear isolation",
+            r"contents\[0\]\.vertical: vertical shaking on a building on friction pendulums",
         ),
     ],
 )
@@ -158,3 +158,41 @@ def test_a_run_with_flexible_equipment_on_a_bilinear_layer_equals_the_api(tmp_pa
     np.testing.assert_array_equal(t.histories.slides[key][rows], rh.u[rows])
     np.testing.assert_array_equal(t.histories.deformation[key][rows], rh.z[rows])
     np.testing.assert_array_equal(t.histories.top_accel[key][rows], rh.top_accel[rows])
+
+
+def test_a_vertical_content_on_a_lead_rubber_layer_reads_the_record_sets_vertical(tmp_path):
+    """A record set of three-component files (``vertical_component``): a content with
+    ``vertical = true`` on a lead-rubber building slides with the vertical (the layer does not
+    feel it; the blocks' friction does), as fs.slide(vertical=) — the vertical component is
+    read, not dropped (it was set to None after being picked, and the planner failed)."""
+    from obspy import Stream, Trace
+
+    from tests.conftest import load_slammer
+
+    a, dt = load_slammer("ImperialValley_1940_ELC-180.txt")
+    av = 0.5 * a[::-1].copy()  # a stand-in vertical: the record reversed
+    st = Stream()
+    for ch, x in (("HNE", a[:1500]), ("HNZ", av[:1500])):
+        st += Trace(np.asarray(x, dtype=np.float64), header={"delta": dt, "channel": ch})
+    f = tmp_path / "elc.mseed"
+    st.write(str(f), format="MSEED")
+    text = scene('{ model = "bilinear", q_ratio = 0.05, yield_disp = 0.02 }', "vertical = true")
+    text = text.replace(
+        f'catalog = "{CATALOG}"\nwhere = {{ station_id = ["ELC-180", "TAF-021"] }}',
+        f'files = ["{f.as_posix()}"]\nunits = "m/s**2"\ncomponent = "E"\nvertical_component = "Z"',
+    )
+    path = tmp_path / "v.toml"
+    path.write_text(text)
+    p = plan(load_scene(path))
+    assert not p.failures and p.records[0].vertical is not None
+    rec = p.records[0]
+    np.testing.assert_array_equal(rec.vertical, av[:1500])
+    out = tmp_path / "v.h5"
+    execute(p, str(out), workers=1)
+    t = next(t for t in ResultFile(out).tasks() if t.meta["building"] == "iso")
+    (c,) = t.contents
+    model = p.scene.buildings[-1].build()
+    ref = fs.slide(rec.acc, rec.dt, [0.03, 0.1], building=model, floor=2, vertical=rec.vertical)
+    np.testing.assert_array_equal(c.peak_slide, ref.peak_slide)
+    plain = fs.slide(rec.acc, rec.dt, [0.03, 0.1], building=model, floor=2)
+    assert np.abs(plain.peak_slide - ref.peak_slide).max() > 1e-4
