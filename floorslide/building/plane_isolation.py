@@ -163,6 +163,8 @@ class PlaneIsolatorResponse:
     floor_displacement
         Every floor's displacement relative to the ground, ``(npts, n_dof, 2)`` (floor 0 the
         mat).
+    floor_velocity
+        Every floor's velocity relative to the ground, ``(npts, n_dof, 2)``, m/s.
     floor_acceleration
         Every floor's absolute acceleration at the samples, ``(npts, n_dof, 2)``, m/s².
     peak_displacement
@@ -203,6 +205,7 @@ class PlaneIsolatorResponse:
     event_times: np.ndarray
     event_kinds: tuple[str, ...]
     force_ratio: np.ndarray | None = None
+    floor_velocity: np.ndarray | None = None
     capacity_exceeded: bool = False
     small_angle_exceeded: bool = False
     notes: tuple[str, ...] = ()
@@ -353,6 +356,7 @@ class PlaneIsolatedMotion:
             event_times=EV[:kept, 0].copy(),
             event_kinds=tuple(_KIND_NAMES[int(k)] for k in EV[:kept, 1]),
             force_ratio=force / W,
+            floor_velocity=XS[:, :, n:].transpose(0, 2, 1).copy(),
             capacity_exceeded=bool(exceeded),
             small_angle_exceeded=bool(small),
             notes=notes,
