@@ -204,7 +204,7 @@ def test_energy_balance_on_a_real_pair():
         viscous = trapezoid(np.einsum("tid,ij,tjd->t", v, C, v), tf)
         assert r.friction_work > 0.5 * e_in  # the bearing dissipates most of it
         out.append((e_in, e_in - kinetic - strain - viscous - r.friction_work))
-    (e10, b10), (e20, b20) = out
+    (_, b10), (e20, b20) = out
     assert abs(b20) < 1e-6 * e20
     assert 3.9 < b10 / b20 < 4.1
     assert abs((4 * b20 - b10) / 3) < 1e-10 * e20
