@@ -441,7 +441,8 @@ def _plane_row(
     def diff(ref):
         if ref is None:
             return "–"
-        return f"{np.hypot(*(u - ref).T).max() / np.hypot(*ref.T).max():.1e}"
+        d, pk = np.hypot(*(u - ref).T).max(), np.hypot(*ref.T).max()
+        return f"{d / pk:.1e}" if pk > 0 else f"{d:.1e} m (ref. 0)"
 
     roof = np.hypot(a[:, -1, 0], a[:, -1, 1]).max()
     print(
