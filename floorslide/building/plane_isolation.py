@@ -149,7 +149,14 @@ def _initial(s: _Setup, x: np.ndarray) -> tuple[int, int]:
 
 @dataclass(frozen=True)
 class PlaneIsolatorResponse:
-    """The response of a building on friction pendulums to two horizontal components.
+    """The response of a building on friction pendulums or lead-rubber bearings to two
+    horizontal components. On lead-rubber bearings (:mod:`floorslide.building.plane_bilinear`)
+    the bearing's force is ``k_2 u_b + c u_b' + q`` (``q`` the plastic element's, ``|q| ≤ Q``),
+    ``friction_work`` is the plastic (hysteretic) work ``∫ q·u_p' dt`` (J), ``slide_fraction``
+    and ``sliding`` the share of the record and the samples where the element yields, the
+    events ``"yield"`` (``|q|`` reaching ``Q``) and ``"unload"`` (``q·u_b'`` falling through 0),
+    ``peak_force_ratio`` the peak of ``|f_b|/W`` inside steps (as the 1-D layer's), and
+    ``small_angle_exceeded`` is False.
 
     Attributes
     ----------
@@ -420,13 +427,15 @@ def plane_isolator_response(
     building, h1, h2, dt: float, *, vertical=None, initial_displacement=None,
     initial_velocity=None,
 ) -> PlaneIsolatorResponse:  # fmt: skip
-    """Exact response of a building on friction pendulums to two horizontal components
-    ``h1``, ``h2`` (m/s², samples at ``k·dt``) and optionally the vertical (the friction and the
-    pendulum's restoring force scale with ``g + a_v``): the bearing's orbit, its peak
-    displacement and direction, the residual vector, the peak force over weight.
+    """Exact response of a building on friction pendulums or lead-rubber bearings to two
+    horizontal components ``h1``, ``h2`` (m/s², samples at ``k·dt``) and, on friction
+    pendulums, optionally the vertical (the friction and the pendulum's restoring force scale
+    with ``g + a_v``; a lead-rubber bearing does not take it: refused): the bearing's orbit,
+    its peak displacement and direction, the residual vector, the peak force over weight.
 
     `building`: one :class:`~floorslide.building.nonlinear.NonlinearIsolatedBuilding` on a
-    :class:`~floorslide.building.isolators.FrictionPendulum` (its superstructure both ways) or a
+    :class:`~floorslide.building.isolators.FrictionPendulum` or a
+    :class:`~floorslide.building.isolators.BilinearIsolator` (its superstructure both ways) or a
     pair of them (a superstructure per direction on one mat and layer)."""
     return PlaneIsolatedMotion(
         building, h1, h2, dt, vertical=vertical, initial_displacement=initial_displacement,
