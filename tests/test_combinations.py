@@ -76,7 +76,6 @@ RUNS = (
         for b in BUILDINGS
         if not (b == "ground" and c == "floor_motions")
         and not (b == "a pair of models" and c not in ("slide_plane", "rotd_spectrum"))
-        and not (b == "lead-rubber" and c in ("slide_plane", "rotd_spectrum"))
     }
     | {
         ("slide", b, True)

@@ -1,12 +1,15 @@
-"""A building on friction pendulums under two horizontal components (and optionally the
-vertical): the bearing's friction circle coupled with the superstructure in both directions,
-exact to rounding (docs/design.md, "isolators in the plane").
+"""A building on friction pendulums (under two horizontal components and optionally the
+vertical) or on lead-rubber bearings (two horizontal components): the bearing's friction circle
+or yield circle coupled with the superstructure in both directions, exact to rounding
+(docs/design.md, "isolators in the plane").
 
 :func:`plane_isolator_response` gives the bearing's own outputs (orbit, peak displacement and
 its direction, residual vector, peak force over weight, events, friction work);
 :class:`PlaneIsolatedMotion` is the building's exact motion as polynomial segments
 (:class:`~floorslide.building.poly_segments.PolySegments`), which every plane consumer reads.
-The compiled integrator is :mod:`floorslide.building._plane_isolation_kernel`.
+The compiled integrators are :mod:`floorslide.building._plane_isolation_kernel` (friction
+pendulums) and :mod:`floorslide.building._plane_bilinear_kernel` (lead-rubber, with
+:mod:`floorslide.building.plane_bilinear`).
 """
 
 from __future__ import annotations
@@ -17,10 +20,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from floorslide.building import _plane_isolation_kernel as pk
+from floorslide.building import plane_bilinear as pb
 from floorslide.building.isolators import (
     SLIP_POS,
     STICK,
-    FrictionPendulum,
+    BilinearIsolator,
     small_angle_exceeded,
     small_angle_note,
 )
@@ -46,11 +50,12 @@ def couples_directions(building) -> bool:
 def plane_layer(
     building, *, bilinear: bool = False
 ) -> tuple[NonlinearIsolatedBuilding, NonlinearIsolatedBuilding]:
-    """The models along ``x`` and ``y`` of a building on friction pendulums under two
-    components: one :class:`NonlinearIsolatedBuilding` (the same superstructure both ways) or a
-    pair of them (a superstructure per direction on one mat and one layer). Anything else is
-    refused in one line naming ``building`` (lead-rubber too, unless `bilinear`: the
-    approximate solvers take it)."""
+    """The models along ``x`` and ``y`` of a building on friction pendulums or lead-rubber
+    bearings under two components: one :class:`NonlinearIsolatedBuilding` (the same
+    superstructure both ways) or a pair of them (a superstructure per direction on one mat and
+    one layer). Anything else is refused in one line naming ``building``. (`bilinear`, which
+    let the approximate solvers take lead-rubber before the exact solver did, is kept for
+    them; both layers are taken either way.)"""
     if isinstance(building, NonlinearIsolatedBuilding):
         bx = by = building
     elif isinstance(building, tuple | list) and len(building) == 2:
@@ -78,12 +83,6 @@ def plane_layer(
         raise ModelError(
             f"building must be a NonlinearIsolatedBuilding or a pair of them, got "
             f"{type(building).__name__}",
-            "building",
-        )
-    if not bilinear and not isinstance(bx.isolator, FrictionPendulum):
-        raise ModelError(
-            "lead-rubber (bilinear) bearings under two components are not available yet: "
-            "only friction pendulums couple the two directions here",
             "building",
         )
     return bx, by
@@ -150,7 +149,14 @@ def _initial(s: _Setup, x: np.ndarray) -> tuple[int, int]:
 
 @dataclass(frozen=True)
 class PlaneIsolatorResponse:
-    """The response of a building on friction pendulums to two horizontal components.
+    """The response of a building on friction pendulums or lead-rubber bearings to two
+    horizontal components. On lead-rubber bearings (:mod:`floorslide.building.plane_bilinear`)
+    the bearing's force is ``k_2 u_b + c u_b' + q`` (``q`` the plastic element's, ``|q| ≤ Q``),
+    ``friction_work`` is the plastic (hysteretic) work ``∫ q·u_p' dt`` (J), ``slide_fraction``
+    and ``sliding`` the share of the record and the samples where the element yields, the
+    events ``"yield"`` (``|q|`` reaching ``Q``) and ``"unload"`` (``q·u_b'`` falling through 0),
+    ``peak_force_ratio`` the peak of ``|f_b|/W`` inside steps (as the 1-D layer's), and
+    ``small_angle_exceeded`` is False.
 
     Attributes
     ----------
@@ -232,9 +238,11 @@ _KIND_NAMES = {pk.EV_BREAK: "slip", pk.EV_STICK: "stick", pk.EV_ON: "reverse"}
 
 
 class PlaneIsolatedMotion:
-    """The exact motion of a building on friction pendulums under two components (and the
-    vertical), integrated once for its own outputs (:attr:`response`) and again chunk by chunk
-    from checkpoints for the segments its consumers read (:meth:`poly_chunks`; the same bits).
+    """The exact motion of a building on friction pendulums (under two components and the
+    vertical) or on lead-rubber bearings (two components; :mod:`floorslide.building.
+    plane_bilinear`), integrated once for its own outputs (:attr:`response`) and again chunk by
+    chunk from checkpoints for the segments its consumers read (:meth:`poly_chunks`; the same
+    bits).
 
     Attributes: ``dt``, ``npts``, ``acc1``, ``acc2`` (the ground at the samples, m/s²),
     ``vertical`` (or None), ``floors`` (every floor, 0 the mat), ``building`` (the pair of
@@ -248,6 +256,13 @@ class PlaneIsolatedMotion:
         h2 = np.ascontiguousarray(h2, dtype=float)
         if h1.shape != h2.shape or h1.ndim != 1 or h1.size < 2:
             raise ModelError("the two components must be 1-D arrays of one length ≥ 2", "acc")
+        self._bilinear = isinstance(bx.isolator, BilinearIsolator)
+        if vertical is not None and self._bilinear:
+            raise ModelError(
+                "vertical shaking does not act on a lead-rubber (bilinear) bearing in this "
+                "model: give the two horizontal components only",
+                "vertical",
+            )
         if vertical is not None:
             vertical = np.ascontiguousarray(vertical, dtype=float)
             if vertical.shape != h1.shape:
@@ -264,18 +279,22 @@ class PlaneIsolatedMotion:
         self.npts = h1.size
         self.acc1, self.acc2, self.vertical = h1, h2, vertical
         self.floors = tuple(range(bx.n_dof))
-        self._s = _setup(bx, by, h1, h2, self.dt, vertical)
         n = bx.n_dof
-        x = np.zeros((2, 2 * n))
-        if initial_displacement is not None:
-            x[:, 0] = np.asarray(initial_displacement, dtype=float)
-            x[:, 1:n] = x[:, [0]]
-        if initial_velocity is not None:
-            x[:, n] = np.asarray(initial_velocity, dtype=float)
-        mode, start = _initial(self._s, x)
-        carry = np.array([mode, start, 0.0, 0.0, 0.0])
+        if self._bilinear:
+            self._s = pb.bilinear_setup(bx, by, h1, h2, self.dt)
+            x, carry = pb.initial_state(self._s, initial_displacement, initial_velocity)
+        else:
+            self._s = _setup(bx, by, h1, h2, self.dt, vertical)
+            x = np.zeros((2, 2 * n))
+            if initial_displacement is not None:
+                x[:, 0] = np.asarray(initial_displacement, dtype=float)
+                x[:, 1:n] = x[:, [0]]
+            if initial_velocity is not None:
+                x[:, n] = np.asarray(initial_velocity, dtype=float)
+            mode, start = _initial(self._s, x)
+            carry = np.array([mode, start, 0.0, 0.0, 0.0])
         self._checkpoints = []
-        XS = np.zeros((self.npts, 2, 2 * n))
+        XS = np.zeros((self.npts, 2, x.shape[1]))
         MODES = np.zeros(self.npts, dtype=np.int64)
         peak = np.zeros(pk.NPEAK)
         peak[pk.P_TIME] = 0.0
@@ -287,19 +306,31 @@ class PlaneIsolatedMotion:
         for k0 in range(0, self.npts - 1, CHUNK_STEPS):
             k1 = min(k0 + CHUNK_STEPS, self.npts - 1)
             self._checkpoints.append((k0, k1, x.copy(), carry.copy()))
-            out = pk.plane_run(s.A, s.bv, s.As, s.consts, fl, s.acc1, s.acc2, s.accv,
-                               s.has_vert, s.substeps, s.h, k0, k1, x, carry, XS, MODES, peak,
-                               EV, SEG, COEF)  # fmt: skip
+            out = self._run(fl, k0, k1, x, carry, XS, MODES, peak, EV, SEG, COEF)
             if out < 0:
                 row = -1 - out
                 raise SolverLimitError(
-                    f"the friction pendulum needed more than {pk.MAX_STEPS} series steps in one "
-                    f"sub-step at t = {row * s.h:.6g} s (creep at the friction limit the solver "
-                    "cannot resolve)",
+                    pb.limit_message(row * s.h)
+                    if self._bilinear
+                    else f"the friction pendulum needed more than {pk.MAX_STEPS} series steps "
+                    f"in one sub-step at t = {row * s.h:.6g} s (creep at the friction limit "
+                    "the solver cannot resolve)",
                     "building",
                 )
-        self.response = self._response(XS, MODES, peak, EV, int(carry[pk.C_EVENTS]))
+        if self._bilinear:
+            self.response = pb.bilinear_response(self, XS, MODES, peak, EV, carry)
+        else:
+            self.response = self._response(XS, MODES, peak, EV, int(carry[pk.C_EVENTS]))
         self.notes = self.response.notes
+
+    def _run(self, fl, k0, k1, x, carry, XS, MODES, peak, EV, SEG, COEF) -> int:
+        """The layer's compiled integrator over record steps ``k0 … k1 − 1``."""
+        s = self._s
+        if self._bilinear:
+            return s.run(fl, k0, k1, x, carry, XS, MODES, peak, EV, SEG, COEF)
+        return pk.plane_run(s.A, s.bv, s.As, s.consts, fl, s.acc1, s.acc2, s.accv, s.has_vert,
+                            s.substeps, s.h, k0, k1, x, carry, XS, MODES, peak, EV, SEG,
+                            COEF)  # fmt: skip
 
     def _response(self, XS, MODES, peak, EV, n_ev) -> PlaneIsolatorResponse:
         bx, _ = self.building
@@ -370,19 +401,17 @@ class PlaneIsolatedMotion:
 
         s = self._s
         fl = np.array(self.floors, dtype=np.int64)
-        n = s.n
         for k0, k1, x0, carry0 in self._checkpoints:
             cap = (k1 - k0) * s.substeps * 4 + 64
             while True:
                 x = x0.copy()
                 carry = carry0.copy()
-                XS = np.zeros((self.npts, 2, 2 * n))
+                XS = np.zeros((self.npts, 2, x.shape[1]))
                 MODES = np.zeros(self.npts, dtype=np.int64)
                 SEG = np.zeros((cap, 4))
                 COEF = np.zeros((cap, fl.size, 2, pk.DEGREE))
-                got = pk.plane_run(s.A, s.bv, s.As, s.consts, fl, s.acc1, s.acc2, s.accv,
-                                   s.has_vert, s.substeps, s.h, k0, k1, x, carry, XS, MODES,
-                                   np.zeros(pk.NPEAK), np.zeros((0, 2)), SEG, COEF)  # fmt: skip
+                got = self._run(fl, k0, k1, x, carry, XS, MODES, np.zeros(pk.NPEAK),
+                                np.zeros((0, 2)), SEG, COEF)  # fmt: skip
                 if got <= cap:
                     break
                 cap = got
@@ -402,13 +431,15 @@ def plane_isolator_response(
     building, h1, h2, dt: float, *, vertical=None, initial_displacement=None,
     initial_velocity=None,
 ) -> PlaneIsolatorResponse:  # fmt: skip
-    """Exact response of a building on friction pendulums to two horizontal components
-    ``h1``, ``h2`` (m/s², samples at ``k·dt``) and optionally the vertical (the friction and the
-    pendulum's restoring force scale with ``g + a_v``): the bearing's orbit, its peak
-    displacement and direction, the residual vector, the peak force over weight.
+    """Exact response of a building on friction pendulums or lead-rubber bearings to two
+    horizontal components ``h1``, ``h2`` (m/s², samples at ``k·dt``) and, on friction
+    pendulums, optionally the vertical (the friction and the pendulum's restoring force scale
+    with ``g + a_v``; a lead-rubber bearing does not take it: refused): the bearing's orbit,
+    its peak displacement and direction, the residual vector, the peak force over weight.
 
     `building`: one :class:`~floorslide.building.nonlinear.NonlinearIsolatedBuilding` on a
-    :class:`~floorslide.building.isolators.FrictionPendulum` (its superstructure both ways) or a
+    :class:`~floorslide.building.isolators.FrictionPendulum` or a
+    :class:`~floorslide.building.isolators.BilinearIsolator` (its superstructure both ways) or a
     pair of them (a superstructure per direction on one mat and layer)."""
     return PlaneIsolatedMotion(
         building, h1, h2, dt, vertical=vertical, initial_displacement=initial_displacement,

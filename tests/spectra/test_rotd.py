@@ -242,8 +242,8 @@ def test_bad_components():
         fs.rotd_spectrum((a, np.full(100, np.nan)), 0.01, [0.5])
     lrb = fs.BilinearIsolator(q_ratio=0.06, period=2.5, yield_disp=0.02)
     nonlinear = fs.NonlinearIsolatedBuilding(SOFT, 1.0, lrb)
-    with pytest.raises(ModelError, match="lead-rubber"):
-        fs.rotd_spectrum((a, a), 0.01, [0.5], building=nonlinear, floor=1)
+    with pytest.raises(ModelError, match="method"):
+        fs.rotd_spectrum((a, a), 0.01, [0.5], building=nonlinear, floor=1, method="samples")
 
 
 def test_stiff_buildings_coarse_dt(pairs):
