@@ -83,7 +83,14 @@ RUNS = (
     }
     | {
         ("slide_plane", b, True)
-        for b in ("ground", "fixed", "linear isolated", "a pair of models", "friction pendulum")
+        for b in (
+            "ground",
+            "fixed",
+            "linear isolated",
+            "a pair of models",
+            "friction pendulum",
+            "lead-rubber",
+        )
     }
 )
 """The cells that give a result today (consumer, building, with vertical shaking)."""

@@ -36,6 +36,9 @@ CHUNK_STEPS = 2048
 """Record steps per chunk of segments (:meth:`PlaneIsolatedMotion.poly_chunks`)."""
 MAX_EVENTS_KEPT = 100_000
 """Most events whose times are kept."""
+MAX_KEPT_BYTES = 512 * 2**20
+"""Most bytes of segments a motion made with ``keep_segments`` holds; beyond, its consumers
+stream them from the checkpoints again."""
 
 
 def couples_directions(building) -> bool:
@@ -247,28 +250,24 @@ class PlaneIsolatedMotion:
     Attributes: ``dt``, ``npts``, ``acc1``, ``acc2`` (the ground at the samples, m/s²),
     ``vertical`` (or None), ``floors`` (every floor, 0 the mat), ``building`` (the pair of
     models), ``response`` (:class:`PlaneIsolatorResponse`), ``notes`` (the bearing's: small
-    angle, capacity)."""
+    angle, capacity). With ``keep_segments`` the first pass records the segments and keeps
+    them (up to :data:`MAX_KEPT_BYTES`): every consumer then reads them without integrating
+    again — what a study's task does."""
 
     def __init__(self, building, h1, h2, dt: float, *, vertical=None, initial_displacement=None,
-                 initial_velocity=None):  # fmt: skip
+                 initial_velocity=None, keep_segments: bool = False):  # fmt: skip
         bx, by = plane_layer(building)
         h1 = np.ascontiguousarray(h1, dtype=float)
         h2 = np.ascontiguousarray(h2, dtype=float)
         if h1.shape != h2.shape or h1.ndim != 1 or h1.size < 2:
             raise ModelError("the two components must be 1-D arrays of one length ≥ 2", "acc")
         self._bilinear = isinstance(bx.isolator, BilinearIsolator)
-        if vertical is not None and self._bilinear:
-            raise ModelError(
-                "vertical shaking does not act on a lead-rubber (bilinear) bearing in this "
-                "model: give the two horizontal components only",
-                "vertical",
-            )
         if vertical is not None:
             vertical = np.ascontiguousarray(vertical, dtype=float)
             if vertical.shape != h1.shape:
                 raise ModelError("vertical must have as many samples as the pair", "vertical")
             low = np.flatnonzero(G + vertical <= 0.0)
-            if low.size:
+            if low.size and not self._bilinear:
                 raise ModelError(
                     f"g + a_v ≤ 0 at t = {low[0] * dt:.6g} s: the bearing would lift off, which "
                     "is not modelled",
@@ -294,19 +293,41 @@ class PlaneIsolatedMotion:
             mode, start = _initial(self._s, x)
             carry = np.array([mode, start, 0.0, 0.0, 0.0])
         self._checkpoints = []
+        self._kept: list | None = [] if keep_segments else None
         XS = np.zeros((self.npts, 2, x.shape[1]))
         MODES = np.zeros(self.npts, dtype=np.int64)
         peak = np.zeros(pk.NPEAK)
         peak[pk.P_TIME] = 0.0
         EV = np.zeros((MAX_EVENTS_KEPT, 2))
-        SEG = np.zeros((0, 4))
-        COEF = np.zeros((0, 1, 2, pk.DEGREE))
         fl = np.array(self.floors, dtype=np.int64)
         s = self._s
+        kept_bytes = 0
         for k0 in range(0, self.npts - 1, CHUNK_STEPS):
             k1 = min(k0 + CHUNK_STEPS, self.npts - 1)
-            self._checkpoints.append((k0, k1, x.copy(), carry.copy()))
-            out = self._run(fl, k0, k1, x, carry, XS, MODES, peak, EV, SEG, COEF)
+            # the running peaks too: the solver's thresholds scale with them (a pass again from
+            # here must take the same steps)
+            self._checkpoints.append((k0, k1, x.copy(), carry.copy(), peak.copy()))
+            if self._kept is None:
+                SEG, COEF = np.zeros((0, 4)), np.zeros((0, 1, 2, pk.DEGREE))
+                out = self._run(fl, k0, k1, x, carry, XS, MODES, peak, EV, SEG, COEF)
+            else:
+                # the segments recorded on this (only) pass; a chunk that holds more than its
+                # room runs again from its checkpoint with the room it needs
+                x0, carry0, peak0 = x.copy(), carry.copy(), peak.copy()
+                cap = (k1 - k0) * s.substeps * 4 + 64
+                while True:
+                    SEG, COEF = np.zeros((cap, 4)), np.zeros((cap, fl.size, 2, pk.DEGREE))
+                    out = self._run(fl, k0, k1, x, carry, XS, MODES, peak, EV, SEG, COEF)
+                    if out <= cap:
+                        break
+                    cap = out
+                    x[:], carry[:], peak[:] = x0, carry0, peak0
+                if out >= 0:
+                    seg = _segments(SEG, COEF, out, self.floors, k0, k1)
+                    kept_bytes += seg.coef.nbytes
+                    self._kept.append(seg)
+                    if kept_bytes > MAX_KEPT_BYTES:
+                        self._kept = None  # too long to keep: consumers stream
             if out < 0:
                 row = -1 - out
                 raise SolverLimitError(
@@ -322,6 +343,12 @@ class PlaneIsolatedMotion:
         else:
             self.response = self._response(XS, MODES, peak, EV, int(carry[pk.C_EVENTS]))
         self.notes = self.response.notes
+        if self._bilinear and vertical is not None:
+            # kept for the blocks on its floors, whose friction it scales
+            self.notes += (
+                "vertical shaking does not act on the lead-rubber layer in this model (its "
+                "force does not depend on the normal load); the blocks on its floors feel it",
+            )
 
     def _run(self, fl, k0, k1, x, carry, XS, MODES, peak, EV, SEG, COEF) -> int:
         """The layer's compiled integrator over record steps ``k0 … k1 − 1``."""
@@ -395,13 +422,15 @@ class PlaneIsolatedMotion:
 
     def poly_chunks(self) -> Iterator:
         """The motion's segments chunk by chunk
-        (:class:`~floorslide.building.poly_segments.PolySegments`), integrated again from the
-        checkpoints of the first pass (the same bits)."""
-        from floorslide.building.poly_segments import PolySegments
-
+        (:class:`~floorslide.building.poly_segments.PolySegments`): those recorded by the
+        first pass (``keep_segments``), else integrated again from its checkpoints (the same
+        bits)."""
+        if self._kept is not None:
+            yield from self._kept
+            return
         s = self._s
         fl = np.array(self.floors, dtype=np.int64)
-        for k0, k1, x0, carry0 in self._checkpoints:
+        for k0, k1, x0, carry0, peak0 in self._checkpoints:
             cap = (k1 - k0) * s.substeps * 4 + 64
             while True:
                 x = x0.copy()
@@ -410,21 +439,29 @@ class PlaneIsolatedMotion:
                 MODES = np.zeros(self.npts, dtype=np.int64)
                 SEG = np.zeros((cap, 4))
                 COEF = np.zeros((cap, fl.size, 2, pk.DEGREE))
-                got = self._run(fl, k0, k1, x, carry, XS, MODES, np.zeros(pk.NPEAK),
+                got = self._run(fl, k0, k1, x, carry, XS, MODES, peak0.copy(),
                                 np.zeros((0, 2)), SEG, COEF)  # fmt: skip
                 if got <= cap:
                     break
                 cap = got
-            yield PolySegments(
-                t0=SEG[:got, 0].copy(),
-                length=SEG[:got, 1].copy(),
-                step=SEG[:got, 2].astype(np.int64),
-                ends=SEG[:got, 3] != 0.0,
-                coef=COEF[:got],
-                floors=self.floors,
-                k0=k0,
-                k1=k1,
-            )
+            yield _segments(SEG, COEF, got, self.floors, k0, k1)
+
+
+def _segments(SEG, COEF, got, floors, k0, k1):
+    """The :class:`~floorslide.building.poly_segments.PolySegments` of one chunk from the
+    kernel's records (its first `got` rows)."""
+    from floorslide.building.poly_segments import PolySegments
+
+    return PolySegments(
+        t0=SEG[:got, 0].copy(),
+        length=SEG[:got, 1].copy(),
+        step=SEG[:got, 2].astype(np.int64),
+        ends=SEG[:got, 3] != 0.0,
+        coef=COEF[:got],
+        floors=floors,
+        k0=k0,
+        k1=k1,
+    )
 
 
 def plane_isolator_response(

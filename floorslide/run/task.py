@@ -457,15 +457,16 @@ def _run_pair(task: Task, force: bool, t0: float) -> TaskResult:
     plane_peak`), its per-direction peaks are kept too; a block that rocks rocks in the plane of
     each component (its faces along them), and the more severe of the two is reported.
 
-    On friction pendulums the building is integrated once, coupled in the plane
-    (:class:`~floorslide.building.plane_isolation.PlaneIsolatedMotion`, its segments kept in
-    memory): every floor peak (:func:`~floorslide.building.poly_peaks.poly_peaks`), block,
+    On nonlinear isolation the building is integrated once, coupled in the plane
+    (:class:`~floorslide.building.plane_isolation.PlaneIsolatedMotion`, its segments recorded
+    on its one pass and kept): every floor peak
+    (:func:`~floorslide.building.poly_peaks.poly_peaks`), block,
     rocker, spectrum and history reads that one motion, and the bearing's outputs (peak
     displacement and direction, residual vector, peak force over W) go into the task's
     attributes (docs/design.md §10b)."""
     from floorslide.building.directions import plane_motions, plane_peak
     from floorslide.building.plane_isolation import PlaneIsolatedMotion, couples_directions
-    from floorslide.building.poly_peaks import KeptPolyMotion, PolyComponent, poly_peaks
+    from floorslide.building.poly_peaks import PolyComponent, poly_peaks
     from floorslide.building.poly_segments import samples_on_poly
     from floorslide.constants import G
     from floorslide.contents.plane import slide_plane
@@ -478,7 +479,7 @@ def _run_pair(task: Task, force: bool, t0: float) -> TaskResult:
     meta = _meta(task)
     coupled = None
     if couples_directions(model):
-        coupled = KeptPolyMotion(PlaneIsolatedMotion(model, rec.acc, rec.acc2, dt))
+        coupled = PlaneIsolatedMotion(model, rec.acc, rec.acc2, dt, keep_segments=True)
         peaks = poly_peaks(coupled, floors)
         pfa, per_dir = peaks.peak, peaks.components
         iso = coupled.response

@@ -813,7 +813,7 @@ def _check_buildings(scene: Scene, records: list[LoadedRecord]) -> None:
             if not b.two_way:
                 models = (b.build(),)
             elif couples_directions(plane := b.build_plane()):
-                models = plane_layer(plane)  # friction pendulums in the plane (not lead-rubber)
+                models = plane_layer(plane)  # nonlinear isolation in the plane: one layer
             else:
                 models = per_direction(plane)
             if coarsest is None:
@@ -919,7 +919,7 @@ def plan(scene: Scene, *, force: bool = False, evaluate: bool = True) -> Plan:
                 model = t.building.build_plane()
                 r = t.record
                 if couples_directions(model):  # friction pendulums: one coupled motion
-                    motion = PlaneIsolatedMotion(model, r.acc, r.acc2, r.dt)
+                    motion = PlaneIsolatedMotion(model, r.acc, r.acc2, r.dt, keep_segments=True)
                     peaks = poly_peaks(motion, floors).peak.tolist()
                 else:
                     peaks = [

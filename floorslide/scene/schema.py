@@ -624,15 +624,6 @@ def parse_scene(text: str, path: str | Path = "scene.toml") -> Scene:
                 )
     pair_sets = [r.set for r in records if r.pairs]
     if pair_sets:
-        tables = doc.get("buildings")
-        for i, t in enumerate(tables if isinstance(tables, list) else []):
-            if any(b.base == t.get("id") and b.isolator_model == "bilinear" for b in buildings):
-                ck.add(
-                    f"buildings[{i}].isolator.model",
-                    "lead-rubber (bilinear) bearings under two components are not available yet "
-                    f"(friction pendulums are); the record set {pair_sets[0]!r} is a set of "
-                    "pairs",
-                )
         for i, c in enumerate(contents):
             what = (
                 ("model", "a 2-DOF sliding oscillator slides in 1-D")

@@ -117,7 +117,12 @@ def test_refused_in_one_line(kobe):
     cases = [
         (lambda: fs.floor_motions(b, a, 0.01, method="newmark"), "method"),
         (lambda: fs.floor_motions(b, a, 0.01, floors=[7]), "floor 7 does not exist"),
-        (lambda: fs.slide(a, 0.01, 0.1, building=b, floor=1, vertical=0.2 * a), "vertical"),
+        (
+            lambda: fs.slide(
+                a, 0.01, 0.1, building=b, floor=1, vertical=0.2 * a, direction="positive"
+            ),
+            "one-way sliding with vertical",
+        ),
         (lambda: fs.slide(a, 0.01, 0.1, building=b), "floor is required"),
         (lambda: b.motion(a, 0.01, floors=[1]).floor(2), "not among the floors"),
         (lambda: fs.slide(b.motion(a, 0.01).floor(1), 0.01, 0.1, building=b), "FloorMotion"),

@@ -17,7 +17,6 @@ from floorslide.building.plane_isolation import (
     plane_isolator_response,
     plane_layer,
 )
-from floorslide.errors import ModelError
 from floorslide.records.pairs import read_pair
 from tests.conftest import ROOT
 from tests.reference_bilinear_2d import bilinear_response_2d
@@ -200,7 +199,8 @@ def test_consumers_read_it_and_along_an_azimuth_equal_the_1d_building(strong, fl
 def test_the_public_api_on_a_pair_and_a_model_per_direction(strong):
     """Under a true pair, one model or a superstructure per direction on one mat: the plane
     slide and RotD run on the coupled motion and equal the motion's own consumers; vertical
-    shaking, which this bearing model does not take, is refused naming it."""
+    shaking leaves the bearing as it is (this model's force does not depend on the normal load,
+    said in the notes) and scales the blocks' friction: a constant ``c`` is ``mu (1 + c/g)``."""
     from floorslide.contents.plane_segments import slide_plane_on_segments
     from floorslide.spectra.poly_segments import rotd_on_poly
 
@@ -214,11 +214,13 @@ def test_the_public_api_on_a_pair_and_a_model_per_direction(strong):
     np.testing.assert_array_equal(ra.rotd50, rotd_on_poly(motion, 1, PERIODS).rotd50)
     res = fs.slide_plane((h1, h2), dt, MU, building=(b, building(stories=2, period=0.5)), floor=2)
     assert np.all(np.isfinite(res.peak_slide)) and res.peak_slide.max() > 0.0
-    with pytest.raises(ModelError, match="vertical") as err:
-        plane_isolator_response(b, h1, h2, dt, vertical=np.zeros_like(h1))
-    assert "\n" not in str(err.value)
-    with pytest.raises(ModelError, match="vertical"):
-        fs.slide_plane((h1, h2), dt, MU, building=b, floor=1, vertical=np.zeros_like(h1))
+    c = 0.3 * 9.80665
+    with_v = PlaneIsolatedMotion(b, h1, h2, dt, vertical=np.full_like(h1, c))
+    np.testing.assert_array_equal(with_v.response.displacement, motion.response.displacement)
+    assert any("does not act on the lead-rubber layer" in n for n in with_v.notes)
+    got = fs.slide_plane((h1, h2), dt, MU, building=b, floor=1, vertical=np.full_like(h1, c))
+    ref = fs.slide_plane((h1, h2), dt, np.array(MU) * (1 + c / 9.80665), building=b, floor=1)
+    np.testing.assert_allclose(got.peak_slide, ref.peak_slide, rtol=1e-12, atol=1e-15)
 
 
 def test_circular_ground_motion_gives_the_circular_orbit():

@@ -118,3 +118,30 @@ def test_a_component_is_refused_what_it_cannot_do(strong):
         fs.rock(PolyComponent(m, 1, 0), width=0.3, height=1.5, method="rk4")
     with pytest.raises(ModelError, match="give no building= or floor="):
         fs.rock(PolyComponent(m, 1, 0), width=0.3, height=1.5, floor=1)
+
+
+@pytest.mark.parametrize("kind", ["pendulum", "lead-rubber"])
+def test_segments_kept_by_the_first_pass_are_the_streamed_ones(elcentro, kind):
+    """``keep_segments``: the segments recorded on the motion's one pass equal those its
+    checkpoints integrate again, bit for bit (the whole record: several chunks), and its
+    response is the same."""
+    ag, dt = elcentro
+    a = 2.0 * ag
+    if kind == "pendulum":
+        b = building(stories=2)
+    else:
+        sup = fs.ShearBuilding.from_period(stories=2, period=0.3, damping=0.03)
+        b = fs.NonlinearIsolatedBuilding(
+            sup, 1.0, fs.BilinearIsolator(q_ratio=0.06, period=2.5, yield_disp=0.02)
+        )
+    h2 = 0.5 * a[::-1].copy()
+    kept = PlaneIsolatedMotion(b, a, h2, dt, keep_segments=True)
+    streamed = PlaneIsolatedMotion(b, a, h2, dt)
+    np.testing.assert_array_equal(kept.response.displacement, streamed.response.displacement)
+    assert kept.response.friction_work == streamed.response.friction_work
+    chunks = list(kept.poly_chunks())
+    assert len(chunks) == len(list(streamed.poly_chunks())) >= 2
+    for x, y in zip(chunks, streamed.poly_chunks(), strict=True):
+        np.testing.assert_array_equal(x.coef, y.coef)
+        np.testing.assert_array_equal(x.t0, y.t0)
+        np.testing.assert_array_equal(x.ends, y.ends)

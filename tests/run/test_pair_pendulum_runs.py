@@ -1,8 +1,7 @@
 """Scenes with a set of record pairs on a building on friction pendulums (issue 31, docs/design.md
 §10b): the building is integrated once per record, coupled in the plane, and every stored
 quantity — floor peaks, plane slides, rocking in each component, RotD spectra, the bearing's
-outputs and orbit — equals the public API on the same model; lead-rubber is refused at dry run
-in one line."""
+outputs and orbit — equals the public API on the same model; lead-rubber bearings too."""
 
 from __future__ import annotations
 
@@ -12,7 +11,6 @@ import pytest
 import floorslide as fs
 from floorslide.building.plane_isolation import PlaneIsolatedMotion
 from floorslide.building.poly_peaks import PolyComponent, poly_peaks
-from floorslide.errors import SceneError
 from floorslide.run.execute import execute
 from floorslide.run.store import ResultFile
 from floorslide.scene.planner import plan
@@ -180,11 +178,28 @@ def test_the_report_draws_the_bearing_orbit(run, tmp_path):
     plt.close(fig)
 
 
-def test_lead_rubber_under_pairs_is_refused_at_dry_run(tmp_path):
+def test_lead_rubber_under_pairs_runs_on_its_coupled_motion(tmp_path):
+    """The same scene on lead-rubber bearings (circular yield surface): the bearing's outputs
+    and the plane slides equal the API on the scene's model."""
+    from floorslide.building.plane_isolation import plane_isolator_response
+
     path = tmp_path / "s.toml"
     path.write_text(scene('model = "bilinear", q_ratio = 0.05, yield_disp = 0.01'))
-    with pytest.raises(SceneError, match=r"buildings\[1\]\.isolator\.model: lead-rubber "
-                       r"\(bilinear\) bearings under two components are not available yet"
-                       ) as e:  # fmt: skip
-        load_scene(path)
-    assert "\n" not in str(e.value).strip()
+    sc = load_scene(path)
+    p = plan(sc)
+    assert not p.failures
+    out = tmp_path / "out.h5"
+    execute(p, str(out), workers=1)
+    t = next(t for t in ResultFile(out).tasks() if t.meta["building"] == "fps")
+    (b,) = [b for b in sc.buildings if b.base == "fps"]
+    model = b.build_plane()
+    (pair,) = fs.read_pairs(CATALOG, where={"rsn": "1084"})
+    ref = plane_isolator_response(model, pair.h1, pair.h2, pair.dt)
+    assert t.meta["isolator"] == "bilinear"
+    assert t.meta["isolator_peak_displacement"] == ref.peak_displacement
+    assert t.meta["isolator_peak_direction"] == ref.peak_direction
+    for c in t.contents:
+        if c.content == "box":
+            api = fs.slide_plane(pair, None, c.mu_k, building=model, floor=c.floor)
+            slid = c.modes == "slide"
+            np.testing.assert_array_equal(c.peak_slide[slid], api.peak_slide[slid])
