@@ -187,3 +187,46 @@ def test_nonlinear_building_is_not_modelled_yet(fixed, elcentro):
     fm = fs.floor_motion(fixed, a[:100], 3, dt)
     with pytest.raises(ModelError, match="ground record"):
         slide_coupled(fm, dt, 0.2, mass=1000.0, building=fixed, floor=3)
+
+
+def test_block_on_the_base_mat_of_an_isolated_building(isolated):
+    """Floor 0 of an isolated building is the base mat, a degree of freedom like the others:
+    against the reference (mu_s > mu_k: the floor's acceleration jumps at events)."""
+    a, dt = load_slammer("Northridge_1994_RRS-228.txt")
+    k0 = max(0, int(np.argmax(np.abs(a))) - 200)
+    a = a[k0 : k0 + 600]
+    b, m, mu_k, mu_s = isolated, 0.1 * isolated.mass[0], 0.08, 0.1
+    ref = coupled_response(b.mass, b.stiffness_matrix, b.damping_matrix, 0, m, mu_k, mu_s, a, dt)
+    r = slide_coupled(a, dt, mu_k, mu_s=mu_s, mass=m, building=b, floor=0, histories=True)
+    assert ref["slips"] >= 3
+    assert abs(r.peak_slide[0] - ref["peak_slide"]) / ref["peak_slide"] <= 1e-8
+    assert abs(r.pfa[0] - ref["pfa"]) / ref["pfa"] <= 1e-8
+    assert _rel(r.floor_acceleration[0], ref["a_f"], ref["pfa"]) <= 1e-8
+    assert r.slip_phases[0] == ref["slips"]
+
+
+def test_stiff_building_coarse_dt(coarse_record):
+    """A stiff building (T = 0.1 s) under a dt = 0.02 s record: several exact sub-steps per
+    step, events inside them; still the reference's answer."""
+    a, dt = coarse_record
+    k0 = max(0, int(np.argmax(np.abs(a))) - 100)
+    a = a[k0 : k0 + 300]
+    b = fs.ShearBuilding.from_period(3, 0.1, damping=0.05, mass=FLOOR_MASS)
+    m, mu = 0.1 * FLOOR_MASS, 0.3
+    ref = coupled_response(b.mass, b.stiffness_matrix, b.damping_matrix, 2, m, mu, mu, a, dt)
+    r = slide_coupled(a, dt, mu, mass=m, building=b, floor=3, histories=True)
+    assert r.substeps > 1 and ref["slips"] >= 3
+    assert abs(r.peak_slide[0] - ref["peak_slide"]) / ref["peak_slide"] <= 1e-8
+    assert abs(r.pfa[0] - ref["pfa"]) / ref["pfa"] <= 1e-8
+    assert _rel(r.u[0], ref["s"], ref["peak_slide"]) <= 1e-8
+    assert r.slip_phases[0] == ref["slips"]
+
+
+def test_floor_history_feeds_a_floor_spectrum(fixed, elcentro):
+    """The floor's absolute acceleration with the block at the samples is the input of a floor
+    response spectrum (sample-based: re-interpolated between samples)."""
+    a, dt = elcentro
+    r = slide_coupled(a, dt, 0.2, mass=0.1 * FLOOR_MASS, building=fixed, floor=3, histories=True)
+    sp = fs.response_spectrum(r.floor_acceleration[0], dt, [0.2, 0.5, 1.0], 0.05)
+    assert np.all(np.isfinite(sp.psa)) and np.all(sp.psa > 0)
+    assert r.floor_acceleration.shape == (1, a.size) and r.mode.shape == (1, a.size)
