@@ -1,5 +1,6 @@
-"""A heavy rigid block coupled with its floor (``slide_coupled``): the limits of docs/design.md
-§17 and an independent event-located ODE reference (``tests/reference_coupled.py``)."""
+"""A heavy rigid block coupled with its floor (``slide_coupled``): its limits (a tiny mass is the
+decoupled block, one that never slides is added floor mass, a frictionless one leaves the
+building alone) and an independent event-located ODE reference (``tests/reference_coupled.py``)."""
 
 from __future__ import annotations
 
