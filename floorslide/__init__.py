@@ -36,6 +36,7 @@ _EXPORTS: dict[str, tuple[str, ...]] = {
     ),
     "floorslide.constants": ("G",),
     "floorslide.contents": (
+        "CoupledSlideResult",
         "OscillatorResult",
         "PlaneSlideResult",
         "RockResult",
@@ -43,6 +44,7 @@ _EXPORTS: dict[str, tuple[str, ...]] = {
         "response_mode",
         "rock",
         "slide",
+        "slide_coupled",
         "slide_oscillator",
         "slide_plane",
     ),
@@ -112,6 +114,7 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
         G,
     )
     from floorslide.contents import (
+        CoupledSlideResult,
         OscillatorResult,
         PlaneSlideResult,
         RockResult,
@@ -119,6 +122,7 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
         response_mode,
         rock,
         slide,
+        slide_coupled,
         slide_oscillator,
         slide_plane,
     )
@@ -200,6 +204,8 @@ __all__ = [
     "BuildingPair",
     "RockResult",
     "SlideResult",
+    "CoupledSlideResult",
+    "slide_coupled",
     "Spectrum",
     "broaden",
     "design_tables",

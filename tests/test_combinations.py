@@ -62,6 +62,9 @@ CONSUMERS = {
     "rotd_spectrum": lambda b, v: fs.rotd_spectrum(
         PAIR, None, [0.2, 1.0], building=b, floor=_floor(b)
     ),
+    "slide_coupled": lambda b, v: fs.slide_coupled(
+        A, DT, [0.1], mass=0.1, building=b, floor=_floor(b)
+    ),
     "floor_motions": lambda b, v: fs.floor_motions(b, A, DT, floors=[1, 2]),
     "peak_floor_acceleration": lambda b, v: fs.peak_floor_acceleration(b, A, DT),
 }
@@ -76,6 +79,8 @@ RUNS = (
         for b in BUILDINGS
         if not (b == "ground" and c == "floor_motions")
         and not (b == "a pair of models" and c not in ("slide_plane", "rotd_spectrum"))
+        # heavy equipment acting back on its floor: linear buildings only (1-D)
+        and not (c == "slide_coupled" and b not in ("fixed", "linear isolated"))
     }
     | {
         ("slide", b, True)

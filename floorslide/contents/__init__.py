@@ -1,6 +1,7 @@
 """Contents: freestanding equipment sliding on floors (rigid blocks, 2-DOF sliding oscillator)
 and the rocking-or-sliding check."""
 
+from floorslide.contents.coupled import CoupledSlideResult, slide_coupled
 from floorslide.contents.oscillator import OscillatorResult, slide_oscillator
 from floorslide.contents.plane import PlaneSlideResult, slide_plane
 from floorslide.contents.rocking import response_mode
@@ -8,6 +9,7 @@ from floorslide.contents.rocking_block import RockResult, rock
 from floorslide.contents.sliding import SlideResult, slide
 
 __all__ = [
+    "CoupledSlideResult",
     "OscillatorResult",
     "PlaneSlideResult",
     "RockResult",
@@ -15,6 +17,7 @@ __all__ = [
     "response_mode",
     "rock",
     "slide",
+    "slide_coupled",
     "slide_oscillator",
     "slide_plane",
 ]
