@@ -37,6 +37,7 @@ _EXPORTS: dict[str, tuple[str, ...]] = {
     "floorslide.constants": ("G",),
     "floorslide.contents": (
         "OscillatorResult",
+        "PlaneOscillatorResult",
         "PlaneSlideResult",
         "RockResult",
         "SlideResult",
@@ -44,6 +45,7 @@ _EXPORTS: dict[str, tuple[str, ...]] = {
         "rock",
         "slide",
         "slide_oscillator",
+        "slide_oscillator_plane",
         "slide_plane",
     ),
     "floorslide.errors": (
@@ -113,6 +115,7 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
     )
     from floorslide.contents import (
         OscillatorResult,
+        PlaneOscillatorResult,
         PlaneSlideResult,
         RockResult,
         SlideResult,
@@ -120,6 +123,7 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
         rock,
         slide,
         slide_oscillator,
+        slide_oscillator_plane,
         slide_plane,
     )
     from floorslide.errors import (
@@ -196,6 +200,7 @@ __all__ = [
     "ShearBuilding",
     "OscillatorResult",
     "PlaneSlideResult",
+    "PlaneOscillatorResult",
     "RecordPair",
     "BuildingPair",
     "RockResult",
@@ -212,6 +217,7 @@ __all__ = [
     "rotd_spectrum",
     "RotDSpectrum",
     "slide_oscillator",
+    "slide_oscillator_plane",
     "building_motion",
     "floor_motion",
     "floor_motions",

@@ -3,12 +3,14 @@ and the rocking-or-sliding check."""
 
 from floorslide.contents.oscillator import OscillatorResult, slide_oscillator
 from floorslide.contents.plane import PlaneSlideResult, slide_plane
+from floorslide.contents.plane_oscillator import PlaneOscillatorResult, slide_oscillator_plane
 from floorslide.contents.rocking import response_mode
 from floorslide.contents.rocking_block import RockResult, rock
 from floorslide.contents.sliding import SlideResult, slide
 
 __all__ = [
     "OscillatorResult",
+    "PlaneOscillatorResult",
     "PlaneSlideResult",
     "RockResult",
     "SlideResult",
@@ -16,5 +18,6 @@ __all__ = [
     "rock",
     "slide",
     "slide_oscillator",
+    "slide_oscillator_plane",
     "slide_plane",
 ]
