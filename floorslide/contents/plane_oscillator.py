@@ -1,5 +1,5 @@
 """The 2-DOF sliding oscillator in the plane: flexible equipment whose base slides on its floor
-under two horizontal components (docs/design.md §17).
+under two horizontal components (docs/design.md §10d).
 
 The 1-D model of :func:`floorslide.slide_oscillator` made isotropic: the top mass on a spring and
 dashpot of the same stiffness in every horizontal direction (clamped-base frequency `f`, damping

@@ -1,4 +1,4 @@
-"""The 2-DOF sliding oscillator in the plane (docs/design.md §17): along any azimuth it is the 1-D
+"""The 2-DOF sliding oscillator in the plane (docs/design.md §10d): along any azimuth it is the 1-D
 oscillator (ground, a linear building's floor, a friction-pendulum building's floor); never
 slipping it is the clamped-base oscillator (RotD100 and the 1-D spectrum); against an
 independent event-located DOP853 reference on real pairs; bad input refused in one line."""
