@@ -38,6 +38,7 @@ _EXPORTS: dict[str, tuple[str, ...]] = {
     "floorslide.contents": (
         "CoupledSlideResult",
         "OscillatorResult",
+        "PlaneOscillatorResult",
         "PlaneSlideResult",
         "RockResult",
         "SlideResult",
@@ -46,6 +47,7 @@ _EXPORTS: dict[str, tuple[str, ...]] = {
         "slide",
         "slide_coupled",
         "slide_oscillator",
+        "slide_oscillator_plane",
         "slide_plane",
     ),
     "floorslide.errors": (
@@ -116,6 +118,7 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
     from floorslide.contents import (
         CoupledSlideResult,
         OscillatorResult,
+        PlaneOscillatorResult,
         PlaneSlideResult,
         RockResult,
         SlideResult,
@@ -124,6 +127,7 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
         slide,
         slide_coupled,
         slide_oscillator,
+        slide_oscillator_plane,
         slide_plane,
     )
     from floorslide.errors import (
@@ -200,6 +204,7 @@ __all__ = [
     "ShearBuilding",
     "OscillatorResult",
     "PlaneSlideResult",
+    "PlaneOscillatorResult",
     "RecordPair",
     "BuildingPair",
     "RockResult",
@@ -218,6 +223,7 @@ __all__ = [
     "rotd_spectrum",
     "RotDSpectrum",
     "slide_oscillator",
+    "slide_oscillator_plane",
     "building_motion",
     "floor_motion",
     "floor_motions",

@@ -55,6 +55,9 @@ CONSUMERS = {
     "slide_oscillator": lambda b, v: fs.slide_oscillator(
         A, DT, [0.1], 5.0, building=b, floor=_floor(b)
     ),
+    "slide_oscillator_plane": lambda b, v: fs.slide_oscillator_plane(
+        PAIR_V, None, [0.1], 5.0, building=b, floor=_floor(b), vertical=v
+    ),
     "rock": lambda b, v: fs.rock(A, DT, 0.3, 1.2, building=b, floor=_floor(b)),
     "response_spectrum": lambda b, v: fs.response_spectrum(
         A, DT, [0.2, 1.0], building=b, floor=_floor(b)
@@ -68,9 +71,9 @@ CONSUMERS = {
     "floor_motions": lambda b, v: fs.floor_motions(b, A, DT, floors=[1, 2]),
     "peak_floor_acceleration": lambda b, v: fs.peak_floor_acceleration(b, A, DT),
 }
-VERTICAL = {"slide", "slide_plane"}
-"""The consumers that take vertical shaking (the 2-DOF oscillator and the rocking block have no
-``vertical`` argument yet)."""
+VERTICAL = {"slide", "slide_plane", "slide_oscillator_plane"}
+"""The consumers with a ``vertical`` argument (the 2-DOF oscillator in the plane refuses it; the
+1-D oscillator and the rocking block have none yet)."""
 
 RUNS = (
     {
@@ -78,7 +81,10 @@ RUNS = (
         for c in CONSUMERS
         for b in BUILDINGS
         if not (b == "ground" and c == "floor_motions")
-        and not (b == "a pair of models" and c not in ("slide_plane", "rotd_spectrum"))
+        and not (
+            b == "a pair of models"
+            and c not in ("slide_plane", "rotd_spectrum", "slide_oscillator_plane")
+        )
         # heavy equipment acting back on its floor: linear buildings only (1-D)
         and not (c == "slide_coupled" and b not in ("fixed", "linear isolated"))
     }

@@ -4,6 +4,7 @@ and the rocking-or-sliding check."""
 from floorslide.contents.coupled import CoupledSlideResult, slide_coupled
 from floorslide.contents.oscillator import OscillatorResult, slide_oscillator
 from floorslide.contents.plane import PlaneSlideResult, slide_plane
+from floorslide.contents.plane_oscillator import PlaneOscillatorResult, slide_oscillator_plane
 from floorslide.contents.rocking import response_mode
 from floorslide.contents.rocking_block import RockResult, rock
 from floorslide.contents.sliding import SlideResult, slide
@@ -11,6 +12,7 @@ from floorslide.contents.sliding import SlideResult, slide
 __all__ = [
     "CoupledSlideResult",
     "OscillatorResult",
+    "PlaneOscillatorResult",
     "PlaneSlideResult",
     "RockResult",
     "SlideResult",
@@ -19,5 +21,6 @@ __all__ = [
     "slide",
     "slide_coupled",
     "slide_oscillator",
+    "slide_oscillator_plane",
     "slide_plane",
 ]
