@@ -72,7 +72,8 @@ Layout (every dataset carries a ``units`` attribute; ``1`` means dimensionless):
                              overturned) for contents that rock under the record; for a pair
                              floor_acceleration_h2 (m/s**2, along h2; floor_acceleration is
                              along h1), and slides/.../u is |u|, u_plane (m, (n_mu, npts, 2))
-                             the path in the plane; on nonlinear isolation the bearing's
+                             the path in the plane (2-DOF oscillators: z is |z|, top_accel
+                             NaN, not kept in the plane); on nonlinear isolation the bearing's
                              histories above are along h1, isolator_displacement_h2 (m) and
                              isolator_force_ratio_h2 (1) along h2 (its orbit)
 

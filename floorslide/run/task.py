@@ -466,10 +466,15 @@ def _run_pair(task: Task, force: bool, t0: float) -> TaskResult:
     attributes (docs/design.md §10b)."""
     from floorslide.building.directions import plane_motions, plane_peak
     from floorslide.building.plane_isolation import PlaneIsolatedMotion, couples_directions
-    from floorslide.building.poly_peaks import PolyComponent, poly_peaks
-    from floorslide.building.poly_segments import samples_on_poly
+    from floorslide.building.poly_peaks import KeptPolyMotion, PolyComponent, poly_peaks
+    from floorslide.building.poly_segments import (
+        GroundPolyMotion,
+        LinearPolyMotion,
+        samples_on_poly,
+    )
     from floorslide.constants import G
     from floorslide.contents.plane import slide_plane
+    from floorslide.contents.plane_oscillator import slide_oscillator_plane_on_segments
     from floorslide.contents.plane_segments import slide_plane_on_segments
 
     rec = task.record
@@ -516,7 +521,26 @@ def _run_pair(task: Task, force: bool, t0: float) -> TaskResult:
             return PolyComponent(coupled, floor, 0), PolyComponent(coupled, floor, 1)
         return motions[floor]
 
+    poly = [coupled]
+
+    def plane_oscillators(content, floor, mu_k, mu_s, histories=False):
+        """2-DOF oscillators in the plane on the task's poly motion (made once: the coupled
+        one, or the ground's or linear building's own, kept in memory)."""
+        if poly[0] is None:
+            if model is None:
+                poly[0] = GroundPolyMotion(rec.acc, rec.acc2, dt)
+            else:
+                poly[0] = KeptPolyMotion(
+                    LinearPolyMotion(model, rec.acc, rec.acc2, dt, floors=sorted(set(floors)))
+                )
+        return slide_oscillator_plane_on_segments(
+            poly[0], floor if model is not None else None, mu_k, mu_s,
+            frequency=content.frequency, damping=content.damping,
+            mass_ratio=content.mass_ratio, histories=histories,
+        )  # fmt: skip
+
     hist_slides, hist_mu, hist_plane, hist_rock = {}, {}, {}, {}
+    hist_deform, hist_top = {}, {}
     for content, floor in task.contents:
         with _naming(f"content {content.id} on floor {floor}"):
             mu, mu_s = _frictions(content)
@@ -531,7 +555,23 @@ def _run_pair(task: Task, force: bool, t0: float) -> TaskResult:
                 arr[rocks] = np.nan
             idx = np.nonzero(integrate)[0]
             vert = rec.vertical if content.vertical else None
-            if idx.size:
+            oscillator = content.model == "oscillator"
+            deform = top = None
+            if oscillator:
+                # flexible equipment in the plane: its base's peak acceleration is not tracked
+                # (NaN), nor its 1-D comparison
+                deform, top = np.full(n, np.nan), np.full(n, np.nan)
+                one_d[:] = np.nan
+                if idx.size:
+                    r = plane_oscillators(content, floor, mu[idx], mu_s[idx])
+                    peak[idx], frac[idx] = r.peak_slide, r.slide_fraction
+                    slips[idx] = r.slip_phases
+                    resid[idx] = np.hypot(r.residual[:, 0], r.residual[:, 1])
+                    r1[idx], r2[idx] = r.residual[:, 0], r.residual[:, 1]
+                    angle[idx] = r.peak_angle
+                    acc_obj[idx] = np.nan
+                    deform[idx], top[idx] = r.peak_deformation, r.peak_top_accel
+            elif idx.size:
                 r = plane_slide(mu[idx], mu_s[idx], floor, vert)
                 peak[idx], frac[idx], slips[idx] = r.peak_slide, r.slide_fraction, r.slip_phases
                 resid[idx] = np.hypot(r.residual[:, 0], r.residual[:, 1])
@@ -574,6 +614,8 @@ def _run_pair(task: Task, force: bool, t0: float) -> TaskResult:
                     peak_slide_h1=one_d[:, 0].copy(),
                     peak_slide_h2=one_d[:, 1].copy(),
                     ratio_2d_1d=ratio,
+                    peak_deformation=deform,
+                    peak_top_accel=top,
                     **rocking,
                 )
             )
@@ -582,8 +624,16 @@ def _run_pair(task: Task, force: bool, t0: float) -> TaskResult:
                 hist_rock[key] = rock_result.theta[0] / rock_result.alpha[0]
             if task.histories:
                 pick = np.unique(np.linspace(0, n - 1, min(HISTORY_MU, n)).round().astype(int))
-                r = plane_slide(mu[pick], mu_s[pick], floor, vert, histories=True,
-                                compare_1d=False)  # fmt: skip
+                if oscillator:
+                    r = plane_oscillators(content, floor, mu[pick], mu_s[pick], histories=True)
+                    zh = np.hypot(r.z[:, :, 0], r.z[:, :, 1])
+                    zh[rocks[pick]] = np.nan
+                    hist_deform[key] = zh
+                    # the top's acceleration history is not kept in the plane: NaN
+                    hist_top[key] = np.full_like(zh, np.nan)
+                else:
+                    r = plane_slide(mu[pick], mu_s[pick], floor, vert, histories=True,
+                                    compare_1d=False)  # fmt: skip
                 u = r.u
                 u[rocks[pick]] = np.nan
                 hist_plane[key] = u
@@ -609,7 +659,7 @@ def _run_pair(task: Task, force: bool, t0: float) -> TaskResult:
             acc1 = np.array([motions[f][0].samples() for f in floors]).reshape(-1, rec.acc.size)
             acc2 = np.array([motions[f][1].samples() for f in floors]).reshape(-1, rec.acc.size)
         result.histories = Histories(
-            dt, fl, acc1, hist_slides, hist_mu, rocking=hist_rock,
+            dt, fl, acc1, hist_slides, hist_mu, hist_deform, hist_top, rocking=hist_rock,
             plane=hist_plane, floor_acceleration_h2=acc2, **bearing,
         )  # fmt: skip
     result.seconds = time.perf_counter() - t0

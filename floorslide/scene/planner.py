@@ -929,9 +929,12 @@ def plan(scene: Scene, *, force: bool = False, evaluate: bool = True) -> Plan:
                 for c, f in t.contents:
                     _modes, integrate, reasons = decide(c, pfa[f], force)
                     p.skipped.update(reasons)
-                    p.runs["rigid blocks sliding in the plane (object × floor × task)"] += int(
-                        integrate.sum()
+                    label = (
+                        "2-DOF sliding oscillators in the plane"
+                        if c.model == "oscillator"
+                        else "rigid blocks sliding in the plane"
                     )
+                    p.runs[f"{label} (object × floor × task)"] += int(integrate.sum())
                     if any(m in ("rock", "slide-rock") for m in _modes):
                         p.runs["rocking blocks, planar in each component's direction"] += 1
                 continue

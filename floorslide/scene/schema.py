@@ -626,12 +626,10 @@ def parse_scene(text: str, path: str | Path = "scene.toml") -> Scene:
     if pair_sets:
         for i, c in enumerate(contents):
             what = (
-                (
-                    "model",
-                    "the 2-DOF sliding oscillator in the plane is not available in studies yet "
-                    "(fs.slide_oscillator_plane runs it)",
-                )
-                if c.model == "oscillator"
+                ("vertical", "the 2-DOF sliding oscillator in the plane has no vertical shaking")
+                if c.model == "oscillator" and c.vertical
+                else ("mu", "the 2-DOF sliding oscillator in the plane needs mu > 0")
+                if c.model == "oscillator" and min(c.mu, default=1.0) <= 0.0
                 else ("direction", "one-way sliding is 1-D")
                 if c.direction != "both"
                 else None

@@ -203,3 +203,47 @@ def test_lead_rubber_under_pairs_runs_on_its_coupled_motion(tmp_path):
             api = fs.slide_plane(pair, None, c.mu_k, building=model, floor=c.floor)
             slid = c.modes == "slide"
             np.testing.assert_array_equal(c.peak_slide[slid], api.peak_slide[slid])
+
+
+def test_flexible_equipment_in_the_plane_on_both_buildings(tmp_path):
+    """A 2-DOF sliding oscillator on a set of pairs: on the fixed building (its linear motion)
+    and on the pendulum building (its coupled motion) the stored peaks equal
+    fs.slide_oscillator_plane on the scene's models, bit for bit; the history record keeps its
+    path in the plane and the spring's deformation."""
+    flex = """
+[[contents]]
+id = "pump"
+floors = "roof"
+mu = [0.05, 0.15]
+model = "oscillator"
+frequency = 4.0
+damping = 0.03
+mass_ratio = 0.5
+"""
+    path = tmp_path / "s.toml"
+    path.write_text(scene().replace("[spectra]", flex + "\n[spectra]"))
+    sc = load_scene(path)
+    p = plan(sc)
+    assert "2-DOF sliding oscillators in the plane" in p.describe()
+    out = tmp_path / "out.h5"
+    execute(p, str(out), workers=1)
+    (pair,) = fs.read_pairs(CATALOG, where={"rsn": "1084"})
+    seen = 0
+    for t in ResultFile(out).tasks():
+        (b,) = [b for b in sc.buildings if b.id == t.meta["building"]]
+        (c,) = [c for c in t.contents if c.content == "pump"]
+        model = b.build_plane()
+        ref = fs.slide_oscillator_plane(pair, None, c.mu_k, 4.0, 0.03, 0.5, building=model,
+                                        floor=2)  # fmt: skip
+        np.testing.assert_array_equal(c.peak_slide, ref.peak_slide)
+        np.testing.assert_array_equal(c.peak_deformation, ref.peak_deformation)
+        np.testing.assert_array_equal(c.peak_top_accel, ref.peak_top_accel)
+        np.testing.assert_array_equal(c.peak_angle, ref.peak_angle)
+        assert ref.peak_slide.max() > 0.0
+        h = t.histories
+        if h is not None:
+            u = h.plane["pump/floor_2"]
+            assert u.shape == (2, pair.h1.size, 2)
+            assert np.isfinite(h.deformation["pump/floor_2"]).all()
+        seen += 1
+    assert seen == 2

@@ -226,7 +226,10 @@ def test_plane_table_and_figures(run):
 @pytest.mark.parametrize(
     ("kw", "message"),
     [
-        (dict(contents='model = "oscillator"\nfrequency = 5.0'), r"contents\[0\]\.model: the 2-DOF"),
+        (
+            dict(contents='model = "oscillator"\nfrequency = 5.0\nvertical = true'),
+            r"contents\[0\]\.vertical",
+        ),
         (dict(contents='direction = "positive"'), r"contents\[0\]\.direction: one-way"),
         (dict(records='component = "N"'), r"records\[0\]\.component: a catalog of components"),
         (dict(extra_building="damping = [0.02, 0.05]\nperiod_h2x = 1"), r"period_h2x"),
