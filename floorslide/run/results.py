@@ -62,6 +62,9 @@ class ContentResult:
     # rocking: the impacts at |θ'| ≥ p·α·√(f(2 − f)), f = 0.01 (RockResult.significant_impacts;
     # −1 where it slides instead; None in files written before they were counted)
     rock_significant_impacts: np.ndarray | None = None
+    # heavy equipment coupled with its floor (floor_mass_ratio, coupled): the floor's true PFA
+    # with the block on it, per friction pair (NaN where it was not integrated)
+    coupled_pfa: np.ndarray | None = None
 
 
 ROCK_FIELDS = ("rock_peak_ratio", "rock_impacts", "rock_time", "overturned", "overturn_time")

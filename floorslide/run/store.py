@@ -35,7 +35,9 @@ Layout (every dataset carries a ``units`` attribute; ``1`` means dimensionless):
       contents/<content>/floor_<f>/
                              mu_k, mu_s (1), peak_slide (m), residual_slide (m),
                              peak_abs_accel (m/s**2), slide_fraction (1), slip_phases (1)
-                             [+ peak_deformation (m), peak_top_accel (m/s**2) for oscillators],
+                             [+ peak_deformation (m), peak_top_accel (m/s**2) for oscillators;
+                             coupled_pfa (m/s**2, the floor's true PFA with the block) for
+                             heavy equipment coupled with its floor],
                              modes (per friction pair, Shenton's: rest/slide/rock/slide-rock;
                              the slide values of a rocking object are NaN); for contents with a
                              width and height also rock_peak_ratio (1, max|θ|/α), rock_impacts
@@ -166,6 +168,7 @@ UNITS = {
     "slip_phases": "1",
     "peak_deformation": "m",
     "peak_top_accel": "m/s**2",
+    "coupled_pfa": "m/s**2",
     "periods": "s",
     "damping": "1",
     "psa": "m/s**2",
@@ -315,7 +318,7 @@ def task_node(result: TaskResult) -> Node:
         h = contents.group(c.content).group(f"floor_{c.floor}")
         for name in CONTENT_FIELDS:
             h.children[name] = _data(name, getattr(c, name))
-        for name in ("peak_deformation", "peak_top_accel"):
+        for name in ("peak_deformation", "peak_top_accel", "coupled_pfa"):
             if getattr(c, name) is not None:
                 h.children[name] = _data(name, getattr(c, name))
         if c.modes is not None:
@@ -1344,6 +1347,7 @@ def _read_task(g: Node, tid: str, legacy_broadening: float = 0.0) -> TaskResult:
                     if "peak_deformation" in h
                     else None,
                     peak_top_accel=_value(h, "peak_top_accel") if "peak_top_accel" in h else None,
+                    coupled_pfa=_value(h, "coupled_pfa") if "coupled_pfa" in h else None,
                     modes=np.array([_s(m) for m in _value(h, "modes")]) if "modes" in h else None,
                     **_rocking_of(h),
                     **{n: _value(h, n) for n in PLANE_FIELDS if n in h},

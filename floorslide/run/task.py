@@ -15,6 +15,7 @@ import numpy as np
 
 from floorslide.building.exact_motion import building_motion
 from floorslide.building.isolators import small_angle_note
+from floorslide.contents.coupled import slide_coupled
 from floorslide.contents.oscillator import slide_oscillator
 from floorslide.contents.rocking_block import rock as rock_blocks
 from floorslide.contents.sliding import slide
@@ -324,10 +325,20 @@ def _run(task: Task, force: bool) -> TaskResult:
         )
     result = TaskResult(task.task_id, meta, floors, np.asarray(pfa, dtype=float))
     hist_slides, hist_mu, hist_deform, hist_top, hist_rock = {}, {}, {}, {}, {}
+
+    def heavy(content) -> bool:
+        return content.floor_mass_ratio is not None and content.coupled
+
+    def heavy_mass(content, floor: int) -> float:
+        """The block's mass in the model's units: its ratio times its floor's mass."""
+        return content.floor_mass_ratio * float(model.mass[list(model.dof_floors).index(floor)])
+
     for content, floor in task.contents:
         with _naming(f"content {content.id} on floor {floor}"):
             mu, mu_s = _frictions(content)
-            modes, integrate, reasons = decide(content, pfa_of[floor], force)
+            # the skip rule below the breakaway level is the building's alone: heavy equipment
+            # changes its floor's motion, so it is always integrated
+            modes, integrate, reasons = decide(content, pfa_of[floor], force or heavy(content))
             n = mu.size
             arrays = _slide_arrays(n, pfa_of[floor], modes)
             peak, resid, acc_obj, frac, slips, rocks = arrays
@@ -354,6 +365,17 @@ def _run(task: Task, force: bool) -> TaskResult:
                         r.slip_phases,
                     )
                     deform[idx], top[idx] = r.peak_deformation, r.peak_top_accel
+            elif heavy(content):
+                # heavy equipment acting back on its floor: integrated with the building (its
+                # own run; every friction pair that does not rock, see decide above)
+                coupled_pfa = np.full(n, np.nan)
+                if idx.size:
+                    r = slide_coupled(rec.acc, dt, mu[idx], mass=heavy_mass(content, floor),
+                                      building=model, floor=floor, mu_s=mu_s[idx])  # fmt: skip
+                    peak[idx], resid[idx] = r.peak_slide, r.residual_slide
+                    acc_obj[idx], frac[idx] = r.peak_abs_accel, r.slide_fraction
+                    slips[idx] = r.slip_phases
+                    coupled_pfa[idx] = r.pfa
             elif idx.size:
                 vert = rec.vertical if content.vertical else None
                 r = slide(fm, None, mu[idx], mu_s[idx], vertical=vert, direction=content.direction)
@@ -377,6 +399,8 @@ def _run(task: Task, force: bool) -> TaskResult:
             )
             rock_result = rocking.pop("result", None)
             extra = dict(peak_deformation=deform, peak_top_accel=top, **rocking)
+            if heavy(content):
+                extra["coupled_pfa"] = coupled_pfa
             result.contents.append(
                 _content_result(content, floor, modes, reasons, mu, mu_s, arrays, **extra)
             )
@@ -399,6 +423,10 @@ def _run(task: Task, force: bool) -> TaskResult:
                         histories=True,
                     )
                     hist_deform[key], hist_top[key] = r.z, r.top_accel
+                elif heavy(content):
+                    r = slide_coupled(rec.acc, dt, mu[pick], mass=heavy_mass(content, floor),
+                                      building=model, floor=floor, mu_s=mu_s[pick],
+                                      histories=True)  # fmt: skip
                 else:
                     r = slide(
                         fm,

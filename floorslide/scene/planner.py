@@ -945,9 +945,16 @@ def plan(scene: Scene, *, force: bool = False, evaluate: bool = True) -> Plan:
             peaks = peak_floor_acceleration(model, t.record.acc, t.record.dt, floors=floors).peak
             pfa = dict(zip(floors, peaks, strict=True))
             for c, f in t.contents:
-                _modes, integrate, reasons = decide(c, pfa[f], force)
+                heavy = c.floor_mass_ratio is not None and c.coupled
+                _modes, integrate, reasons = decide(c, pfa[f], force or heavy)
                 p.skipped.update(reasons)
-                label = "2-DOF sliding oscillators" if c.model == "oscillator" else "rigid blocks"
+                label = (
+                    "heavy equipment coupled with its floor"
+                    if heavy
+                    else "2-DOF sliding oscillators"
+                    if c.model == "oscillator"
+                    else "rigid blocks"
+                )
                 p.runs[f"{label} integrated (object × floor × task)"] += int(integrate.sum())
                 if any(m in ("rock", "slide-rock") for m in _modes):
                     how = "linearised" if c.rocking == "exact" else "full equation"

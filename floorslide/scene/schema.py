@@ -90,6 +90,10 @@ stay on the building: the isolation period — post-yield ``T_d`` of a bilinear 
 pendulum period — and a viscous ratio)."""
 ISOLATOR_SWEEPS = {"q_ratio": "Q", "yield_disp": "Dy", "alpha": "alpha", "mu": "mu"}
 """Isolator keys a list sweeps, and their tag in variant ids (``fps@mu=0.04``)."""
+DECOUPLING_LIMIT = {"fixed": 0.03, "isolated": 0.10}
+"""The largest floor mass ratio at which the decoupled peak slide stays within 5 % of the coupled
+one in the median over the bundled records (``scripts/coupled_equipment_table.py``, docs/design.md
+§10f), on a fixed-base and a linearly isolated building."""
 CONTENT_KEYS = {
     "id",
     "floors",
@@ -106,6 +110,8 @@ CONTENT_KEYS = {
     "restitution",
     "rocking",
     "allowable",
+    "floor_mass_ratio",
+    "coupled",
 }
 SCALE_KEYS = {
     "target",
@@ -365,6 +371,12 @@ class ContentSpec:
     allowable: tuple[float, ...] = ()
     """Allowable displacements (m, increasing; e.g. the gap to a wall): the tables give the
     fraction of records whose peak slide exceeds each (docs/design.md §10e)."""
+    floor_mass_ratio: float | None = None
+    """Heavy equipment: the block's mass over its floor's (in (0, 1)); with `coupled` it is
+    integrated with the building (:func:`floorslide.slide_coupled`, docs/design.md §10f)."""
+    coupled: bool = True
+    """With a `floor_mass_ratio`: whether the block acts back on its floor (False: decoupled,
+    warned about above :data:`DECOUPLING_LIMIT`)."""
 
     def floors_of(self, stories: int) -> tuple[int, ...]:
         """The floors of a building with `stories` storeys this content stands on."""
@@ -622,6 +634,7 @@ def parse_scene(text: str, path: str | Path = "scene.toml") -> Scene:
                     "not available in studies yet (fs.slide(..., vertical=, building=) runs it; "
                     "blocks without it, and on lead-rubber with it, run)",
                 )
+    _heavy_equipment(contents, buildings, records, ck)
     pair_sets = [r.set for r in records if r.pairs]
     if pair_sets:
         for i, c in enumerate(contents):
@@ -1545,6 +1558,25 @@ def _contents(value, ck: _Checker, stories: set[int]) -> tuple[ContentSpec, ...]
         direction = c.get("direction", "both")
         if direction not in ("both", "positive", "negative"):
             ck.add(f"{w}.direction", f"must be both, positive or negative, got {direction!r}")
+        fmr, coupled = None, True
+        if "floor_mass_ratio" in c:
+            fmr = ck.number(
+                c["floor_mass_ratio"], f"{w}.floor_mass_ratio", lo=0, lo_open=True, hi=1,
+                hi_open=True,
+            )  # fmt: skip
+            if model != "rigid":
+                ck.add(f"{w}.floor_mass_ratio", "applies to a rigid block (model = 'rigid')")
+        if "coupled" in c:
+            coupled = c["coupled"]
+            if not isinstance(coupled, bool):
+                ck.add(f"{w}.coupled", f"must be true or false, got {coupled!r}")
+            elif "floor_mass_ratio" not in c:
+                ck.add(f"{w}.coupled", "needs floor_mass_ratio (the block's mass over its floor's)")
+        if fmr is not None and coupled is True:
+            if vertical is True:
+                ck.add(f"{w}.vertical", "heavy equipment coupled with its floor has no vertical")
+            if direction != "both":
+                ck.add(f"{w}.direction", "heavy equipment coupled with its floor slides both ways")
         out.append(
             ContentSpec(
                 cid or f"content{i}",
@@ -1562,9 +1594,47 @@ def _contents(value, ck: _Checker, stories: set[int]) -> tuple[ContentSpec, ...]
                 restitution,
                 str(rocking),
                 allowable,
+                fmr,
+                bool(coupled) if isinstance(coupled, bool) else True,
             )
         )
     return tuple(out)
+
+
+def _heavy_equipment(contents, buildings, records, ck: _Checker) -> None:
+    """Contents with a ``floor_mass_ratio``: coupled ones run on linear buildings under single
+    components only (one line by key path otherwise); a decoupled one heavier than
+    :data:`DECOUPLING_LIMIT` of its floor is warned about."""
+    pairs = [r.set for r in records if r.pairs]
+    nonlinear = [b.id for b in buildings if b.isolator_model not in ("", "linear")]
+    for i, c in enumerate(contents):
+        if c.floor_mass_ratio is None:
+            continue
+        w = f"contents[{i}].floor_mass_ratio"
+        if not c.coupled:
+            kinds = sorted({b.kind for b in buildings if b.kind in DECOUPLING_LIMIT})
+            over = [k for k in kinds if c.floor_mass_ratio > DECOUPLING_LIMIT[k]]
+            if over:
+                ck.warn(
+                    w,
+                    f"{c.floor_mass_ratio:g} of the floor's mass, run decoupled: above "
+                    f"{DECOUPLING_LIMIT[over[0]]:g} on a {over[0]} building the decoupled peak "
+                    "slide is more than 5 % off in the median (docs/design.md §10f); set "
+                    "coupled = true",
+                )
+            continue
+        if pairs:
+            ck.add(
+                w,
+                "heavy equipment coupled with its floor is 1-D: the record set "
+                f"{pairs[0]!r} is a set of pairs",
+            )
+        elif nonlinear:
+            ck.add(
+                w,
+                "heavy equipment coupled with its floor is not modelled on nonlinear isolation "
+                f"yet (building {nonlinear[0]!r}); set coupled = false to run it decoupled",
+            )
 
 
 def _spectra(value, ck: _Checker, stories: set[int]) -> SpectraSpec | None:
