@@ -53,7 +53,7 @@ CONSUMERS = {
         PAIR_V, None, [0.1], building=b, floor=_floor(b), vertical=v
     ),
     "slide_oscillator": lambda b, v: fs.slide_oscillator(
-        A, DT, [0.1], 5.0, building=b, floor=_floor(b)
+        A, DT, [0.1], 5.0, building=b, floor=_floor(b), vertical=v
     ),
     "slide_oscillator_plane": lambda b, v: fs.slide_oscillator_plane(
         PAIR_V, None, [0.1], 5.0, building=b, floor=_floor(b), vertical=v
@@ -71,9 +71,9 @@ CONSUMERS = {
     "floor_motions": lambda b, v: fs.floor_motions(b, A, DT, floors=[1, 2]),
     "peak_floor_acceleration": lambda b, v: fs.peak_floor_acceleration(b, A, DT),
 }
-VERTICAL = {"slide", "slide_plane", "slide_oscillator_plane"}
-"""The consumers with a ``vertical`` argument (the 2-DOF oscillator in the plane refuses it; the
-1-D oscillator and the rocking block have none yet)."""
+VERTICAL = {"slide", "slide_plane", "slide_oscillator_plane", "slide_oscillator"}
+"""The consumers with a ``vertical`` argument (the 2-DOF oscillators refuse it in one line; the
+rocking block has none yet)."""
 
 RUNS = (
     {

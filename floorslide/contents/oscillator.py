@@ -102,6 +102,8 @@ def slide_oscillator(
     grip_frequency: float = 100.0,
     grip_damping: float = 0.1,
     integrator: str = "LSODA",
+    vertical=None,
+    direction: str = "both",
 ) -> OscillatorResult:
     """Peak slide, spring deformation and accelerations of a 2-DOF sliding oscillator.
 
@@ -137,6 +139,9 @@ def slide_oscillator(
         damping ratio `grip_damping`, integrated by SciPy's `integrator` at `rtol`).
     substeps, rtol, grip_frequency, grip_damping, integrator
         Settings of the approximate methods.
+    vertical, direction
+        What :func:`~floorslide.slide` takes for a rigid block: not modelled for the 2-DOF
+        oscillator yet — refused in one line unless None and ``"both"``.
 
     Returns
     -------
@@ -148,6 +153,18 @@ def slide_oscillator(
     Brochard, D., Gantenbein, F. (1989). Seismic response of a sliding structure. *Transactions
     SMiRT 10*, vol. K2, 1147–1152.
     """
+    if vertical is not None:
+        raise ModelError(
+            "vertical shaking is not modelled for the 2-DOF sliding oscillator yet (a rigid "
+            "block takes it: fs.slide)",
+            "vertical",
+        )
+    if direction != "both":
+        raise ModelError(
+            f"one-way sliding (direction={direction!r}) is not modelled for the 2-DOF sliding "
+            "oscillator yet (a rigid block takes it: fs.slide)",
+            "direction",
+        )
     fm, a, dt, notes = unwrap(acc, dt, building, floor)
     if getattr(fm, "segmented", False) or getattr(building, "segmented", False):
         # a floor of a building on nonlinear isolation: its segments, integrated once

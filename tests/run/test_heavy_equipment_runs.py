@@ -118,3 +118,17 @@ def test_a_decoupled_heavy_block_is_warned_about():
 def test_what_is_not_modelled_is_refused_by_key_path(content, extra, message):
     with pytest.raises(SceneError, match=message):
         parse_scene(scene(content, extra), ROOT / "s.toml")
+
+
+@pytest.mark.parametrize(
+    ("content", "key"),
+    [
+        ('model = "oscillator"\nfrequency = 5.0\nvertical = true', "vertical"),
+        ('model = "oscillator"\nfrequency = 5.0\ndirection = "positive"', "direction"),
+    ],
+)
+def test_flexible_equipment_refuses_what_it_does_not_model(content, key):
+    """Vertical shaking and one-way sliding are not modelled for the 2-DOF oscillator: refused
+    by key path (a run ignored them before)."""
+    with pytest.raises(SceneError, match=rf"contents\[0\]\.{key}: not modelled for the 2-DOF"):
+        parse_scene(scene(content), ROOT / "s.toml")
