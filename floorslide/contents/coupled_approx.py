@@ -207,8 +207,10 @@ def slide_coupled_smoothed(
     A block that the exact model holds creeps here at the speed where ``tanh`` balances the
     friction it needs; its slide therefore drifts by about ``eps·artanh(|a_f|/(mu_k g))`` per
     second of sticking, and ``mu_s`` has no counterpart (the coefficient used is ``mu_k``).
-    Measured on the bench's 3-storey building: the peak-slide error falls about 10× per
-    decade of ``eps`` (tests/contents/test_coupled_approx.py).
+    Measured on the bench's case (``slide-coupled``: PET-090, block of 10 % of the roof's mass
+    on a 3-storey building, T = 0.5 s, two frictions): peak-slide error 1.8 %, 0.25 %, 0.04 %
+    and roof-PFA error 0.13 %, 0.025 %, 0.001 % at ``eps`` = 1e-2, 1e-3, 1e-4 m/s
+    (``rtol = eps/100``): 6–7× per decade of ``eps``.
 
     References
     ----------
