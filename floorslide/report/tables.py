@@ -932,6 +932,42 @@ def _label_floors(study: Study, rows: list[dict]) -> None:
 # the API
 
 
+def _heavy_equipment_notes(study: Study) -> list[str]:
+    """What the tables say about heavy equipment (contents with a ``floor_mass_ratio``): the
+    coupled ones' PFA, and a warning for each decoupled one above the decoupling-error table's
+    5 % ratio (:data:`floorslide.scene.schema.DECOUPLING_LIMIT`, docs/design.md §10f)."""
+    from floorslide.scene.schema import DECOUPLING_LIMIT
+
+    out = []
+    if any(c.coupled_pfa is not None for t in study.tasks for c in t.contents):
+        out.append(
+            "heavy equipment (floor_mass_ratio, coupled): integrated with the building, its "
+            "mass on the floor while it sticks and its friction while it slides (docs/design.md "
+            "§10f); the floors' pfa columns are the building's without it, coupled_pfa its "
+            "floor's with it"
+        )
+    contents = study.scene.get("contents", [])
+    kinds = {b.kind for b in study.buildings.values()}
+    for c in contents if isinstance(contents, list) else []:
+        if not isinstance(c, dict) or c.get("coupled", True) is not False:
+            continue
+        ratio = c.get("floor_mass_ratio")
+        over = sorted(k for k in kinds & DECOUPLING_LIMIT.keys() if _above(ratio, k))
+        if over:
+            out.append(
+                f"warning: content {c.get('id')!r} is run decoupled at {ratio:g} of its floor's "
+                f"mass, above {DECOUPLING_LIMIT[over[0]]:g} on a {over[0]} building, where the "
+                "decoupled peak slide is more than 5 % off in the median (docs/design.md §10f)"
+            )
+    return out
+
+
+def _above(ratio, kind: str) -> bool:
+    from floorslide.scene.schema import DECOUPLING_LIMIT
+
+    return isinstance(ratio, int | float) and ratio > DECOUPLING_LIMIT[kind]
+
+
 def table_notes(study: Study, damping: float | None) -> list[str]:
     """The conventions every output of the tables states (docs/design.md §10)."""
     notes = []
@@ -983,6 +1019,7 @@ def table_notes(study: Study, damping: float | None) -> list[str]:
             "rocks in the plane of each component and the more severe is kept; the plane "
             "table compares the 2-D slide with each component's 1-D slide"
         )
+    notes += _heavy_equipment_notes(study)
     if any("isolator_peak_displacement" in t.meta for t in study.tasks):
         notes.append(
             "isolators: displacements are the isolation layer's u0 relative to the ground; "

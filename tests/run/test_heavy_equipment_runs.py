@@ -132,3 +132,21 @@ def test_flexible_equipment_refuses_what_it_does_not_model(content, key):
     by key path (a run ignored them before)."""
     with pytest.raises(SceneError, match=rf"contents\[0\]\.{key}: not modelled for the 2-DOF"):
         parse_scene(scene(content), ROOT / "s.toml")
+
+
+def test_the_tables_say_what_heavy_equipment_did(tmp_path):
+    """The design tables' notes: coupled heavy equipment's PFA, and a warning for a decoupled
+    heavy content above the decoupling-error table's ratio."""
+    from floorslide.report import design_tables
+
+    cases = (
+        ("floor_mass_ratio = 0.1", "heavy equipment (floor_mass_ratio, coupled)"),
+        ("floor_mass_ratio = 0.2\ncoupled = false", "warning: content 'chiller' is run decoupled"),
+    )
+    for i, (content, words) in enumerate(cases):
+        path = tmp_path / "s.toml"
+        path.write_text(scene(content).replace('["ELC-180", "PET-090"]', '["ELC-180"]'))
+        out = tmp_path / f"out{i}.h5"
+        execute(plan(load_scene(path)), str(out), workers=1)
+        notes = design_tables(out).notes
+        assert any(words in n for n in notes), notes
