@@ -120,7 +120,7 @@ def bilinear_response(motion, XS, MODES, peak, EV, carry):
     layer's), ``friction_work`` the plastic (hysteretic) work ``∫ q·u_p' dt = Q ∫ z·u' dt``
     over the yielding branches (J), ``slide_fraction``/``sliding`` the share of time yielding
     and the branch at each sample, events ``"yield"`` and ``"unload"``."""
-    from floorslide.building.plane_isolation import PlaneIsolatorResponse
+    from floorslide.building.plane_isolation import PlaneIsolatorResponse, response_fields
 
     bx, _ = motion.building
     s: BilinearSetup = motion._s
@@ -136,35 +136,11 @@ def bilinear_response(motion, XS, MODES, peak, EV, carry):
     for d in range(2):
         rel = XS[:, d] @ s.A[d, n : 2 * n].T + acc[:, [d]] * s.bv[d, n : 2 * n]
         floor_acc[:, :, d] = rel + acc[:, [d]]
-    cap = bx.isolator.capacity
-    exceeded = cap is not None and peak[pk.P_DISP] > cap
-    notes = ()
-    if exceeded:
-        notes = (
-            f"the bearing displacement {peak[pk.P_DISP]:.4g} m exceeds the capacity {cap:g} m "
-            "(the impact that would follow is not modelled)",
-        )
-    kept = min(int(carry[bk.C_EVENTS]), EV.shape[0])
-    duration = (motion.npts - 1) * motion.dt
     return PlaneIsolatorResponse(
-        dt=motion.dt,
-        substeps=s.substeps,
-        displacement=u,
-        velocity=v,
-        floor_displacement=XS[:, :, :n].transpose(0, 2, 1).copy(),
+        **response_fields(motion, XS, n, peak, EV, int(carry[bk.C_EVENTS]), EVENT_NAMES, ()),
         floor_acceleration=floor_acc,
-        peak_displacement=float(peak[pk.P_DISP]),
-        peak_direction=float(np.degrees(peak[pk.P_ANGLE])),
-        peak_time=float(peak[pk.P_TIME]),
-        residual=u[-1].copy(),
         peak_force_ratio=float(peak[pk.P_FORCE] / W),
-        friction_work=float(peak[pk.P_WORK]),
-        slide_fraction=float(peak[pk.P_SLIDE_TIME] / duration) if duration > 0 else 0.0,
         sliding=MODES == bk.PLASTIC,
-        event_times=EV[:kept, 0].copy(),
-        event_kinds=tuple(EVENT_NAMES[int(k)] for k in EV[:kept, 1]),
         force_ratio=force / W,
-        capacity_exceeded=bool(exceeded),
         small_angle_exceeded=False,
-        notes=notes,
     )

@@ -383,41 +383,17 @@ class PlaneIsolatedMotion:
         force += np.where(sliding[:, None], 0.0, float(bx.mass[0]) * drive)
         floor_acc = _floor_accelerations(s, XS, sliding, wdir, acc, av)
         ratio = float(np.hypot(force[:, 0], force[:, 1]).max() / W)
-        cap = bx.isolator.capacity
-        exceeded = cap is not None and peak[pk.P_DISP] > cap
         small = small_angle_exceeded(bx.isolator, float(peak[pk.P_DISP]))
         notes = ()
         if small:
             notes = (small_angle_note(float(peak[pk.P_DISP]), bx.isolator.R),)
-        if exceeded:
-            notes += (
-                f"the bearing displacement {peak[pk.P_DISP]:.4g} m exceeds the capacity "
-                f"{cap:g} m (the impact that would follow is not modelled)",
-            )
-        kept = min(n_ev, EV.shape[0])
-        duration = (self.npts - 1) * self.dt
         return PlaneIsolatorResponse(
-            dt=self.dt,
-            substeps=s.substeps,
-            displacement=u,
-            velocity=v,
-            floor_displacement=XS[:, :, :n].transpose(0, 2, 1).copy(),
+            **response_fields(self, XS, n, peak, EV, n_ev, _KIND_NAMES, notes),
             floor_acceleration=floor_acc,
-            peak_displacement=float(peak[pk.P_DISP]),
-            peak_direction=float(np.degrees(peak[pk.P_ANGLE])),
-            peak_time=float(peak[pk.P_TIME]),
-            residual=u[-1].copy(),
             peak_force_ratio=ratio,
-            friction_work=float(peak[pk.P_WORK]),
-            slide_fraction=float(peak[pk.P_SLIDE_TIME] / duration) if duration > 0 else 0.0,
             sliding=sliding,
-            event_times=EV[:kept, 0].copy(),
-            event_kinds=tuple(_KIND_NAMES[int(k)] for k in EV[:kept, 1]),
             force_ratio=force / W,
-            floor_velocity=XS[:, :, n:].transpose(0, 2, 1).copy(),
-            capacity_exceeded=bool(exceeded),
             small_angle_exceeded=bool(small),
-            notes=notes,
         )
 
     def poly_chunks(self) -> Iterator:
@@ -461,6 +437,43 @@ def _segments(SEG, COEF, got, floors, k0, k1):
         floors=floors,
         k0=k0,
         k1=k1,
+    )
+
+
+def response_fields(motion, XS, n, peak, EV, n_ev, kind_names, notes) -> dict:
+    """The :class:`PlaneIsolatorResponse` fields every bearing shares, from the first pass of
+    `motion`: its states at the samples ``XS`` (per direction ``[u (n); u' (n); …]``), the
+    kernel's peaks and events (``n_ev`` of them, named by `kind_names`), and its `notes` with
+    the capacity's, when exceeded."""
+    bx, _ = motion.building
+    cap = bx.isolator.capacity
+    exceeded = cap is not None and peak[pk.P_DISP] > cap
+    if exceeded:
+        notes = (
+            *notes,
+            f"the bearing displacement {peak[pk.P_DISP]:.4g} m exceeds the capacity {cap:g} m "
+            "(the impact that would follow is not modelled)",
+        )
+    u = XS[:, :, 0].copy()
+    kept = min(n_ev, EV.shape[0])
+    duration = (motion.npts - 1) * motion.dt
+    return dict(
+        dt=motion.dt,
+        substeps=motion._s.substeps,
+        displacement=u,
+        velocity=XS[:, :, n].copy(),
+        floor_displacement=XS[:, :, :n].transpose(0, 2, 1).copy(),
+        floor_velocity=XS[:, :, n : 2 * n].transpose(0, 2, 1).copy(),
+        peak_displacement=float(peak[pk.P_DISP]),
+        peak_direction=float(np.degrees(peak[pk.P_ANGLE])),
+        peak_time=float(peak[pk.P_TIME]),
+        residual=u[-1].copy(),
+        friction_work=float(peak[pk.P_WORK]),
+        slide_fraction=float(peak[pk.P_SLIDE_TIME] / duration) if duration > 0 else 0.0,
+        event_times=EV[:kept, 0].copy(),
+        event_kinds=tuple(kind_names[int(k)] for k in EV[:kept, 1]),
+        capacity_exceeded=bool(exceeded),
+        notes=notes,
     )
 
 

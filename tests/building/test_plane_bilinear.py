@@ -208,6 +208,8 @@ def test_the_public_api_on_a_pair_and_a_model_per_direction(strong):
     h1, h2 = a, 0.8 * a[::-1].copy()
     b = building(stories=2)
     motion = PlaneIsolatedMotion(b, h1, h2, dt)
+    # the response's states at the samples: the mat's velocity is floor 0's
+    np.testing.assert_array_equal(motion.response.floor_velocity[:, 0], motion.response.velocity)
     api = fs.slide_plane((h1, h2), dt, MU, building=b, floor=1)
     np.testing.assert_array_equal(api.peak_slide, slide_plane_on_segments(motion, 1, MU).peak_slide)
     ra = fs.rotd_spectrum((h1, h2), dt, PERIODS, building=b, floor=1)
