@@ -84,6 +84,28 @@ class OscillatorResult:
     notes: tuple[str, ...] = ()
 
 
+def oscillator_parameters(frequency, damping, mass_ratio) -> tuple[float, float, float]:
+    """The checked 2-DOF oscillator (1-D and in the plane): ``(f, ξ, r)``, each refused in
+    one line naming its argument (a number where one is expected, in its range)."""
+    if frequency is None:
+        raise ModelError("frequency (the clamped-base frequency, Hz) is required", "frequency")
+    checks = (
+        ("frequency", frequency, lambda v: v > 0, "> 0 Hz"),
+        ("damping", damping, lambda v: 0 <= v < 1, "in [0, 1)"),
+        ("mass_ratio", mass_ratio, lambda v: v > 0, "> 0"),
+    )
+    out = []
+    for name, value, good, what in checks:
+        try:
+            v = float(value)
+        except (TypeError, ValueError):
+            raise ModelError(f"{name} must be a number {what}, got {value!r}", name) from None
+        if isinstance(value, bool) or not (math.isfinite(v) and good(v)):
+            raise ModelError(f"{name} must be {what}, got {value!r}", name)
+        out.append(v)
+    return out[0], out[1], out[2]
+
+
 def slide_oscillator(
     acc: RecordLike | FloorMotion,
     dt: float | None = None,
@@ -179,35 +201,19 @@ def slide_oscillator(
             missing = "mu" if mu is None else "frequency"
             raise ModelError(f"slide_oscillator needs {missing}", missing)
         mk, ms = friction_pairs(mu, mu_s)
-        f = float(frequency)
-        if not (np.isfinite(f) and f > 0):
-            raise ModelError(f"frequency must be > 0 Hz, got {frequency}", "frequency")
-        if not (np.isfinite(float(damping)) and 0 <= float(damping) < 1):
-            raise ModelError(f"damping must be in [0, 1), got {damping}", "damping")
-        if not (np.isfinite(float(mass_ratio)) and float(mass_ratio) > 0):
-            raise ModelError(f"mass_ratio must be > 0, got {mass_ratio}", "mass_ratio")
+        f, xi, r = oscillator_parameters(frequency, damping, mass_ratio)
         if fm is None:
             if floor is None:
                 raise ModelError("floor is required with building=", "floor")
             fm = building.motion(a, dt, floors=[floor]).floor(floor)
-        return oscillators_on_segments(
-            fm, mk, ms, f, float(damping), float(mass_ratio), histories, notes
-        )
+        return oscillators_on_segments(fm, mk, ms, f, xi, r, histories, notes)
     if fm is not None:
         building, floor = fm.building, fm.floor
     if mu is None or frequency is None:
         missing = "mu" if mu is None else "frequency"
         raise ModelError(f"slide_oscillator needs {missing}", missing)
     mk, ms = friction_pairs(mu, mu_s)
-    f = float(frequency)
-    xi = float(damping)
-    r = float(mass_ratio)
-    if not (np.isfinite(f) and f > 0):
-        raise ModelError(f"frequency must be > 0 Hz, got {frequency}", "frequency")
-    if not (np.isfinite(xi) and 0 <= xi < 1):
-        raise ModelError(f"damping must be in [0, 1), got {damping}", "damping")
-    if not (np.isfinite(r) and r > 0):
-        raise ModelError(f"mass_ratio must be > 0, got {mass_ratio}", "mass_ratio")
+    f, xi, r = oscillator_parameters(frequency, damping, mass_ratio)
     w = 2 * math.pi * f
     if building is not None and floor is None:
         raise ModelError("floor is required with building=", "floor")

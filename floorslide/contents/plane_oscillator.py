@@ -27,6 +27,7 @@ from floorslide.building.poly_segments import GroundPolyMotion, LinearPolyMotion
 from floorslide.constants import G
 from floorslide.contents import _plane_kernel as pk
 from floorslide.contents import _plane_oscillator_kernel as ok
+from floorslide.contents.oscillator import oscillator_parameters
 from floorslide.contents.plane import DEGREE
 from floorslide.contents.plane_segments import _floor_row
 from floorslide.contents.sliding import friction_pairs
@@ -104,27 +105,6 @@ class PlaneOscillatorResult:
     u: np.ndarray | None = field(default=None, repr=False)
     z: np.ndarray | None = field(default=None, repr=False)
     notes: tuple[str, ...] = ()
-
-
-def _oscillator(frequency, damping, mass_ratio) -> tuple[float, float, float]:
-    """The checked oscillator: ``(f, ξ, r)``, each refused in one line naming its argument."""
-    if frequency is None:
-        raise ModelError("frequency (the clamped-base frequency, Hz) is required", "frequency")
-    checks = (
-        ("frequency", frequency, lambda v: v > 0, "> 0 Hz"),
-        ("damping", damping, lambda v: 0 <= v < 1, "in [0, 1)"),
-        ("mass_ratio", mass_ratio, lambda v: v > 0, "> 0"),
-    )
-    out = []
-    for name, value, good, what in checks:
-        try:
-            v = float(value)
-        except (TypeError, ValueError):
-            raise ModelError(f"{name} must be a number {what}, got {value!r}", name) from None
-        if isinstance(value, bool) or not (math.isfinite(v) and good(v)):
-            raise ModelError(f"{name} must be {what}, got {value!r}", name)
-        out.append(v)
-    return out[0], out[1], out[2]
 
 
 def _friction(mu_k, mu_s) -> tuple[np.ndarray, np.ndarray]:
@@ -205,7 +185,7 @@ def slide_oscillator_plane_on_segments(
     of high-order Taylor methods. *Experimental Mathematics* 14(1), 99–117.
     """
     mk, ms = _friction(mu_k, mu_s)
-    f, xi, r = _oscillator(frequency, damping, mass_ratio)
+    f, xi, r = oscillator_parameters(frequency, damping, mass_ratio)
     row = _floor_row(motion, floor)
     MU = np.ascontiguousarray(np.vstack([np.maximum(mk, ms), mk]))
     states = np.zeros((mk.size, ok.NCOL))
@@ -321,7 +301,7 @@ def slide_oscillator_plane(
         )
     pair = as_pair(acc, dt)
     mk, ms = _friction(mu, mu_s)
-    f, xi, r = _oscillator(frequency, damping, mass_ratio)
+    f, xi, r = oscillator_parameters(frequency, damping, mass_ratio)
     if building is None:
         if floor not in (None, 0):
             raise ModelError(f"floor={floor!r} needs building= (without, the ground)", "floor")

@@ -115,6 +115,8 @@ def test_brochard_low_friction_vibrates_at_free_free_frequency(elcentro):
         dict(frequency=6.0, damping=1.0),
         dict(frequency=6.0, mass_ratio=0.0),
         dict(frequency=6.0, mu=-1.0),
+        dict(frequency=6.0, mass_ratio="x"),  # a ValueError before: now one line
+        dict(frequency="fast"),
     ],
 )
 def test_bad_oscillator_parameters(bad):
