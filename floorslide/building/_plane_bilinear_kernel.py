@@ -59,9 +59,9 @@ from floorslide.building._plane_isolation_kernel import (
     P_FTIME,
     P_SLIDE_TIME,
     P_WORK,
-    STEP_TOL,
     _record,
     _track_peaks,
+    step_rule,
 )
 from floorslide.numerics.polynomial import max_abs_on, rise_within, scratch
 
@@ -116,27 +116,6 @@ def _series(plastic, X, x0, A, bv, ga, n, D, dy, s):
 
 
 @njit(cache=True)
-def _rule(nrm, D, L):
-    """Jorba & Zou's step on series of norms ``nrm[j]`` (as
-    :func:`floorslide.building._plane_isolation_kernel._step`): the last two terms below
-    :data:`STEP_TOL` of the first three, for the series and its derivative; at most ``L``."""
-    H = L
-    for _ in range(3):
-        H0 = H
-        tol = STEP_TOL * (nrm[0] + H * (nrm[1] + H * nrm[2]))
-        tol1 = STEP_TOL * (nrm[1] + H * (2.0 * nrm[2] + H * 3.0 * nrm[3]))
-        for k in (D, D - 1):
-            nk = nrm[k]
-            if nk * H**k > tol > 0.0:
-                H = (tol / nk) ** (1.0 / k)
-            if k * nk * H ** (k - 1) > tol1 > 0.0:
-                H = (tol1 / (k * nk)) ** (1.0 / (k - 1))
-        if H == H0:
-            break
-    return H
-
-
-@njit(cache=True)
 def _step(X, D, n, L, nrm, nz):
     """The step on the building's states (with their derivative) and, apart, on ``z``."""
     iz = 2 * n
@@ -153,7 +132,7 @@ def _step(X, D, n, L, nrm, nz):
                 b = v
         nrm[j] = a
         nz[j] = b
-    return min(_rule(nrm, D, L), _rule(nz, D, L))
+    return min(step_rule(nrm, D, L), step_rule(nz, D, L))
 
 
 @njit(cache=True)

@@ -317,6 +317,13 @@ def _step(X, D, n, L):
                 if v > s:
                     s = v
         nrm[j] = s
+    return step_rule(nrm, D, L)
+
+
+@njit(cache=True)
+def step_rule(nrm, D, L):
+    """Jorba & Zou's step on series of norms ``nrm[j]``: the last two terms below
+    :data:`STEP_TOL` of the first three, for the series and its derivative; at most ``L``."""
     H = L
     for _ in range(3):
         H0 = H
