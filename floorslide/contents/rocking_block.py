@@ -281,12 +281,10 @@ def rock(
     par[:, rk.P_R] = r
     par[:, rk.P_TAN] = B / H
     par[:, rk.P_PARTS] = 1
-    if poly is not None:
-        pass
-    elif on_isolation:
+    if on_isolation:
         if fm is None:
             fm = building.motion(a, dt, floors=[floor]).floor(floor)
-    else:
+    elif poly is None:
         if fm is None:
             fm = single_use_motion(building, a, dt, floor)
         parts = np.maximum(1, np.ceil(p * fm.h / phase_max - 1e-12)).astype(int)
