@@ -42,7 +42,8 @@ import numpy as np
 from floorslide._jit import njit
 from floorslide.building.model import LinearBuilding
 from floorslide.constants import G
-from floorslide.contents.plane_oscillator import _friction, _oscillator
+from floorslide.contents.oscillator import oscillator_parameters
+from floorslide.contents.plane_oscillator import _friction
 from floorslide.errors import ModelError, SolverLimitError
 from floorslide.pair import as_pair
 
@@ -246,7 +247,7 @@ def slide_oscillator_plane_smoothed(
         )
     pair = as_pair(acc, dt)
     mk, _ = _friction(mu, None)
-    f, xi, r = _oscillator(frequency, damping, mass_ratio)
+    f, xi, r = oscillator_parameters(frequency, damping, mass_ratio)
     if building is None:
         if floor not in (None, 0):
             raise ModelError(f"floor={floor!r} needs building= (without, the ground)", "floor")
