@@ -42,6 +42,7 @@ _EXPORTS: dict[str, tuple[str, ...]] = {
         "PlaneSlideResult",
         "RockResult",
         "SlideResult",
+        "SlideRockResult",
         "response_mode",
         "rock",
         "slide",
@@ -49,6 +50,7 @@ _EXPORTS: dict[str, tuple[str, ...]] = {
         "slide_oscillator",
         "slide_oscillator_plane",
         "slide_plane",
+        "slide_rock",
     ),
     "floorslide.errors": (
         "FloorslideError",
@@ -122,6 +124,7 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
         PlaneSlideResult,
         RockResult,
         SlideResult,
+        SlideRockResult,
         response_mode,
         rock,
         slide,
@@ -129,6 +132,7 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
         slide_oscillator,
         slide_oscillator_plane,
         slide_plane,
+        slide_rock,
     )
     from floorslide.errors import (
         FloorslideError,
@@ -211,6 +215,8 @@ __all__ = [
     "SlideResult",
     "CoupledSlideResult",
     "slide_coupled",
+    "SlideRockResult",
+    "slide_rock",
     "Spectrum",
     "broaden",
     "design_tables",

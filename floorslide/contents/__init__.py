@@ -7,6 +7,7 @@ from floorslide.contents.plane import PlaneSlideResult, slide_plane
 from floorslide.contents.plane_oscillator import PlaneOscillatorResult, slide_oscillator_plane
 from floorslide.contents.rocking import response_mode
 from floorslide.contents.rocking_block import RockResult, rock
+from floorslide.contents.slide_rock import SlideRockResult, slide_rock
 from floorslide.contents.sliding import SlideResult, slide
 
 __all__ = [
@@ -16,6 +17,7 @@ __all__ = [
     "PlaneSlideResult",
     "RockResult",
     "SlideResult",
+    "SlideRockResult",
     "response_mode",
     "rock",
     "slide",
@@ -23,4 +25,5 @@ __all__ = [
     "slide_oscillator",
     "slide_oscillator_plane",
     "slide_plane",
+    "slide_rock",
 ]
