@@ -599,7 +599,7 @@ def sliderock_on_poly(t0, length, step, ends, C, par, states, g, D, max_events, 
     segment ``i`` the floor's acceleration is ``Σ_j C[i, j] τ^j``, ``τ ∈ [0, length[i]]``. A
     block at rest is skipped while the coefficients' bound stays at or below its rest level.
     With ``hist`` of shape ``(n_blocks, 3, npts)``: ``θ``, ``U`` and the mode code at the
-    samples (``θ`` NaN once overturned; a block stopped by an error keeps NaN from there)."""
+    samples (``θ`` and ``U`` NaN once overturned or stopped by an error)."""
     K = C.shape[1] - 1
     nb = par.shape[0]
     WS, work = workspace(K, D)
@@ -626,6 +626,7 @@ def sliderock_on_poly(t0, length, step, ends, C, par, states, g, D, max_events, 
             for b in range(nb):
                 st = states[b]
                 bad = st[ERR] != 0.0 or st[LIMIT_AT] >= 0.0
-                hist[b, 0, k] = np.nan if (st[MODE] == OVERTURNED or bad) else st[TH]
-                hist[b, 1, k] = np.nan if bad else st[U]
+                gone = st[MODE] == OVERTURNED or bad
+                hist[b, 0, k] = np.nan if gone else st[TH]
+                hist[b, 1, k] = np.nan if gone else st[U]
                 hist[b, 2, k] = mode_code(st)

@@ -81,7 +81,7 @@ class SlideRockResult:
     method
         ``"exact"`` or an approximate method.
     theta, slide, mode_history
-        With `histories`: ``θ`` (rad; NaN once overturned), ``U`` (m) and the mode code
+        With `histories`: ``θ`` (rad) and ``U`` (m), NaN once overturned, and the mode code
         (0 rest, 1 slide, 2 rock, 3 slide–rock, 4 overturned) at the samples,
         ``(n_blocks, npts)``.
     notes
