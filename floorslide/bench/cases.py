@@ -522,6 +522,40 @@ def rocking_solver(ladder: Ladder) -> Solver:
     )
 
 
+def _slide_rockers(acc: np.ndarray, dt: float) -> dict:
+    """Blocks of height :data:`ROCK_HEIGHT` with ``tan α = eta·PGA/g`` whose friction lets them
+    rock first and then slip while they rock: ``mu_s = 1.1 tan α``, ``mu_k = 1.02 tan α``."""
+    lam = np.array(ETA) * float(np.abs(acc).max()) / G
+    return {"width": lam * ROCK_HEIGHT, "mu": 1.02 * lam, "mu_s": 1.1 * lam}
+
+
+def slide_rock_solver(ladder: Ladder) -> Solver:
+    """Slide–rock blocks on the ground (docs/design.md §10g): the exact solver (every mode's
+    series to rounding, every mode change located) against the fixed-step RK4 of
+    :mod:`floorslide.contents.slide_rock_approx` at ``dt/k`` with interpolated events."""
+    from floorslide.contents.slide_rock import slide_rock
+
+    def run(method: str, **settings) -> Run:
+        def go(acc, dt, ctx):
+            r = slide_rock(acc, dt, ctx["width"], ROCK_HEIGHT, ctx["mu"], mu_s=ctx["mu_s"],
+                           method=method, **settings)  # fmt: skip
+            return {"rock_peak": r.peak_ratio, "peak_slide": r.peak_slide}
+
+        return go
+
+    methods = [Method("exact", "exact (every mode's series, events located)", "", run("exact"))]
+    for k in ladder.substeps:
+        fixed = run("fixed_step", substeps=k)
+        methods.append(Method("fixed_step", "RK4, dt/k, interpolated events", f"dt/{k}", fixed, k))
+    return Solver(
+        "slide-rock-ground",
+        "Slide–rock block on the ground (tan α = eta·PGA/g, mu_s 1.1 tan α, mu_k 1.02 tan α)",
+        ("rock_peak", "peak_slide"),
+        tuple(methods),
+        _slide_rockers,
+    )
+
+
 def nonlinear_building(isolator):
     """The 3-storey superstructure of the isolated building (T = 0.4 s, 5 %) on a nonlinear
     layer."""
@@ -903,6 +937,7 @@ def solvers(ladder: Ladder) -> tuple[Solver, ...]:
         plane_isolation_solver(ladder),
         plane_bilinear_solver(ladder),
         rocking_solver(ladder),
+        slide_rock_solver(ladder),
         plane_solver(
             "plane-ground", "Rigid block sliding in the plane on the ground", None, 0, ladder
         ),
