@@ -88,8 +88,9 @@ PAINLEVE_MARGIN = 0.01
 P_ALPHA, P_P, P_RAD, P_TAN, P_MUK, P_MUS, P_R = range(7)
 NPAR = 7
 
-PHASE = 0.125
-"""Longest part of a segment, as ``p·L`` (slide–rock turns at up to about ``2p``)."""
+PHASE = 0.25
+"""Longest part of a segment, as ``p·L`` (as the rocking block's full equation; slide–rock, which
+turns at up to about ``2p``, shortens a part whose series does not reach rounding: :data:`TAIL`)."""
 REST_VELOCITY = 1e-12
 """An impact that leaves ``|θ'| ≤ REST_VELOCITY·p·α`` ends in rest (as §10c)."""
 TAIL = 1e-16

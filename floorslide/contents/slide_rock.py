@@ -321,7 +321,7 @@ def slide_rock(
     states[:, sk.N_MODE + sk.REST] = 1.0
     npts = int(motion.npts)
     hist = np.zeros((B.size, 3, npts) if histories else (0, 3, 0))
-    D0 = taylor_degree(4.0 * sk.PHASE) + 2
+    D0 = taylor_degree(2.0 * sk.PHASE) + 2
     for seg in checked_chunks(motion):
         C = seg.coef[:, row, d, :]
         nz = np.flatnonzero(np.any(C != 0.0, axis=0))
