@@ -264,9 +264,10 @@ def decide(content: ContentSpec, pfa: float, force: bool = False):
 
     Returns ``(modes, integrate, reasons)``: ``modes`` a list of mode names, ``integrate`` a
     boolean array, ``reasons`` a Counter of skip reasons. An object is integrated as a slider
-    unless it rocks (``rock`` or ``slide-rock``: it is a slide–rock block), or its floor's true peak acceleration never exceeds ``max(mu_s, mu_k)·g`` (then its
-    exact answer is no slide) — the latter only without vertical shaking, whose friction limit
-    varies. With `force` everything that is not rocking is integrated (to check the rules).
+    unless it rocks (``rock`` or ``slide-rock``: it is a slide–rock block instead), or its
+    floor's true peak acceleration never exceeds ``max(mu_s, mu_k)·g`` (then its exact answer
+    is no slide) — the latter only without vertical shaking, whose friction limit varies. With
+    `force` everything that is not rocking is integrated (to check the rules).
     """
     mu = np.asarray(content.mu, dtype=float)
     mu_s = np.asarray(content.mu_s if content.mu_s else content.mu, dtype=float)
