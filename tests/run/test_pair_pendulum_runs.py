@@ -142,9 +142,7 @@ def test_a_rocking_block_slides_and_rocks_in_each_component_of_the_coupled_motio
     (c,) = [c for c in t.contents if c.content == "cabinet"]
     assert c.modes[0] == "rock"
     motion = PlaneIsolatedMotion(model, pair.h1, pair.h2, pair.dt)
-    ref = [
-        fs.slide_rock(PolyComponent(motion, 2, d), None, WIDTH, HEIGHT, 0.3) for d in (0, 1)
-    ]
+    ref = [fs.slide_rock(PolyComponent(motion, 2, d), None, WIDTH, HEIGHT, 0.3) for d in (0, 1)]
     over = [bool(r.overturned[0]) for r in ref]
     assert bool(c.overturned[0]) == any(over)
     if not any(over):

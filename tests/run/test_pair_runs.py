@@ -155,8 +155,7 @@ def test_a_rocking_block_slides_and_rocks_in_each_component_and_keeps_the_worse(
                     continue
                 fms = plane_motions(model, pair.h1, pair.h2, pair.dt, c.floor)
                 ref = [
-                    fs.slide_rock(fm, None, WIDTH, HEIGHT, c.mu_k[i], mu_s=c.mu_s[i])
-                    for fm in fms
+                    fs.slide_rock(fm, None, WIDTH, HEIGHT, c.mu_k[i], mu_s=c.mu_s[i]) for fm in fms
                 ]
                 over = [bool(r.overturned[0]) for r in ref]
                 assert bool(c.overturned[i]) == any(over)
