@@ -187,7 +187,8 @@ def test_the_rocking_table_equals_numpy_statistics_of_the_stored_arrays(rocking)
             "floor": 1,
             "b_over_h": B_OVER_H,
             "alpha": math.atan(B_OVER_H),
-            "mu_s_values": "0.3",
+            "mu_k": 0.3,
+            "mu_s": 0.3,
             "n_records": 3,
             "few_records": True,
             "n_rock": n_rock,
@@ -218,7 +219,8 @@ def test_the_rocking_table_in_markdown_and_csv(rocking):
     text = format_markdown(tables, ["rocking"])
     header = next(ln for ln in text.splitlines() if ln.startswith("| record_set"))
     assert "| alpha (rad) |" in header and "| peak_ratio_p84 |" in header
-    assert "| mu_s_values |" in header and "| n_overturn |" in header
+    assert "| mu_s |" in header and "| n_overturn |" in header
+    assert "| slide_rock_time_median (s) |" in header and "| n_slide_rock |" in header
     fixed = next(ln for ln in text.splitlines() if ln.startswith("| s | fixed |"))
     assert "| 1† |" in fixed  # a p84 over 3 < 8 records
     csv = format_csv("rocking", tables["rocking"])
