@@ -4,8 +4,8 @@
 Per record set and content on a floor: one row per building, its median PFA at that floor
 (g) and the median peak slide (mm) over every record of the set at each friction value,
 with how many records made the object rock (and overturn it at that friction value, where
-the file holds rocking results). It is read from the design tables (:func:`floorslide.report.design_tables`); it
-computes nothing of its own.
+the file holds rocking results). It is read from the design tables
+(:func:`floorslide.report.design_tables`); it computes nothing of its own.
 
 Rocking follows the tables' rule (docs/design.md §10): an object that rocks under a record is
 simulated as a slide–rock block (it rocks, and slides while it rocks where friction gives
