@@ -1517,7 +1517,7 @@ def table(
     median and p84 PFA/PGA per floor (code), the fraction of records exceeding each allowable
     displacement or overturning (exceedance) and lognormal fragility over stripes (fragility).
 
-    Rocking objects are simulated as rocking blocks, not as sliders, and never count as 0
+    Rocking objects are simulated as slide–rock blocks, not as sliders, and never count as 0
     slide: each is its own outcome, ranked above every slide, and a statistic that falls on
     rocking records reads 'rocks' (Markdown) with its *_outcome column 'rock'. Rows over fewer
     than 8 records carry few_records (a p84 marked † in Markdown).

@@ -338,11 +338,13 @@ COLUMNS: dict[str, tuple[Column, ...]] = {
         Column("content", "", "content (equipment) id, with a width and height"),
         Column("b_over_h", "1", "slenderness B/H = width / height"),
         Column("alpha", "rad", "slenderness angle α = atan(B/H): |θ| = α overturns it"),
+        Column("mu_k", "1", "kinetic friction coefficient"),
         Column(
-            "mu_s_values",
-            "",
-            "the content's static friction coefficients that hold its corner (mu_s ≥ B/H), under "
-            "which it rocks rather than slides; the rocking does not depend on them",
+            "mu_s",
+            "1",
+            "static friction coefficient, one that holds its corner from rest (mu_s ≥ B/H): it "
+            "rocks rather than slides, and slides while it rocks where the friction it needs "
+            "exceeds mu_s (a slide–rock block, fs.slide_rock)",
         ),
         _N_RECORDS,
         _FEW,
@@ -350,6 +352,12 @@ COLUMNS: dict[str, tuple[Column, ...]] = {
         Column("rock_fraction", "1", "n_rock / n_records"),
         Column("n_overturn", "1", "records under which it overturned (|θ| reached α)"),
         Column("overturn_fraction", "1", "n_overturn / n_records (over every record of the set)"),
+        Column(
+            "n_slide_rock",
+            "1",
+            "records under which it slid and rocked and did not overturn (observed outcome "
+            "slide-rock)",
+        ),
         Column(
             "peak_ratio_median",
             "1",
@@ -373,7 +381,14 @@ COLUMNS: dict[str, tuple[Column, ...]] = {
             "1",
             "median number of significant impacts: those at |θ'| ≥ p·α·√(f(2 − f)), f = 0.01, "
             "the speed of a block rocking freely back from a tilt of 1 % of α (the cascade to "
-            "rest left out; NaN in files written before they were counted)",
+            "rest left out; NaN in files written before they were counted and for slide–rock "
+            "blocks, whose simulation does not count them)",
+        ),
+        Column(
+            "slide_rock_time_median",
+            "s",
+            "median over every record of the time spent sliding and rocking at once (0 when it "
+            "never did; NaN in files written before slide–rock was simulated)",
         ),
     ),
     "plane": (

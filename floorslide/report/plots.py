@@ -797,7 +797,7 @@ def figure_overturning(study: Study, tables: DesignTables, record_set: str) -> F
         and len({study.buildings[b].base for b in bids}) == 1
     )
     x_of = {b: (periods[i] if numeric else float(i)) for i, b in enumerate(bids)}
-    series = list(dict.fromkeys((r["content"], r["floor"]) for r in rows))
+    series = list(dict.fromkeys((r["content"], r["floor"], r["mu_k"], r["mu_s"]) for r in rows))
     fig, (ax,) = _new_figure(1, width=max(4.8, 0.75 * len(bids) + 2.0), height=4.2)
     n = _records_of(rows)
     _suptitle(
@@ -811,10 +811,14 @@ def figure_overturning(study: Study, tables: DesignTables, record_set: str) -> F
 
     cmap = colormaps["tab10"]
     handles, labels = [], []
-    for k, (content, floor) in enumerate(series):
+    for k, (content, floor, mu_k, mu_s) in enumerate(series):
         color = cmap(k % 10)
         sel = sorted(
-            (r for r in rows if r["content"] == content and r["floor"] == floor),
+            (
+                r
+                for r in rows
+                if (r["content"], r["floor"], r["mu_k"], r["mu_s"]) == (content, floor, mu_k, mu_s)
+            ),
             key=lambda r: x_of[r["building"]],
         )
         x = np.array([x_of[r["building"]] for r in sel])
@@ -823,7 +827,9 @@ def figure_overturning(study: Study, tables: DesignTables, record_set: str) -> F
         ax.plot(x, rock, "--s", color=color, mfc="none", ms=6, lw=1.0)
         ax.plot(x, over, "-o", color=color, ms=5, lw=1.4)
         handles.append(Line2D([], [], color=color, marker="o", ms=5))
-        labels.append(f"{content} on floor {floor} (B/H = {sel[0]['b_over_h']:.3g})")
+        labels.append(
+            f"{content} on floor {floor}, mu {mu_k:g}/{mu_s:g} (B/H = {sel[0]['b_over_h']:.3g})"
+        )
     handles += [
         Line2D([], [], color="0.3", marker="o", ms=5),
         Line2D([], [], color="0.3", marker="s", mfc="none", ls="--", ms=6),

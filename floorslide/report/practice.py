@@ -394,7 +394,7 @@ def practice_notes(study: Study) -> list[str]:
     ):
         notes.append(
             "exceedance: fraction of records whose peak slide exceeds the allowable "
-            "displacement; records under which the object rocks have no slide and are left out "
+            "displacement; records under which the object rocks (a slide–rock block) are left out "
             "(n_rock), never counted as not exceeding; overturn counts every record"
         )
     if stripes(study):

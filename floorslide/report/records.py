@@ -36,8 +36,9 @@ RECORD_COLUMNS: tuple[Column, ...] = (
     Column(
         "outcome",
         "",
-        "rest (no slide), slide or rock (not simulated as a slider: its slide values are NaN; "
-        "what it did: observed_outcome)",
+        "rest (no slide), slide or rock (mode rock or slide-rock: simulated as a slide–rock "
+        "block, fs.slide_rock, not as a slider — its slide values are that block's, NaN in "
+        "files written before for mode rock; what it did: observed_outcome)",
     ),
     Column(
         "peak_slide",
@@ -45,8 +46,16 @@ RECORD_COLUMNS: tuple[Column, ...] = (
         "peak slide max|u| (of the sliding base for an oscillator; in the plane for a pair)",
     ),
     Column("residual_slide", "m", "residual slide u(end), signed; |u(end)| for a pair"),
-    Column("peak_abs_accel", "m/s**2", "peak absolute acceleration of the object (base)"),
-    Column("peak_abs_accel_g", "g", "peak absolute acceleration of the object (base)"),
+    Column(
+        "peak_abs_accel",
+        "m/s**2",
+        "peak absolute acceleration of the object (base); NaN where it rocked (not tracked)",
+    ),
+    Column(
+        "peak_abs_accel_g",
+        "g",
+        "peak absolute acceleration of the object (base); NaN where it rocked (not tracked)",
+    ),
     Column("slide_fraction", "1", "fraction of the record spent sliding"),
     Column("slip_phases", "1", "breakaways and reversals (NaN where the object rocks)"),
     Column("peak_deformation", "m", "peak spring deformation max|z| (oscillators; else NaN)"),
@@ -108,17 +117,24 @@ RECORD_COLUMNS: tuple[Column, ...] = (
         "1",
         "significant impacts: at |θ'| ≥ p·α·√(f(2 − f)), f = 0.01, the speed of a block "
         "rocking freely back from a tilt of 1 % of α (the cascade to rest left out); NaN where "
-        "not applicable or in files written before they were counted",
+        "not applicable, where the object was simulated as a slide–rock block (fs.slide_rock "
+        "does not count them) or in files written before they were counted",
     ),
     Column("overturned", "1", "1 if the block overturned, else 0; NaN where not applicable"),
     Column("overturn_time_s", "s", "when it overturned (NaN: it did not, or not applicable)"),
-    Column("rock_time_s", "s", "time spent rocking; NaN where not applicable"),
+    Column("rock_time_s", "s", "time spent rocking (sliding or not); NaN where not applicable"),
+    Column(
+        "slide_rock_time_s",
+        "s",
+        "time spent sliding and rocking at once (0 where it slides or rests); NaN where not "
+        "applicable and in files written before slide–rock was simulated",
+    ),
     Column(
         "observed_outcome",
         "",
-        "what the object did in the simulation: rest, slide, rock, overturn or slide-rock "
-        "(both bounds); empty for contents without width and height and in files written "
-        "before rocking was simulated",
+        "what the object did in the simulation: rest, slide, rock, slide-rock (it slid and "
+        "rocked) or overturn; empty for contents without width and height and in files "
+        "written before rocking was simulated",
     ),
     Column(
         "peak_angle",
@@ -150,12 +166,15 @@ ROCK_VALUES = (
     "overturned",
     "overturn_time_s",
     "rock_time_s",
+    "slide_rock_time_s",
 )
 """The per-record rocking columns (NaN where not applicable)."""
 
 
 def _outcome(mode: str, peak: float) -> str:
-    if mode == ROCK or not math.isfinite(peak):
+    """``rock`` for an object that rocks (Shenton's ``rock`` or ``slide-rock``: a slide–rock
+    block, its own outcome; NaN slides in older files), else ``slide`` or ``rest``."""
+    if mode in (ROCK, "slide-rock") or not math.isfinite(peak):
         return ROCK
     return "slide" if peak > 0 else "rest"
 
@@ -209,6 +228,12 @@ def significant_impacts(c, i: int) -> float:
     return float(big[i])
 
 
+def _slide_rock_time(c, i: int) -> float:
+    """The time in slide–rock of friction pair `i` (NaN in files written before it was kept)."""
+    t = getattr(c, "slide_rock_time", None)
+    return math.nan if t is None or len(t) <= i else float(t[i])
+
+
 def rocking_values(c, i: int) -> dict:
     """The rocking columns of friction pair `i` of a content result: NaN (and an empty
     ``observed_outcome``) for a content without width and height, a file written before rocking
@@ -227,6 +252,7 @@ def rocking_values(c, i: int) -> dict:
         "overturned": float(c.overturned[i]),
         "overturn_time_s": float(c.overturn_time[i]),
         "rock_time_s": float(c.rock_time[i]),
+        "slide_rock_time_s": _slide_rock_time(c, i),
         "observed_outcome": str(observed),
     }
 
@@ -306,9 +332,10 @@ def record_table(result: str | Path | ResultFile | Study, *, allow_incomplete: b
     """The per-record table of a result file as a :class:`pandas.DataFrame`.
 
     One row per record × building × floor × content × friction pair, columns as in
-    :data:`RECORD_COLUMNS` (SI values; the object's slide values are NaN where it rocks, and
-    ``outcome`` says ``rock``; for contents with a width and height the rocking block's peak
-    rotation, impacts, overturning and time rocking, and ``observed_outcome`` what it did).
+    :data:`RECORD_COLUMNS` (SI values; where the object rocks ``outcome`` says ``rock`` and its
+    slide values are its slide–rock block's; for contents with a width and height the block's
+    peak rotation, impacts, overturning, time rocking and in slide–rock, and
+    ``observed_outcome`` what it did).
     ``df.attrs`` holds ``units`` (column → unit), ``source`` and ``status`` (``""``, or the
     INCOMPLETE label).
 

@@ -3,12 +3,13 @@
 
 Per record set and content on a floor: one row per building, its median PFA at that floor
 (g) and the median peak slide (mm) over every record of the set at each friction value,
-with how many records made the object rock (and overturn it, where the file holds rocking
-results). It is read from the design tables (:func:`floorslide.report.design_tables`); it
-computes nothing of its own.
+with how many records made the object rock (and overturn it at that friction value, where
+the file holds rocking results). It is read from the design tables
+(:func:`floorslide.report.design_tables`); it computes nothing of its own.
 
 Rocking follows the tables' rule (docs/design.md §10): an object that rocks under a record is
-simulated as a rocking block, not as a slider, and never counts as 0 slide; it is its own
+simulated as a slide–rock block (it rocks, and slides while it rocks where friction gives
+way), not as a slider, and never counts as 0 slide; it is its own
 outcome, ranked above every slide. A cell reads ``rocks (k/n)`` when the median falls on
 rocking records, and a median that does not is followed by ``(k rock)`` when some records
 rock; where the file holds rocking results (the ``rocking`` table) both say how many of them
@@ -30,7 +31,7 @@ the heading says how many of how many, and the ``slides`` table has them all).""
 
 LEGEND_SIMULATED = (
     "('rocks (k/n; m overturn)': the median record rocks — k of n records rock (simulated as "
-    "rocking blocks; m of them overturn); rocking records never count as 0 slide and rank "
+    "slide–rock blocks; m of them overturn); rocking records never count as 0 slide and rank "
     "above every slide; '(k rock; m overturn)': k records rock; their rotations and impacts: "
     "the rocking table)"
 )
@@ -96,9 +97,10 @@ def summary_blocks(tables: DesignTables) -> list[SummaryBlock]:
         groups[(row["record_set"], row["content"], row["floor"])].append(row)
     pfa = {(r["record_set"], r["building"], r["floor"]): r for r in tables["pfa"]}
     rocking = {
-        (r["record_set"], r["building"], r["floor"], r["content"]): r
+        (r["record_set"], r["building"], r["floor"], r["content"], r["mu_k"], r["mu_s"]): r
         for r in (tables["rocking"] if "rocking" in tables.tables else [])
     }
+    rocking_objects = {k[:4] for k in rocking}
     blocks = []
     for (rset, content, floor), rows in groups.items():
         pairs_all = sorted({(r["mu_k"], r["mu_s"]) for r in rows})
@@ -106,7 +108,7 @@ def summary_blocks(tables: DesignTables) -> list[SummaryBlock]:
         buildings = list(dict.fromkeys(r["building"] for r in rows))
         n = max(r["n_records"] for r in rows)
         what = "base of the 2-DOF oscillator" if rows[0]["model"] == "oscillator" else "object"
-        simulated = any((rset, b, floor, content) in rocking for b in buildings)
+        simulated = any((rset, b, floor, content) in rocking_objects for b in buildings)
         shown = (
             f"; {len(pairs)} of {len(pairs_all)} friction values (all: the slides table)"
             if len(pairs) < len(pairs_all)
@@ -125,10 +127,10 @@ def summary_blocks(tables: DesignTables) -> list[SummaryBlock]:
         caution = f"(caution: {n} < {MIN_RECORDS} records per set)" if n < MIN_RECORDS else ""
         out_rows = []
         for b in buildings:
-            rock = rocking.get((rset, b, floor, content))
-            over = f"; {rock['n_overturn']} overturn" if rock else ""
             cells = []
             for mu_k, mu_s in pairs:
+                rock = rocking.get((rset, b, floor, content, mu_k, mu_s))
+                over = f"; {rock['n_overturn']} overturn" if rock else ""
                 r = next(
                     (
                         x
@@ -216,7 +218,7 @@ def summary_rows(tables: DesignTables) -> list[dict]:
     median PFA (m/s² and g) at the floor."""
     pfa = {(r["record_set"], r["building"], r["floor"]): r for r in tables["pfa"]}
     rocking = {
-        (r["record_set"], r["building"], r["floor"], r["content"]): r
+        (r["record_set"], r["building"], r["floor"], r["content"], r["mu_k"], r["mu_s"]): r
         for r in (tables["rocking"] if "rocking" in tables.tables else [])
     }
 
@@ -226,7 +228,9 @@ def summary_rows(tables: DesignTables) -> list[dict]:
     out = []
     for r in tables["slides"]:
         p = pfa.get((r["record_set"], r["building"], r["floor"]))
-        rock = rocking.get((r["record_set"], r["building"], r["floor"], r["content"]))
+        rock = rocking.get(
+            (r["record_set"], r["building"], r["floor"], r["content"], r["mu_k"], r["mu_s"])
+        )
         out.append(
             dict(
                 record_set=r["record_set"],

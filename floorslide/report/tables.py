@@ -38,12 +38,13 @@ Tables (one row per …, statistics over the records of a set; units in :data:`C
     the larger of the two components' 1-D slides, the ratio of the medians, and the median,
     smallest and largest per-record ratio 2-D / max(1-D). Empty, with a note, without pairs.
 ``rocking``
-    record set × building × floor × content with a width and height whose static friction
-    holds its corner (``mu_s ≥ B/H``: it rocks rather than slides, Shenton 1996; one row for
-    all such friction values, the rocking does not depend on them): the slenderness, how many
-    records made it rock and overturn, the median and 84th percentile over every record of its
-    peak rotation ``max|θ|/α`` (0 at rest, 1 when it overturned) and the median number of
-    impacts (Housner's block, :func:`floorslide.rock`). Empty, with a note, without such a
+    record set × building × floor × content × friction pair with a width and height whose
+    static friction holds its corner (``mu_s ≥ B/H``: it rocks rather than slides, Shenton
+    1996; simulated as a slide–rock block, :func:`floorslide.slide_rock`, which slides while it
+    rocks once the friction it needs exceeds ``mu_s``): the slenderness, how many records made
+    it rock, overturn, and slide while rocking, the median and 84th percentile over every
+    record of its peak rotation ``max|θ|/α`` (0 at rest, 1 when it overturned), the median
+    number of impacts and the median time in slide–rock. Empty, with a note, without such a
     content (or in a file written before rocking was simulated).
 
 ``scaling``, ``suite``, ``code``, ``exceedance``, ``fragility``
@@ -55,13 +56,14 @@ Conventions
   method (Hyndman & Fan 1996, definition 7). A lognormal fit is not used because slides are
   often exactly zero (the object does not slide under some records).
 - **Rocking** is an outcome of its own, never a zero slide: an object that would rock (Shenton
-  1996, mode ``rock``) is simulated as a rocking block, not as a slider, so its slide is
-  unknown (NaN). Every statistic of the ``slides`` table is over all ``n_records`` records, the
-  rocking ones ranked above every slide: a median or p84 that falls on them is the outcome
-  ``rock`` (``median_outcome``, ``p84_outcome``; the numbers are NaN), and so is the mean once
-  any record rocks (:data:`~floorslide.report.columns.ROCK`). ``n_rock`` counts them;
-  ``n_slide_rock`` counts mode ``slide-rock`` (simulated as a slider and as a rocking block,
-  each a bound). What the rocking blocks did is the ``rocking`` table.
+  1996, mode ``rock`` or ``slide-rock``) is simulated as a slide–rock block, not as a slider
+  (its slide is in the per-record table; it may overturn). Every statistic of the ``slides``
+  table is over all ``n_records`` records, the rocking ones ranked above every slide: a median
+  or p84 that falls on them is the outcome ``rock`` (``median_outcome``, ``p84_outcome``; the
+  numbers are NaN), and so is the mean once any record rocks
+  (:data:`~floorslide.report.columns.ROCK`). ``n_rock`` counts them; ``n_slide_rock`` counts
+  Shenton's mode ``slide-rock`` (``mu_s = B/H``), among them. What the rocking blocks did is
+  the ``rocking`` table.
 - **Few records**: rows over fewer than :data:`~floorslide.report.columns.MIN_RECORDS` records
   carry ``few_records = True`` (the p84 is then set by the largest record).
 - **Ratios** are ratios of statistics (median of A / median of B), not statistics of per-record
@@ -432,47 +434,46 @@ def holds_corner(mu_s: float, b_over_h: float) -> bool:
 
 def rocking_table(study: Study) -> list[dict]:
     """The ``rocking`` table (see the module docstring): one row per record set × building ×
-    floor × content with rocking results, from the per-record arrays a run stores
-    (:class:`~floorslide.run.results.ContentResult`: ``rock_peak_ratio``, ``rock_impacts``,
-    ``overturned``)."""
+    floor × content × friction pair with rocking results, from the per-record arrays a run
+    stores (:class:`~floorslide.run.results.ContentResult`: ``rock_peak_ratio``,
+    ``rock_impacts``, ``overturned``, ``slide_rock_time``, ``outcomes``)."""
     slender = _geometry(study)
-    groups: dict[tuple, list[tuple[str, float, float, float]]] = defaultdict(list)
-    holding: dict[tuple, list[float]] = {}
+    groups: dict[tuple, list[tuple]] = defaultdict(list)
     for t in study.tasks:
         m = t.meta
         for c in t.contents:
             if c.content not in slender or c.rock_peak_ratio is None:
                 continue
             b_h = slender[c.content]
-            held = [
-                i for i, mu_s in enumerate(np.asarray(c.mu_s, float)) if holds_corner(mu_s, b_h)
-            ]
-            if not held:
-                continue  # it slides rather than rocks at every friction value
-            i = held[0]  # the same block under every friction value that holds its corner
-            key = (str(m["record_set"]), str(m["building"]), int(c.floor), c.content)
-            groups[key].append(
-                (
-                    str(m["record"]),
-                    float(c.rock_peak_ratio[i]),
-                    float(c.rock_impacts[i]),
-                    float(c.overturned[i]),
-                    significant_impacts(c, i),
+            sr_time = getattr(c, "slide_rock_time", None)
+            for i, mu_s in enumerate(np.asarray(c.mu_s, float)):
+                if not holds_corner(mu_s, b_h):
+                    continue  # it slides rather than rocks under this friction
+                key = (str(m["record_set"]), str(m["building"]), int(c.floor), c.content,
+                       float(c.mu_k[i]), float(mu_s))  # fmt: skip
+                observed = str(c.outcomes[i]) if c.outcomes is not None else ""
+                groups[key].append(
+                    (
+                        str(m["record"]),
+                        float(c.rock_peak_ratio[i]),
+                        float(c.rock_impacts[i]),
+                        float(c.overturned[i]),
+                        significant_impacts(c, i),
+                        math.nan if sr_time is None else float(sr_time[i]),
+                        float(observed == "slide-rock"),
+                    )
                 )
-            )
-            mus = holding.setdefault(key, [])
-            mus += [float(c.mu_s[j]) for j in held if float(c.mu_s[j]) not in mus]
     bkey = _order_key(study)
 
     def key(k: tuple) -> tuple:
-        return (*bkey(k[0], k[1]), k[2], _rank(study.contents, k[3]), _natural(k[3]))
+        return (*bkey(k[0], k[1]), k[2], _rank(study.contents, k[3]), _natural(k[3]), k[4], k[5])
 
     rows = []
     for k in sorted(groups, key=key):
-        rs, bid, floor, content = k
+        rs, bid, floor, content, mu_k, mu_s = k
         obs = _by_record(groups[k])
-        peak, impacts, over, big = (
-            np.array([o[j] for o in obs], dtype=float) for j in (1, 2, 3, 4)
+        peak, impacts, over, big, sr_time, sr = (
+            np.array([o[j] for o in obs], dtype=float) for j in (1, 2, 3, 4, 5, 6)
         )
         n = len(obs)
         n_rock = int(np.sum((peak > 0) | (over > 0)))
@@ -485,17 +486,20 @@ def rocking_table(study: Study) -> list[dict]:
             content=content,
             b_over_h=slender[content],
             alpha=math.atan(slender[content]),
-            mu_s_values=", ".join(f"{x:g}" for x in sorted(holding[k])),
+            mu_k=mu_k,
+            mu_s=mu_s,
             n_records=n,
             few_records=n < MIN_RECORDS,
             n_rock=n_rock,
             rock_fraction=n_rock / n,
             n_overturn=n_over,
             overturn_fraction=n_over / n,
+            n_slide_rock=int(np.sum(sr)),
             peak_ratio_median=peak_median,
             peak_ratio_p84=peak_p84,
             impacts_median=summarize(impacts)[1],
             significant_impacts_median=summarize(big)[1],
+            slide_rock_time_median=summarize(sr_time)[1],
         )
         rows.append({c.name: row[c.name] for c in COLUMNS["rocking"]})
     return rows
@@ -504,18 +508,20 @@ def rocking_table(study: Study) -> list[dict]:
 def plane_table(study: Study) -> list[dict]:
     """The ``plane`` table (see the module docstring): per record set of pairs × building ×
     floor × content × friction pair, the slide in the plane against the larger of the two
-    components' 1-D slides. Records under which the object rocks have no slide and are left
-    out (``n_records`` counts the others)."""
+    components' 1-D slides. Records under which the object rocks (a slide–rock block along
+    one component, not a slide in the plane) are left out (``n_records`` counts the
+    others)."""
     groups: dict[tuple, list[tuple[str, float, float, float]]] = defaultdict(list)
     for t in study.tasks:
         m = t.meta
         for c in t.contents:
             if c.peak_angle is None:
                 continue
+            modes = list(c.modes) if c.modes is not None else []
             for i in range(np.asarray(c.mu_k).size):
                 two = float(c.peak_slide[i])
-                if not math.isfinite(two):
-                    continue  # rocks: no slide
+                if not math.isfinite(two) or (i < len(modes) and modes[i] in (ROCK, "slide-rock")):
+                    continue  # rocks: no slide in the plane
                 one = max(float(c.peak_slide_h1[i]), float(c.peak_slide_h2[i]))
                 key = (str(m["record_set"]), str(m["building"]), int(c.floor), c.content,
                        float(c.mu_k[i]), float(c.mu_s[i]))  # fmt: skip
@@ -981,10 +987,11 @@ def table_notes(study: Study, damping: float | None) -> list[str]:
         "units: SI (m, s, m/s**2); columns ending in _g are in g = 9.80665 m/s**2",
         f"statistics over the records of each set (records per set: {sizes}); "
         f"p84 = {PERCENTILE:g}th percentile, empirical (numpy.percentile, method 'linear')",
-        "rocking objects (Shenton 1996, mode rock) are not simulated as sliders and never count "
-        "as 0 slide: each is its own outcome, ranked above every slide over all n_records "
-        "records; a median or p84 that falls on rocking records is 'rock' (median_outcome, "
-        "p84_outcome; 'rocks' in Markdown, no number), and so is the mean once any record rocks",
+        "rocking objects (Shenton 1996, mode rock or slide-rock) are simulated as slide–rock "
+        "blocks, not as sliders, and never count as 0 slide: each is its own outcome, ranked "
+        "above every slide over all n_records records; a median or p84 that falls on rocking "
+        "records is 'rock' (median_outcome, p84_outcome; 'rocks' in Markdown, no number), and "
+        "so is the mean once any record rocks (their slides are in the per-record table)",
         f"few_records: fewer than {MIN_RECORDS} records — the p84 then lies between the two "
         "largest values (set by the largest record); read these statistics with caution (†)",
         "residual_slide statistics are of |u(end)|; for 2-DOF oscillators peak_abs_accel is "
@@ -994,12 +1001,14 @@ def table_notes(study: Study, damping: float | None) -> list[str]:
     if any(c.rock_peak_ratio is not None for t in study.tasks for c in t.contents):
         notes.append(
             "rocking: contents with a width and height that rock are simulated as rigid blocks "
-            "(Housner 1963) — the rocking table and the per-record rock_* columns; peak_ratio "
-            "is max|θ|/α, 1 for a record under which the block overturned, 0 at rest; impacts "
-            "count the whole cascade of ever smaller impacts to rest (each r times the last), "
-            "thousands for a block that barely tilts — not a count of rocking cycles; "
-            "significant_impacts count those at |θ'| ≥ p·α·√(f(2 − f)), f = 0.01, the speed of "
-            "a block rocking freely back from a tilt of 1 % of α"
+            "that rock, slide, or slide while rocking (fs.slide_rock, once per friction pair; "
+            "Housner 1963, Shenton 1996) — the rocking table and the per-record rock_* columns; "
+            "peak_ratio is max|θ|/α, 1 for a record under which the block overturned, 0 at "
+            "rest; slide_rock_time is the time it slid while rocking; impacts count the whole "
+            "cascade of ever smaller impacts to rest (each r times the last), thousands for a "
+            "block that barely tilts — not a count of rocking cycles; significant_impacts "
+            "(those at |θ'| ≥ p·α·√(f(2 − f)), f = 0.01) are not counted by slide–rock blocks "
+            "(NaN), only in files written before"
         )
     elif any(
         ROCK in (list(c.modes) if c.modes is not None else [c.mode])
@@ -1016,7 +1025,8 @@ def table_notes(study: Study, damping: float | None) -> list[str]:
             "Coulomb friction, both components at once); its peak_slide is max|u|, its "
             "residual_slide |u(end)| and its peak_abs_accel the breakaway level mu_s·g once it "
             "slid; the PFA is the peak of the floor's acceleration vector; a rocking block "
-            "rocks in the plane of each component and the more severe is kept; the plane "
+            "rocks (and slides) in the plane of each component and the more severe is kept; the "
+            "plane "
             "table compares the 2-D slide with each component's 1-D slide"
         )
     notes += _heavy_equipment_notes(study)

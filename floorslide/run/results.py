@@ -20,11 +20,13 @@ class ContentResult:
     answer of a skipped slider is then zero slide and the floor's peak acceleration.
 
     A content with width and height that rocks (Shenton's ``rock`` or ``slide-rock``) is
-    simulated as a rocking block (:func:`floorslide.rock`, the same for every friction value
-    whose static coefficient holds the corner): its sliding arrays are NaN there (never a
-    "0 slide"), its rocking arrays hold the result, and ``outcomes`` what it did — ``rest``,
-    ``slide``, ``rock``, ``overturn``, or ``slide-rock`` (then the slide and the rocking are
-    both bounds, each computed as if the other motion did not happen).
+    simulated as one block that rocks, slides, or slides while it rocks
+    (:func:`floorslide.slide_rock`, once per friction pair: once the friction a rocking block
+    needs exceeds ``mu_s`` its corner slips): its sliding arrays hold that block's slide
+    (its peak acceleration NaN, its slip phases −1 unless it stayed at rest: not tracked),
+    its rocking arrays its rotation, ``slide_rock_time`` the time it spent sliding and
+    rocking at once, and ``outcomes`` what it did — ``rest``, ``slide``, ``rock``,
+    ``slide-rock`` (it both slid and rocked) or ``overturn``.
     """
 
     content: str
@@ -47,7 +49,7 @@ class ContentResult:
     # the impacts) where the object slides instead (Shenton 1996), 0 where it stays at rest
     rock_peak_ratio: np.ndarray | None = None  # max|θ|/α, 1 when it overturned
     rock_impacts: np.ndarray | None = None
-    rock_time: np.ndarray | None = None  # s spent rocking
+    rock_time: np.ndarray | None = None  # s spent rocking (sliding or not)
     overturned: np.ndarray | None = None  # 1.0 or 0.0
     overturn_time: np.ndarray | None = None  # s (NaN: never)
     outcomes: np.ndarray | None = None  # observed: rest, slide, rock, overturn or slide-rock
@@ -60,8 +62,12 @@ class ContentResult:
     peak_slide_h2: np.ndarray | None = None
     ratio_2d_1d: np.ndarray | None = None  # peak_slide / max(1-D slides)
     # rocking: the impacts at |θ'| ≥ p·α·√(f(2 − f)), f = 0.01 (RockResult.significant_impacts;
-    # −1 where it slides instead; None in files written before they were counted)
+    # −1 where it slides instead and where it was simulated by slide_rock, which does not count
+    # them; None in files written before they were counted)
     rock_significant_impacts: np.ndarray | None = None
+    # rocking: s spent sliding and rocking at once (0 where it slides or rests; NaN in files
+    # written before slide–rock was simulated)
+    slide_rock_time: np.ndarray | None = None
     # heavy equipment coupled with its floor (floor_mass_ratio, coupled): the floor's true PFA
     # with the block on it, per friction pair (NaN where it was not integrated)
     coupled_pfa: np.ndarray | None = None
@@ -119,8 +125,7 @@ class Histories:
 
     Keys are ``"content/floor_f"``; each value has one row per stored friction value
     (``(n_mu, npts)``). ``slides`` is the slide u relative to the floor (of the sliding base
-    for a 2-DOF oscillator), NaN for a friction value under which the object rocks (it is not
-    simulated as a slider); ``deformation`` (spring deformation z, m) and ``top_accel`` (the
+    for a 2-DOF oscillator); ``deformation`` (spring deformation z, m) and ``top_accel`` (the
     top mass's absolute acceleration, m/s²) are kept for oscillators only.
 
     On a building on nonlinear isolation ``isolator_displacement`` (the isolator's displacement
@@ -130,7 +135,10 @@ class Histories:
     were kept).
 
     ``rocking`` holds, per content that rocks under the record (same keys), its rotation over
-    its slenderness ``θ/α`` at the samples (NaN after it overturned).
+    its slenderness ``θ/α`` at the samples (NaN after it overturned): of the friction pair that
+    overturned first, else of the largest peak rotation. Under a friction value under which
+    the object rocks ``slides`` holds its slide–rock block's slide ``U`` (one component); of a
+    pair of components it is NaN there.
 
     For a pair of horizontal components ``floor_acceleration`` is along ``h1`` and
     ``floor_acceleration_h2`` along ``h2``; ``slides`` holds the slide's magnitude ``|u|`` and

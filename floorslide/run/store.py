@@ -39,13 +39,18 @@ Layout (every dataset carries a ``units`` attribute; ``1`` means dimensionless):
                              coupled_pfa (m/s**2, the floor's true PFA with the block) for
                              heavy equipment coupled with its floor],
                              modes (per friction pair, Shenton's: rest/slide/rock/slide-rock;
-                             the slide values of a rocking object are NaN); for contents with a
+                             where it is rock or slide-rock the object is one slide–rock block,
+                             fs.slide_rock, per friction pair, and the slide values are its
+                             slide — NaN in files written before); for contents with a
                              width and height also rock_peak_ratio (1, max|θ|/α), rock_impacts
                              (1, the cascade to rest included), rock_significant_impacts (1,
-                             at |θ'| ≥ p·α·√(f(2 − f)), f = 0.01; absent in older files),
-                             rock_time (s), overturned (1: 1/0), overturn_time (s, NaN:
+                             at |θ'| ≥ p·α·√(f(2 − f)), f = 0.01; −1 for a slide–rock block,
+                             which does not count them; absent in older files),
+                             rock_time (s, rocking with or without sliding), slide_rock_time
+                             (s, sliding and rocking at once; absent in older files),
+                             overturned (1: 1/0), overturn_time (s, NaN:
                              never) — NaN (−1 impacts) where the object slides — and outcomes
-                             (what it did: rest/slide/rock/overturn/slide-rock); for a pair
+                             (what it did: rest/slide/rock/slide-rock/overturn); for a pair
                              of components (the block slides in the plane; peak_slide = peak
                              |u|, residual_slide = |u(end)|) also peak_angle (deg from h1
                              towards h2), residual_h1, residual_h2 (m), peak_slide_h1,
@@ -71,7 +76,9 @@ Layout (every dataset carries a ``units`` attribute; ``1`` means dimensionless):
                              to the ground) and isolator_force_ratio (1, the layer's force
                              over W) at the samples: the hysteresis loop; rocking/<content>/
                              floor_<f>/theta_ratio (1, θ/α at the samples, NaN once
-                             overturned) for contents that rock under the record; for a pair
+                             overturned; of its friction pair that overturned first, else
+                             of the largest peak rotation) for contents that rock under the
+                             record; for a pair
                              floor_acceleration_h2 (m/s**2, along h2; floor_acceleration is
                              along h1), and slides/.../u is |u|, u_plane (m, (n_mu, npts, 2))
                              the path in the plane (2-DOF oscillators: z is |z|, top_accel
@@ -187,6 +194,7 @@ UNITS = {
     "rock_impacts": "1",
     "rock_significant_impacts": "1",
     "rock_time": "s",
+    "slide_rock_time": "s",
     "overturned": "1",
     "overturn_time": "s",
     "theta_ratio": "1",
@@ -300,6 +308,11 @@ def _rocking_of(h) -> dict:
     out = {name: _value(h, name) for name in ROCK_FIELDS}
     if "rock_significant_impacts" in h:
         out["rock_significant_impacts"] = _value(h, "rock_significant_impacts")
+    # written before slide–rock was simulated: its time unknown (NaN)
+    n = np.asarray(out["rock_peak_ratio"]).size
+    out["slide_rock_time"] = (
+        _value(h, "slide_rock_time") if "slide_rock_time" in h else np.full(n, np.nan)
+    )
     out["outcomes"] = np.array([_s(m) for m in _value(h, "outcomes")])
     return out
 
@@ -330,6 +343,8 @@ def task_node(result: TaskResult) -> Node:
                 h.children["rock_significant_impacts"] = _data(
                     "rock_significant_impacts", c.rock_significant_impacts
                 )
+            if c.slide_rock_time is not None:
+                h.children["slide_rock_time"] = _data("slide_rock_time", c.slide_rock_time)
             h.children["outcomes"] = Data(np.asarray(c.outcomes, dtype=object), {"units": "1"})
         if c.peak_angle is not None:
             for name in PLANE_FIELDS:

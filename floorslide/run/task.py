@@ -17,7 +17,7 @@ from floorslide.building.exact_motion import building_motion
 from floorslide.building.isolators import small_angle_note
 from floorslide.contents.coupled import slide_coupled
 from floorslide.contents.oscillator import slide_oscillator
-from floorslide.contents.rocking_block import rock as rock_blocks
+from floorslide.contents.slide_rock import slide_rock
 from floorslide.contents.sliding import slide
 from floorslide.errors import FloorslideError, NonFiniteError
 from floorslide.run.results import ContentResult, Histories, SpectrumResult, TaskResult
@@ -148,12 +148,15 @@ def task_warnings(result: TaskResult) -> list[str]:
 
 
 ROCKS = ("rock", "slide-rock")
-"""Shenton modes in which an object with a geometry is simulated as a rocking block."""
+"""Shenton modes in which an object with a geometry is simulated as one slide–rock block
+(:func:`floorslide.slide_rock`), once per friction pair: it rocks while friction holds its
+corner and slides while it rocks once the friction it needs exceeds ``mu_s``."""
 
 
-def rocking_results(content, modes, rocker) -> dict:
+def rocking_results(content, modes, mu, mu_s, arrays, rocker) -> dict:
     """The rocking arrays of a content on one floor (:class:`~floorslide.run.results.
-    ContentResult`), one entry per friction pair, and what it did (``outcomes``).
+    ContentResult`), one entry per friction pair, what it did (``outcomes``), and the slide of
+    each friction pair that rocks, written into its sliding `arrays`.
 
     Parameters
     ----------
@@ -162,19 +165,33 @@ def rocking_results(content, modes, rocker) -> dict:
         rocking: empty dict).
     modes
         Shenton's mode per friction pair (:func:`~floorslide.scene.planner.decide`).
+    mu, mu_s
+        The kinetic and static friction per pair.
+    arrays
+        ``(peak, residual, peak_acc, fraction, slips, rocks)`` from :func:`_slide_arrays`:
+        where the object rocks (Shenton's ``rock`` or ``slide-rock``) they are filled from the
+        simulation — peak and residual slide (signed ``U(end)``), the fraction of the record
+        spent sliding (``(time in slide + time in slide–rock)/duration``); the object's peak
+        acceleration is the floor's PFA where it stayed at rest and NaN otherwise (not tracked
+        for a block that rocks), its slip phases 0 at rest and −1 otherwise (not counted).
     rocker
-        ``rocker(histories) → RockResult`` of one block of the content's geometry on the floor
-        (called at most once: while friction holds the corner, rocking does not depend on it).
+        ``rocker(index) → SlideRockResult`` of the blocks of the content's geometry on the
+        floor under friction pairs `index` (called at most once, with every pair that rocks).
 
     Returns
     -------
     dict
-        ``rock_peak_ratio``, ``rock_impacts``, ``rock_significant_impacts``, ``rock_time``,
-        ``overturned``,
-        ``overturn_time``, ``outcomes`` and, when the block rocks, the :class:`RockResult`
-        under ``"result"``. Where the object slides instead (Shenton's ``slide``) they are NaN
-        (−1 impacts) and the outcome ``slide``; where it stays at rest (the floor's true peak
-        never reaches ``g·B/H``) they are zero, the exact answer, without a simulation.
+        ``rock_peak_ratio``, ``rock_impacts``, ``rock_significant_impacts`` (−1 where it was
+        simulated as a slide–rock block: :func:`floorslide.slide_rock` does not count them),
+        ``rock_time`` (time rocking, with or without sliding), ``slide_rock_time`` (time
+        sliding and rocking at once), ``overturned``, ``overturn_time``, ``outcomes`` (the
+        simulation's mode: rest, slide, rock, slide-rock or overturn) and, when it was
+        simulated, the :class:`~floorslide.SlideRockResult` under ``"result"`` and the friction
+        pairs it holds under ``"index"``. Where the object slides (Shenton's ``slide``) the
+        rocking arrays are NaN (−1 impacts), its slide-rock time 0 (a block with
+        ``mu_s < B/H`` never tips) and the outcome ``slide``; where it stays at rest (the
+        floor's true peak never reaches ``g·B/H``) they are zero, the exact answer, without a
+        simulation.
     """
     if content.width is None:
         return {}
@@ -184,6 +201,7 @@ def rocking_results(content, modes, rocker) -> dict:
         rock_impacts=np.full(n, -1, dtype=np.int64),
         rock_significant_impacts=np.full(n, -1, dtype=np.int64),
         rock_time=np.full(n, np.nan),
+        slide_rock_time=np.zeros(n),
         overturned=np.full(n, np.nan),
         overturn_time=np.full(n, np.nan),
     )
@@ -197,24 +215,46 @@ def rocking_results(content, modes, rocker) -> dict:
         "overturned",
     ):
         out[name][rest] = 0
-    rocks = [i for i, m in enumerate(modes) if m in ROCKS]
-    if rocks:
-        r = rocker()
-        for i in rocks:
-            out["rock_peak_ratio"][i] = r.peak_ratio[0]
-            out["rock_impacts"][i] = r.impacts[0]
-            if r.significant_impacts is not None:
-                out["rock_significant_impacts"][i] = r.significant_impacts[0]
-            out["rock_time"][i] = r.rocking_time[0]
-            out["overturned"][i] = float(r.overturned[0])
-            out["overturn_time"][i] = r.overturn_time[0]
-            if r.overturned[0]:
-                outcomes[i] = "overturn"
-            elif modes[i] == "rock" and r.uplifts[0] == 0:
-                outcomes[i] = "rest"  # the true peak reached g·B/H exactly, not beyond
-        out["result"] = r
+    rocks = np.array([i for i, m in enumerate(modes) if m in ROCKS], dtype=np.int64)
+    if rocks.size:
+        r = rocker(rocks)
+        peak, resid, acc_obj, frac, slips = arrays[:5]
+        out["rock_peak_ratio"][rocks] = r.peak_ratio
+        out["rock_impacts"][rocks] = r.impacts
+        out["rock_time"][rocks] = r.mode_time[:, 2] + r.mode_time[:, 3]
+        out["slide_rock_time"][rocks] = r.mode_time[:, 3]
+        out["overturned"][rocks] = r.overturned.astype(float)
+        out["overturn_time"][rocks] = r.overturn_time
+        peak[rocks], resid[rocks] = r.peak_slide, r.residual_slide
+        frac[rocks] = (r.mode_time[:, 1] + r.mode_time[:, 3]) / r.duration if r.duration > 0 else 0
+        still = np.array([m == "rest" for m in r.mode])
+        acc_obj[rocks] = np.where(still, acc_obj[rocks], np.nan)
+        slips[rocks] = np.where(still, 0, -1)
+        for j, i in enumerate(rocks):
+            outcomes[i] = r.mode[j]
+        out["result"], out["index"] = r, rocks
     out["outcomes"] = np.array(outcomes)
     return out
+
+
+def _severest(r) -> int:
+    """Of the blocks of a :class:`~floorslide.SlideRockResult`, the one whose rotation history
+    the history record keeps: the first to overturn, else the largest peak rotation."""
+    if r.overturned.any():
+        return int(np.nanargmin(np.where(r.overturned, r.overturn_time, np.inf)))
+    return int(np.argmax(r.peak_ratio))
+
+
+def _slide_rocker(fm, content, mu, mu_s, histories):
+    """``rocker(index)`` for :func:`rocking_results`: slide–rock blocks of the content's
+    geometry and restitution under friction pairs `index` on the floor motion `fm` (a
+    :class:`~floorslide.FloorMotion`, a nonlinear one, or a ``PolyComponent``)."""
+
+    def rocker(index):
+        return slide_rock(fm, None, content.width, content.height, mu[index], mu_s=mu_s[index],
+                          restitution=content.restitution, histories=histories)  # fmt: skip
+
+    return rocker
 
 
 def _frictions(content) -> tuple[np.ndarray, np.ndarray]:
@@ -227,12 +267,13 @@ def _frictions(content) -> tuple[np.ndarray, np.ndarray]:
 def _slide_arrays(n: int, pfa: float, modes) -> tuple[np.ndarray, ...]:
     """A content's sliding arrays on a floor before anything is integrated: no slide and the
     floor's PFA (the exact answer of an object that does not slide), NaN (−1 slip phases)
-    where it rocks (not a slider). Returns ``(peak, residual, peak_acc, fraction, slips,
+    where it rocks (Shenton's ``rock`` or ``slide-rock``: :func:`rocking_results` fills them
+    from its slide–rock simulation). Returns ``(peak, residual, peak_acc, fraction, slips,
     rocks)``."""
     peak, resid, frac = np.zeros(n), np.zeros(n), np.zeros(n)
     acc_obj = np.full(n, pfa)
     slips = np.zeros(n, dtype=np.int64)
-    rocks = np.array([m == "rock" for m in modes], dtype=bool)
+    rocks = np.array([m in ROCKS for m in modes], dtype=bool)
     for arr in (peak, resid, acc_obj, frac):
         arr[rocks] = np.nan
     slips[rocks] = -1
@@ -386,18 +427,11 @@ def _run(task: Task, force: bool) -> TaskResult:
                     r.slip_phases,
                 )
             rocking = rocking_results(
-                content,
-                modes,
-                lambda fm=fm, content=content: rock_blocks(
-                    fm,
-                    width=content.width,
-                    height=content.height,
-                    restitution=content.restitution,
-                    method=content.rocking,
-                    histories=task.histories,
-                ),
-            )
+                content, modes, mu, mu_s, arrays,
+                _slide_rocker(fm, content, mu, mu_s, task.histories),
+            )  # fmt: skip
             rock_result = rocking.pop("result", None)
+            rock_index = rocking.pop("index", None)
             extra = dict(peak_deformation=deform, peak_top_accel=top, **rocking)
             if heavy(content):
                 extra["coupled_pfa"] = coupled_pfa
@@ -405,8 +439,9 @@ def _run(task: Task, force: bool) -> TaskResult:
                 _content_result(content, floor, modes, reasons, mu, mu_s, arrays, **extra)
             )
             if task.histories and rock_result is not None:
+                j = _severest(rock_result)
                 hist_rock[f"{content.id}/floor_{floor}"] = (
-                    rock_result.theta[0] / rock_result.alpha[0]
+                    rock_result.theta[j] / rock_result.alpha[j]
                 )
             if task.histories:
                 pick = np.unique(np.linspace(0, n - 1, min(HISTORY_MU, n)).round().astype(int))
@@ -438,10 +473,16 @@ def _run(task: Task, force: bool) -> TaskResult:
                         vertical=rec.vertical if content.vertical else None,
                     )
                 hist_slides[key], hist_mu[key] = r.u, mu[pick]
-                # an object that rocks is not a slider: no slide history is drawn for it
+                # an object that rocks is not a slider: its slide history is its slide–rock
+                # block's U (an oscillator's deformation and top acceleration are NaN there)
                 for arr in (hist_slides.get(key), hist_deform.get(key), hist_top.get(key)):
                     if arr is not None:
                         arr[rocks[pick]] = np.nan
+                if key in hist_slides and rock_result is not None:
+                    where = {int(i): j for j, i in enumerate(rock_index)}
+                    for row, i in enumerate(pick):
+                        if int(i) in where:
+                            hist_slides[key][row] = rock_result.slide[where[int(i)]]
     sc = task.spectra
     for floor in task.spectra_floors:
         with _naming(f"floor spectrum of floor {floor}"):
@@ -469,13 +510,26 @@ def _run(task: Task, force: bool) -> TaskResult:
 
 
 def _worse_rocking(a, b):
-    """Of a block's planar rocking along the two components, the more severe: the one that
-    overturned (the earlier, if both), else the larger peak rotation."""
-    if a.overturned[0] and b.overturned[0]:
-        return a if a.overturn_time[0] <= b.overturn_time[0] else b
-    if a.overturned[0] != b.overturned[0]:
-        return a if a.overturned[0] else b
-    return a if a.peak_ratio[0] >= b.peak_ratio[0] else b
+    """Of blocks sliding and rocking along the two components (two
+    :class:`~floorslide.SlideRockResult` of the same blocks), per block the more severe: the
+    one that overturned (the earlier, if both), else the larger peak rotation."""
+    from dataclasses import fields, replace
+
+    both = a.overturned & b.overturned
+    take_a = np.where(
+        both,
+        a.overturn_time <= b.overturn_time,
+        np.where(a.overturned != b.overturned, a.overturned, a.peak_ratio >= b.peak_ratio),
+    )
+    picked = {}
+    for f in fields(a):
+        x, y = getattr(a, f.name), getattr(b, f.name)
+        if isinstance(x, np.ndarray) and x.ndim >= 1 and x.shape[0] == take_a.size:
+            mask = take_a.reshape((-1,) + (1,) * (x.ndim - 1))
+            picked[f.name] = np.where(mask, x, y)
+        elif f.name in ("mode", "sequence"):
+            picked[f.name] = tuple(u if t else v for u, v, t in zip(x, y, take_a, strict=True))
+    return replace(a, **picked)
 
 
 def _run_pair(task: Task, force: bool, t0: float) -> TaskResult:
@@ -618,15 +672,23 @@ def _run_pair(task: Task, force: bool, t0: float) -> TaskResult:
                     acc_obj[idx[slid]] = np.nan
 
             fms = components(floor)
+            along = {}
 
-            def rocker(fms=fms, content=content):
-                kw = dict(width=content.width, height=content.height,
-                          restitution=content.restitution, method=content.rocking,
-                          histories=task.histories)  # fmt: skip
-                return _worse_rocking(rock_blocks(fms[0], **kw), rock_blocks(fms[1], **kw))
+            def rocker(index, fms=fms, content=content, mu=mu, mu_s=mu_s, along=along):
+                # a block rocks in the plane of each component (its faces along them): both
+                # simulated, the more severe kept; each component's slide beside
+                a, b = (_slide_rocker(f, content, mu, mu_s, task.histories)(index) for f in fms)
+                along.update(h1=a.peak_slide, h2=b.peak_slide)
+                return _worse_rocking(a, b)
 
-            rocking = rocking_results(content, modes, rocker)
+            rocking = rocking_results(content, modes, mu, mu_s, arrays, rocker)
             rock_result = rocking.pop("result", None)
+            rock_index = rocking.pop("index", None)
+            if rock_index is not None:
+                # the kept block slides along one component: |U(end)| (its direction in the
+                # plane, and so residual_h1/_h2 and peak_angle, are not known: NaN)
+                resid[rock_index] = np.abs(resid[rock_index])
+                one_d[rock_index, 0], one_d[rock_index, 1] = along["h1"], along["h2"]
             result.contents.append(
                 _content_result(
                     content,
@@ -649,7 +711,8 @@ def _run_pair(task: Task, force: bool, t0: float) -> TaskResult:
             )
             key = f"{content.id}/floor_{floor}"
             if task.histories and rock_result is not None:
-                hist_rock[key] = rock_result.theta[0] / rock_result.alpha[0]
+                j = _severest(rock_result)
+                hist_rock[key] = rock_result.theta[j] / rock_result.alpha[j]
             if task.histories:
                 pick = np.unique(np.linspace(0, n - 1, min(HISTORY_MU, n)).round().astype(int))
                 if oscillator:

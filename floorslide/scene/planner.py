@@ -263,10 +263,11 @@ def decide(content: ContentSpec, pfa: float, force: bool = False):
     """Per friction pair: Shenton's response mode, and whether it must be integrated.
 
     Returns ``(modes, integrate, reasons)``: ``modes`` a list of mode names, ``integrate`` a
-    boolean array, ``reasons`` a Counter of skip reasons. An object is integrated unless it
-    rocks, or its floor's true peak acceleration never exceeds ``max(mu_s, mu_k)·g`` (then its
-    exact answer is no slide) — the latter only without vertical shaking, whose friction limit
-    varies. With `force` everything that is not rocking is integrated (to check the rules).
+    boolean array, ``reasons`` a Counter of skip reasons. An object is integrated as a slider
+    unless it rocks (``rock`` or ``slide-rock``: it is a slide–rock block instead), or its
+    floor's true peak acceleration never exceeds ``max(mu_s, mu_k)·g`` (then its exact answer
+    is no slide) — the latter only without vertical shaking, whose friction limit varies. With
+    `force` everything that is not rocking is integrated (to check the rules).
     """
     mu = np.asarray(content.mu, dtype=float)
     mu_s = np.asarray(content.mu_s if content.mu_s else content.mu, dtype=float)
@@ -285,11 +286,16 @@ def decide(content: ContentSpec, pfa: float, force: bool = False):
                 "objects with vertical = true that rock: rocked without the vertical shaking "
                 "(not modelled for rocking)"
             ] += 1
-        if mode == "rock":
+        if mode in ("rock", "slide-rock") and content.direction != "both":
+            reasons[
+                "objects with one-way sliding that rock: their slide–rock blocks slide both ways "
+                "(one-way sliding is not modelled for rocking)"
+            ] += 1
+        if mode in ("rock", "slide-rock"):
             integrate[i] = False
             reasons[
-                "objects that rock (Shenton 1996: mu_s > B/H, floor PFA > g·B/H): simulated as "
-                "rocking blocks, not as sliders"
+                "objects that rock (Shenton 1996: mu_s ≥ B/H, floor PFA > g·B/H): simulated as "
+                "slide–rock blocks (fs.slide_rock), not as sliders"
             ] += 1
         elif not force and not content.vertical and content.model == "rigid" and pfa <= mub[i] * G:
             integrate[i] = False

@@ -151,12 +151,13 @@ def test_per_record_rocking_columns_are_the_stored_arrays(rocking):
             np.testing.assert_array_equal(sel.overturned, c.overturned)
             np.testing.assert_array_equal(sel.overturn_time_s, c.overturn_time)
             np.testing.assert_array_equal(sel.rock_time_s, c.rock_time)
+            np.testing.assert_array_equal(sel.slide_rock_time_s, c.slide_rock_time)
             assert list(sel.observed_outcome) == [str(o) for o in c.outcomes]
             seen += len(sel)
     assert seen
-    # a block that rocks is never a 0 slide: its slide values are NaN, its outcome 'rock'
-    rocked = df[df.observed_outcome.isin(["rock", "overturn"])]
-    assert len(rocked) and (rocked.outcome == "rock").all() and rocked.peak_slide.isna().all()
+    # a block that rocks is its own outcome 'rock'; its slide values are its slide–rock block's
+    rocked = df[df.observed_outcome.isin(["rock", "slide-rock", "overturn"])]
+    assert len(rocked) and (rocked.outcome == "rock").all() and rocked.peak_slide.notna().all()
     over = df[df.observed_outcome == "overturn"]
     assert len(over) and (over.rock_peak_ratio == 1).all() and (over.overturned == 1).all()
     assert over.overturn_time_s.notna().all()
@@ -187,7 +188,8 @@ def test_the_rocking_table_equals_numpy_statistics_of_the_stored_arrays(rocking)
             "floor": 1,
             "b_over_h": B_OVER_H,
             "alpha": math.atan(B_OVER_H),
-            "mu_s_values": "0.3",
+            "mu_k": 0.3,
+            "mu_s": 0.3,
             "n_records": 3,
             "few_records": True,
             "n_rock": n_rock,
@@ -218,7 +220,8 @@ def test_the_rocking_table_in_markdown_and_csv(rocking):
     text = format_markdown(tables, ["rocking"])
     header = next(ln for ln in text.splitlines() if ln.startswith("| record_set"))
     assert "| alpha (rad) |" in header and "| peak_ratio_p84 |" in header
-    assert "| mu_s_values |" in header and "| n_overturn |" in header
+    assert "| mu_s |" in header and "| n_overturn |" in header
+    assert "| slide_rock_time_median (s) |" in header and "| n_slide_rock |" in header
     fixed = next(ln for ln in text.splitlines() if ln.startswith("| s | fixed |"))
     assert "| 1† |" in fixed  # a p84 over 3 < 8 records
     csv = format_csv("rocking", tables["rocking"])
@@ -349,31 +352,28 @@ def test_impacts_are_said_to_count_the_cascade_to_rest(rocking):
     assert "cascade" in next(c.description for c in RECORD_COLUMNS if c.name == "rock_impacts")
 
 
-def test_significant_impacts_are_stored_and_tabulated(rocking):
-    """A run stores the rocking solver's significant impacts beside all impacts; the per-record
-    table shows them and the rocking table gives their median (numpy's)."""
-    import floorslide as fs
+def test_significant_impacts_are_not_counted_for_slide_rock_blocks(rocking):
+    """A run simulates a rocking object as a slide–rock block (fs.slide_rock), which does not
+    count significant impacts: stored −1, NaN in the per-record table and the rocking table's
+    median; 0 where the object stayed at rest without a simulation."""
     from floorslide.run.store import ResultFile
 
     df = record_table(rocking)
-    rocked = df[df.observed_outcome.isin(["rock", "overturn"])]
-    assert len(rocked) and rocked.rock_significant_impacts.notna().all()
-    assert (rocked.rock_significant_impacts <= rocked.rock_impacts).all()
-    assert (rocked.rock_significant_impacts < rocked.rock_impacts).any()  # a cascade left out
-    rest = df[df.observed_outcome == "rest"]
+    rocked = df[df["mode"].isin(["rock", "slide-rock"])]
+    assert len(rocked) and rocked.rock_significant_impacts.isna().all()
+    assert rocked.rock_impacts.notna().all()
+    rest = df[(df["mode"] == "rest") & df.rock_peak_ratio.notna()]
     assert (rest.rock_significant_impacts == 0).all()
-    # the stored value is the solver's own count for that record and block
-    row = rocked[rocked.building == "fixed"].iloc[0]
-    task = next(
-        t for t in ResultFile(rocking).tasks()
-        if t.meta["record"] == row.record and t.meta["building"] == "fixed"
-    )  # fmt: skip
-    assert int(row.rock_significant_impacts) in {
-        int(c.rock_significant_impacts[i]) for c in task.contents if c.content == "cabinet"
-        for i in range(len(c.mu_k)) if c.rock_significant_impacts[i] >= 0
-    }  # fmt: skip
-    assert fs.RockResult.__dataclass_fields__["significant_impacts"]
+    for t in ResultFile(rocking).tasks():
+        for c in t.contents:
+            if c.content == "cabinet":
+                rocks = np.array([m in ("rock", "slide-rock") for m in c.modes])
+                assert (c.rock_significant_impacts[rocks] == -1).all()
     for r in design_tables(rocking)["rocking"]:
         sel = df[(df.building == r["building"]) & (df.content == r["content"])
-                 & (df.mu_s == df[df.content == r["content"]].mu_s.max())]  # fmt: skip
-        assert r["significant_impacts_median"] == np.median(sel.rock_significant_impacts)
+                 & (df.mu_s == r["mu_s"])]  # fmt: skip
+        expected = sel.rock_significant_impacts.dropna()
+        if len(expected):
+            assert r["significant_impacts_median"] == np.median(expected)
+        else:
+            assert math.isnan(r["significant_impacts_median"])

@@ -1,7 +1,8 @@
 """Runs with contents that rock (issue 15): a content with width and height that rocks
-(Shenton) is simulated as a rocking block on every building — fixed-base, linearly isolated,
-on nonlinear isolation — its results stored per friction pair, equal to ``fs.rock``, its slides
-NaN (never 0), and its θ/α history kept for the history record."""
+(Shenton) is simulated as a slide–rock block (``fs.slide_rock``, once per friction pair) on
+every building — fixed-base, linearly isolated, on nonlinear isolation — its results stored per
+friction pair, equal to ``fs.slide_rock``, its slides the block's, and its θ/α history kept for
+the history record."""
 
 from __future__ import annotations
 
@@ -80,14 +81,15 @@ def test_rockers_are_simulated_and_equal_the_api(run):
         rec = next(r for r in p.records if r.record == t.meta["record"])
         (c,) = t.contents
         assert c.rock_peak_ratio is not None and c.outcomes is not None
-        direct = fs.rock(
-            rec.acc, rec.dt, WIDTH, HEIGHT, restitution=0.9,
+        mu = np.asarray(c.mu_k)
+        direct = fs.slide_rock(
+            rec.acc, rec.dt, WIDTH, HEIGHT, mu, mu_s=np.asarray(c.mu_s), restitution=0.9,
             building=buildings[t.meta["building"]], floor=1,
         )  # fmt: skip
         for i, mode in enumerate(c.modes):
             if mode == "slide":  # mu 0.1 < B/H: it slides, no rocking numbers
                 assert np.isnan(c.rock_peak_ratio[i]) and c.rock_impacts[i] == -1
-                assert c.outcomes[i] == "slide"
+                assert c.outcomes[i] == "slide" and c.slide_rock_time[i] == 0
                 continue
             if mode == "rest":
                 assert c.rock_peak_ratio[i] == 0 and c.overturned[i] == 0
@@ -95,15 +97,17 @@ def test_rockers_are_simulated_and_equal_the_api(run):
                 continue
             assert mode == "rock"
             seen_rock += 1
-            # never "0 slide": the slide values of a rocker are NaN
-            assert np.isnan(c.peak_slide[i]) and np.isnan(c.residual_slide[i])
-            assert c.rock_peak_ratio[i] == direct.peak_ratio[0]
-            assert c.rock_impacts[i] == direct.impacts[0]
-            assert c.rock_time[i] == direct.rocking_time[0]
-            assert c.overturned[i] == float(direct.overturned[0])
-            assert np.array_equal(c.overturn_time[i], direct.overturn_time[0], equal_nan=True)
-            expected = "overturn" if direct.overturned[0] else "rock"
-            assert c.outcomes[i] == expected
+            # its slide is the slide–rock block's, never NaN nor a "0 slide" by assumption
+            assert c.peak_slide[i] == direct.peak_slide[i]
+            assert c.residual_slide[i] == direct.residual_slide[i]
+            assert c.rock_peak_ratio[i] == direct.peak_ratio[i]
+            assert c.rock_impacts[i] == direct.impacts[i]
+            assert c.rock_significant_impacts[i] == -1  # not counted by slide_rock
+            assert c.rock_time[i] == direct.mode_time[i, 2] + direct.mode_time[i, 3]
+            assert c.slide_rock_time[i] == direct.mode_time[i, 3]
+            assert c.overturned[i] == float(direct.overturned[i])
+            assert np.array_equal(c.overturn_time[i], direct.overturn_time[i], equal_nan=True)
+            assert c.outcomes[i] == direct.mode[i]
             seen_over += c.outcomes[i] == "overturn"
     assert seen_rock > 0 and seen_over > 0  # Petrolia (PGA 0.66 g) overturns it somewhere
 
@@ -121,11 +125,23 @@ def test_the_history_record_keeps_theta_over_alpha(run):
         if not any(m == "rock" for m in c.modes):
             assert key not in t.histories.rocking
             continue
-        direct = fs.rock(
-            rec.acc, rec.dt, WIDTH, HEIGHT, restitution=0.9,
+        rocks = [i for i, m in enumerate(c.modes) if m == "rock"]
+        direct = fs.slide_rock(
+            rec.acc, rec.dt, WIDTH, HEIGHT, np.asarray(c.mu_k)[rocks],
+            mu_s=np.asarray(c.mu_s)[rocks], restitution=0.9,
             building=buildings[t.meta["building"]], floor=1, histories=True,
         )  # fmt: skip
-        np.testing.assert_array_equal(t.histories.rocking[key], direct.theta[0] / direct.alpha[0])
+        # the rotation of the pair that overturned first, else of the largest peak rotation
+        if direct.overturned.any():
+            j = int(np.argmin(np.where(direct.overturned, direct.overturn_time, np.inf)))
+        else:
+            j = int(np.argmax(direct.peak_ratio))
+        np.testing.assert_array_equal(t.histories.rocking[key], direct.theta[j] / direct.alpha[j])
+        # the slide history of a friction value under which it rocks is its block's U
+        for row, mu in enumerate(t.histories.mu_k[key]):
+            if mu in np.asarray(c.mu_k)[rocks]:
+                k = list(np.asarray(c.mu_k)[rocks]).index(mu)
+                np.testing.assert_array_equal(t.histories.slides[key][row], direct.slide[k])
         kept += 1
     assert kept > 0
 
