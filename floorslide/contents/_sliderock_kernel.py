@@ -41,7 +41,12 @@ from __future__ import annotations
 import numpy as np
 
 from floorslide._jit import njit
-from floorslide.contents._rocking_kernel import theta_series
+from floorslide.contents._rocking_kernel import (
+    SIGNIFICANT_SPEED,
+    UNDECIDED,
+    _convex_rise,
+    theta_series,
+)
 from floorslide.numerics.polynomial import (
     max_abs_on,
     poly_der,
@@ -53,19 +58,20 @@ from floorslide.numerics.polynomial import (
 
 # columns of a block's state
 (MODE, SIG, TH, THD, U, V, PEAK, T_PEAK, PEAK_U, IMPACTS, T_OVER, LIMIT_AT, ERR, ERR_T,
- W_FLOOR, W_FRIC, W_IMP, E0, NLOG, LAST) = range(20)  # fmt: skip
+ W_FLOOR, W_FRIC, W_IMP, E0, NLOG, LAST, SIGNIF) = range(21)  # fmt: skip
 """Mode (0 on the base, ±1 rocking about that corner, 2 overturned), slip direction σ (0 stuck,
 ±1), θ, θ', the slide U, the slip velocity V (U' while sliding, the corner's while slipping and
 rocking), peak |θ|/α and its time, peak |U|, impacts, overturning time (−1: none), start of the
 first segment where the event limit was reached (−1: never), error code (:data:`FLIGHT`,
 :data:`PAINLEVE`) and its time, the energy terms per unit mass (the floor's work, friction's,
-impacts' losses), the energy at the start, the number of mode changes logged and the last mode
-code logged."""
-T_MODE = 20
+impacts' losses), the energy at the start, the number of mode changes logged, the last mode
+code logged, and the significant impacts (:data:`~floorslide.contents._rocking_kernel.
+SIGNIFICANT_SPEED`)."""
+T_MODE = 21
 """Four columns from here: seconds spent in rest, slide, rock, slide–rock."""
-N_MODE = 24
+N_MODE = 25
 """Four columns from here: entries into rest, slide, rock, slide–rock."""
-LOG = 28
+LOG = 29
 """From here, pairs (time, mode code) of the first :data:`LOG_SIZE` mode changes."""
 LOG_SIZE = 32
 NCOL = LOG + 2 * LOG_SIZE
@@ -448,7 +454,23 @@ def _part(st, par, cw0, K, Lq, t_part, g, D, max_events, WS, work):
                 q[j] = -s * t[j]
             te = L
             kind = 0
-            ti = rise_within(q, D, lo, L, 0.0, work)
+            # as the rocking block's kernel: an excursion that starts at θ = 0 and turns back
+            # ends near τ* = −t₁/t₂ (soon, in a cascade of impacts): a convex rise is found by
+            # Newton's method, certified; root isolation decides what that cannot
+            if t[0] == 0.0 and s * t[1] > 0.0 and s * t[2] < 0.0:
+                win = min(L, -4.0 * t[1] / t[2])
+                if win > lo:
+                    ti = _convex_rise(q, D, lo, win)
+                    if ti == UNDECIDED:
+                        ti = rise_within(q, D, lo, win, 0.0, work)
+                    if ti < 0.0 and win < L:
+                        ti = rise_within(q, D, win, L, 0.0, work)
+                else:
+                    ti = rise_within(q, D, lo, L, 0.0, work)
+            else:
+                ti = _convex_rise(q, D, lo, L)
+                if ti == UNDECIDED:
+                    ti = rise_within(q, D, lo, L, 0.0, work)
             if ti >= 0.0:
                 te, kind = ti, 1
             for j in range(D + 1):
@@ -515,6 +537,8 @@ def _part(st, par, cw0, K, Lq, t_part, g, D, max_events, WS, work):
             if kind == 1:
                 # Housner's impact about the new corner, which sticks (§10g)
                 st[IMPACTS] += 1.0
+                if abs(thd1) >= SIGNIFICANT_SPEED * p * alpha:
+                    st[SIGNIF] += 1.0
                 vin = st[V] if sig != 0.0 else 0.0
                 ca = np.cos(alpha)
                 ke_in = 0.5 * vin * vin + vin * R * ca * thd1 + 2.0 / 3.0 * R * R * thd1 * thd1

@@ -59,6 +59,9 @@ class SlideRockResult:
         Time of the peak rotation, s (NaN when it never rocked).
     impacts
         Impacts (``θ`` back to 0), the cascade to rest included (as :func:`floorslide.rock`).
+    significant_impacts
+        Impacts at ``|θ'| ≥ p·α·√(f(2 − f))``, ``f = 0.01`` (as :func:`floorslide.rock`'s);
+        None for the approximate method.
     overturned, overturn_time
         Whether ``|θ|`` reached ``α``, and when (NaN otherwise).
     mode_time
@@ -113,6 +116,7 @@ class SlideRockResult:
     slide: np.ndarray | None = field(default=None, repr=False)
     mode_history: np.ndarray | None = field(default=None, repr=False)
     notes: tuple[str, ...] = ()
+    significant_impacts: np.ndarray | None = None
 
     def to_records(self) -> list[dict]:
         """One JSON-ready dict per block (snake_case keys, SI values)."""
@@ -416,6 +420,7 @@ def _result(states, B, H, alpha, p, r, mk, ms, duration, hist, notes) -> SlideRo
         peak_ratio=states[:, sk.PEAK].copy(),
         peak_time=states[:, sk.T_PEAK].copy(),
         impacts=states[:, sk.IMPACTS].astype(int),
+        significant_impacts=states[:, sk.SIGNIF].astype(int),
         overturned=over,
         overturn_time=np.where(over, states[:, sk.T_OVER], np.nan),
         mode_time=mode_time,

@@ -381,8 +381,7 @@ COLUMNS: dict[str, tuple[Column, ...]] = {
             "1",
             "median number of significant impacts: those at |θ'| ≥ p·α·√(f(2 − f)), f = 0.01, "
             "the speed of a block rocking freely back from a tilt of 1 % of α (the cascade to "
-            "rest left out; NaN in files written before they were counted and for slide–rock "
-            "blocks, whose simulation does not count them)",
+            "rest left out; NaN in files written before they were counted)",
         ),
         Column(
             "slide_rock_time_median",

@@ -117,8 +117,7 @@ RECORD_COLUMNS: tuple[Column, ...] = (
         "1",
         "significant impacts: at |θ'| ≥ p·α·√(f(2 − f)), f = 0.01, the speed of a block "
         "rocking freely back from a tilt of 1 % of α (the cascade to rest left out); NaN where "
-        "not applicable, where the object was simulated as a slide–rock block (fs.slide_rock "
-        "does not count them) or in files written before they were counted",
+        "not applicable or in files written before they were counted",
     ),
     Column("overturned", "1", "1 if the block overturned, else 0; NaN where not applicable"),
     Column("overturn_time_s", "s", "when it overturned (NaN: it did not, or not applicable)"),

@@ -62,8 +62,8 @@ class ContentResult:
     peak_slide_h2: np.ndarray | None = None
     ratio_2d_1d: np.ndarray | None = None  # peak_slide / max(1-D slides)
     # rocking: the impacts at |θ'| ≥ p·α·√(f(2 − f)), f = 0.01 (RockResult.significant_impacts;
-    # −1 where it slides instead and where it was simulated by slide_rock, which does not count
-    # them; None in files written before they were counted)
+    # SlideRockResult.significant_impacts; −1 where it slides instead; None in files written
+    # before they were counted)
     rock_significant_impacts: np.ndarray | None = None
     # rocking: s spent sliding and rocking at once (0 where it slides or rests; NaN in files
     # written before slide–rock was simulated)

@@ -44,8 +44,8 @@ Layout (every dataset carries a ``units`` attribute; ``1`` means dimensionless):
                              slide — NaN in files written before); for contents with a
                              width and height also rock_peak_ratio (1, max|θ|/α), rock_impacts
                              (1, the cascade to rest included), rock_significant_impacts (1,
-                             at |θ'| ≥ p·α·√(f(2 − f)), f = 0.01; −1 for a slide–rock block,
-                             which does not count them; absent in older files),
+                             at |θ'| ≥ p·α·√(f(2 − f)), f = 0.01; −1 where it slides
+                             instead; absent in older files),
                              rock_time (s, rocking with or without sliding), slide_rock_time
                              (s, sliding and rocking at once; absent in older files),
                              overturned (1: 1/0), overturn_time (s, NaN:

@@ -181,8 +181,7 @@ def rocking_results(content, modes, mu, mu_s, arrays, rocker) -> dict:
     Returns
     -------
     dict
-        ``rock_peak_ratio``, ``rock_impacts``, ``rock_significant_impacts`` (−1 where it was
-        simulated as a slide–rock block: :func:`floorslide.slide_rock` does not count them),
+        ``rock_peak_ratio``, ``rock_impacts``, ``rock_significant_impacts``,
         ``rock_time`` (time rocking, with or without sliding), ``slide_rock_time`` (time
         sliding and rocking at once), ``overturned``, ``overturn_time``, ``outcomes`` (the
         simulation's mode: rest, slide, rock, slide-rock or overturn) and, when it was
@@ -221,6 +220,7 @@ def rocking_results(content, modes, mu, mu_s, arrays, rocker) -> dict:
         peak, resid, acc_obj, frac, slips = arrays[:5]
         out["rock_peak_ratio"][rocks] = r.peak_ratio
         out["rock_impacts"][rocks] = r.impacts
+        out["rock_significant_impacts"][rocks] = r.significant_impacts
         out["rock_time"][rocks] = r.mode_time[:, 2] + r.mode_time[:, 3]
         out["slide_rock_time"][rocks] = r.mode_time[:, 3]
         out["overturned"][rocks] = r.overturned.astype(float)

@@ -1532,6 +1532,12 @@ def _contents(value, ck: _Checker, stories: set[int]) -> tuple[ContentSpec, ...]
         rocking = c.get("rocking", "exact")
         if rocking not in ("exact", "nonlinear"):
             ck.add(f"{w}.rocking", f"must be 'exact' or 'nonlinear', got {rocking!r}")
+        elif "rocking" in c and "width" in c:
+            ck.warn(
+                f"{w}.rocking",
+                "no longer applies in a study: rocking objects are simulated as slide–rock "
+                "blocks with the full equations (docs/design.md §10g); the key is ignored",
+            )
         model = c.get("model", "rigid")
         freq = None
         damping, ratio = 0.02, 1.0

@@ -105,7 +105,7 @@ def test_a_rocking_content_equals_slide_rock_bit_for_bit_on_linear_buildings(run
             frac = (direct.mode_time[i, 1] + direct.mode_time[i, 3]) / direct.duration
             assert c.slide_fraction[i] == frac
             assert c.rock_impacts[i] == direct.impacts[i]
-            assert c.rock_significant_impacts[i] == -1  # slide_rock does not count them
+            assert c.rock_significant_impacts[i] == direct.significant_impacts[i]
             assert c.outcomes[i] == direct.mode[i]
             assert np.isfinite(c.peak_slide[i])  # never NaN any more
     assert seen == {"fixed", "lin"}
@@ -156,7 +156,7 @@ def test_the_tables_show_the_slide_rock_results(run):
     df = record_table(out)
     rocked = df[df["mode"].isin(["rock", "slide-rock"])]
     assert len(rocked) and rocked.peak_slide.notna().all()
-    assert rocked.slide_rock_time_s.notna().all() and rocked.rock_significant_impacts.isna().all()
+    assert rocked.slide_rock_time_s.notna().all() and rocked.rock_significant_impacts.notna().all()
     assert (rocked.outcome == "rock").all()
     rows = design_tables(out)["rocking"]
     assert {(r["mu_k"], r["mu_s"]) for r in rows} == {(0.25, 0.25), (0.3, 0.5), (0.6, 0.6)}
