@@ -104,3 +104,16 @@ def test_storey_heights_one_per_storey_or_one_for_all():
     with pytest.raises(SceneError, match=r"buildings\[1\]\.storey_heights: 3 heights \(one per "
                        r"storey\) for 2 storeys"):  # fmt: skip
         parse_scene(text.replace("[4.5, 3.0]", "[4.5, 3.0, 3.0]"), ROOT / "x.toml")
+
+
+def test_the_rocking_key_is_warned_about_and_ignored():
+    """Rocking objects are slide–rock blocks with the full equations (docs/design.md §10g): a
+    scene that still chooses the rocking equation is told, by key path, and runs."""
+    text = GOOD.replace("mu = 0.2\n", 'mu = 0.2\nwidth = 0.4\nheight = 1.6\nrocking = "exact"\n', 1)
+    sc = parse_scene(text, ROOT / "x.toml")
+    assert sc.warnings == (
+        "contents[1].rocking: no longer applies in a study: rocking objects are simulated as "
+        "slide–rock blocks with the full equations (docs/design.md §10g); the key is ignored",
+    )
+    plain = GOOD.replace("mu = 0.2\n", "mu = 0.2\nwidth = 0.4\nheight = 1.6\n", 1)
+    assert parse_scene(plain, ROOT / "x.toml").warnings == ()
