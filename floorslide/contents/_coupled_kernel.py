@@ -30,7 +30,13 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from floorslide._jit import njit
-from floorslide.building._instep import foh_step, substep_inputs, taylor_coefficients
+from floorslide.building._instep import (
+    curvature_bound_at,
+    curvature_tail_weights,
+    foh_step,
+    substep_inputs,
+    taylor_coefficients,
+)
 from floorslide.numerics.polynomial import max_abs_on, poly_val, rise_within, scratch
 
 STICK, SLIDE = 0, 1
@@ -157,6 +163,13 @@ def coupled_run(S, acc, x, out, hist_s, hist_v, hist_a, hist_mode):
     want = hist_s.size == npts
     mode = 0
     fresh = False
+    # the stuck branch's chord bound of the floor's acceleration (the fast path below)
+    WX = np.empty(N)
+    phi0, p0, q0 = S.phi[STICK], S.p[STICK], S.q[STICK]
+    fr0, fb0 = S.floor_rows[STICK], S.floor_beta[STICK]
+    WA, WS = curvature_tail_weights(fr0, fb0, h, WX)
+    z_ok = False  # z0 holds the floor's acceleration at the sub-step's start
+    z0 = 0.0
     out[:] = 0.0
     out[LIMIT_AT] = -1.0
     a_start = _floor_value(S, STICK, x, acc[0])
@@ -177,6 +190,29 @@ def coupled_run(S, acc, x, out, hist_s, hist_v, hist_a, hist_mode):
             t0 = (k * m + r) * h
             s0 = 0.0
             events_here = 0
+            if mode == 0 and not fresh:
+                # the common sub-step: the block stuck, and the floor's acceleration — the
+                # friction it needs, per unit mass — bounded on the whole sub-step by its ends
+                # and the chord bound (ends + h²/8·max|a_f''|) below both mu_s·g and the peaks
+                # found so far: no event, no new peak; the state is stepped exactly as the
+                # search below would step it (bit for bit), without a Taylor polynomial
+                foh_step(phi0, p0, q0, x, aa, ab, y)
+                if not z_ok:
+                    z0 = fb0[0] * aa
+                    for j in range(N):
+                        z0 += fr0[0, j] * x[j]
+                z1 = fb0[0] * ab
+                for j in range(N):
+                    z1 += fr0[0, j] * y[j]
+                M2 = curvature_bound_at(fr0, fb0, x, aa, slope, h, WX, WA, WS)
+                bound = max(abs(z0), abs(z1)) + h * h / 8.0 * M2
+                if bound <= mus_g and bound <= min(out[PFA], out[BLOCK_PEAK_ACC]):
+                    for i in range(N):
+                        x[i] = y[i]
+                    z0 = z1
+                    z_ok = True
+                    continue
+            z_ok = False
             while True:
                 b = STICK if mode == 0 else SLIDE
                 L = h - s0
