@@ -91,8 +91,10 @@ INCONSISTENT = 3.0
 PAINLEVE_MARGIN = 0.01
 
 # columns of a block's parameters
-P_ALPHA, P_P, P_RAD, P_TAN, P_MUK, P_MUS, P_R = range(7)
-NPAR = 7
+P_ALPHA, P_P, P_RAD, P_TAN, P_MUK, P_MUS, P_R, P_ENERGY = range(8)
+NPAR = 8
+"""Columns of a block's parameters: α, p, R (centre to corner), tan α, mu_k, mu_s, the
+restitution, and 1 to account the energy terms (0: skip them)."""
 
 PHASE = 0.25
 """Longest part of a segment, as ``p·L`` (as the rocking block's full equation; slide–rock, which
@@ -404,10 +406,11 @@ def _part(st, par, cw0, K, Lq, t_part, g, D, max_events, WS, work):
                 st[PEAK_U] = vmax
             u1 = poly_val(Us, dU, te)
             # work: the floor's −∫ a_f U' and friction's mu_k g |ΔU| (U' of one sign here)
-            for k in range(K + 2):
-                q[k] = (k + 1) * Us[k + 1]
-            st[W_FLOOR] -= integral_of_product(cw, K, q, K + 1, te)
-            st[W_FRIC] += muk * g * sig * (u1 - st[U])
+            if par[P_ENERGY] != 0.0:
+                for k in range(K + 2):
+                    q[k] = (k + 1) * Us[k + 1]
+                st[W_FLOOR] -= integral_of_product(cw, K, q, K + 1, te)
+                st[W_FRIC] += muk * g * sig * (u1 - st[U])
             st[T_MODE + SLIDE] += te
             st[U] = u1
             s0 += te
@@ -434,7 +437,25 @@ def _part(st, par, cw0, K, Lq, t_part, g, D, max_events, WS, work):
             tail = abs(t[D]) * L**D + abs(t[D - 1]) * L ** (D - 1)
             if tail > TAIL * alpha:
                 L = max(L * 0.9 * (TAIL * alpha / tail) ** (1.0 / (D - 1)), 4.0 * lo)
-            contact_series(t, S, C, D, R, g, E, Hs, Fp, Np)
+            # a rocking block whose corner holds on the whole part by bounds — |F| ≤ |a_f| +
+            # R (|θ''| + θ'²) ≤ mu_s (g − R (|θ''| + θ'²)) ≤ mu_s N — needs no contact forces
+            # (unless the energy is accounted): no friction limit, no flight there
+            quiet = False
+            if sig == 0.0:
+                b1 = 0.0
+                b2 = 0.0
+                for k in range(D, 0, -1):
+                    b1 = b1 * L + k * abs(t[k])
+                    if k >= 2:
+                        b2 = b2 * L + k * (k - 1) * abs(t[k])
+                af = 0.0
+                for j in range(K, -1, -1):
+                    af = af * L + abs(cw[j])
+                swing = R * (b2 + b1 * b1)
+                quiet = g - swing > 0.0 and af + swing <= mus * (g - swing)
+            energy = par[P_ENERGY] != 0.0
+            if not quiet or energy:
+                contact_series(t, S, C, D, R, g, E, Hs, Fp, Np)
             dF = D - 2
             # the slip's series (slide–rock): V' = −σ mu_k N − R E' − a_f
             if sig != 0.0:
@@ -478,10 +499,13 @@ def _part(st, par, cw0, K, Lq, t_part, g, D, max_events, WS, work):
             to = rise_within(q, D, lo, L, alpha, work)
             if to >= 0.0 and to <= te:
                 te, kind = to, 2
-            for j in range(dF + 1):
-                q[j] = -Np[j]
-            te, kind = _first(te, kind, rise_within(q, dF, lo, L, 0.0, work), 3)
-            if sig == 0.0:
+            if not quiet:
+                for j in range(dF + 1):
+                    q[j] = -Np[j]
+                te, kind = _first(te, kind, rise_within(q, dF, lo, L, 0.0, work), 3)
+            if quiet:
+                pass
+            elif sig == 0.0:
                 for j in range(dF + 1):
                     f = Fp[j] + (cw[j] if j <= K else 0.0)
                     q[j] = f - mus * Np[j]
@@ -498,17 +522,19 @@ def _part(st, par, cw0, K, Lq, t_part, g, D, max_events, WS, work):
             if v > st[PEAK] * alpha:
                 st[PEAK] = v / alpha
                 st[T_PEAK] = tnow + tv
-            # the floor's work −∫ a_f x_c' (x_c' = V + R E) and friction's ∫ mu_k N σ V
-            for j in range(D):
-                q[j] = R * E[j]
             if sig != 0.0:
-                for j in range(dF + 2):
-                    q[j] += Vs[j]
-                st[W_FRIC] += sig * muk * integral_of_product(Np, dF, Vs, dF + 1, te)
                 vmax, tv = max_abs_on(Us, dF + 2, te, st[PEAK_U], work)
                 if vmax > st[PEAK_U]:
                     st[PEAK_U] = vmax
-            st[W_FLOOR] -= integral_of_product(cw, K, q, D - 1, te)
+            if energy:
+                # the floor's work −∫ a_f x_c' (x_c' = V + R E) and friction's ∫ mu_k N σ V
+                for j in range(D):
+                    q[j] = R * E[j]
+                if sig != 0.0:
+                    for j in range(dF + 2):
+                        q[j] += Vs[j]
+                    st[W_FRIC] += sig * muk * integral_of_product(Np, dF, Vs, dF + 1, te)
+                st[W_FLOOR] -= integral_of_product(cw, K, q, D - 1, te)
             st[T_MODE + (ROCK if sig == 0.0 else SLIDE_ROCK)] += te
             s0 += te
             th1 = poly_val(t, D, te)

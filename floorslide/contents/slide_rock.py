@@ -78,7 +78,8 @@ class SlideRockResult:
     energy
         ``(n_blocks, 4)`` per unit mass, J/kg: ``E_end − E_0``, the floor's work on the block
         (its inertial force in the floor's frame), friction's dissipation, impacts' losses —
-        ``E_end − E_0 = W_floor − W_friction − W_impacts`` (docs/design.md §10g).
+        ``E_end − E_0 = W_floor − W_friction − W_impacts`` (docs/design.md §10g); NaN unless
+        asked for (``energy=True``).
     duration
         Duration of the record, s.
     method
@@ -210,6 +211,7 @@ def slide_rock(
     floor: int | None = None,
     method: str = "exact",
     histories: bool = False,
+    energy: bool = False,
     substeps: int = 8,
     vertical=None,
     direction=None,
@@ -245,6 +247,10 @@ def slide_rock(
         (:mod:`floorslide.contents.slide_rock_approx`), on the floor's samples; peaks only.
     histories
         Also return ``θ``, ``U`` and the mode at the samples.
+    energy
+        Also account the energy terms (:attr:`SlideRockResult.energy`, the balance of
+        docs/design.md §10g; the contact forces' series on every rocking part: slower). Exact
+        method only.
     substeps
         Steps per record step of ``"fixed_step"``.
     vertical, direction
@@ -304,6 +310,8 @@ def slide_rock(
         np.ascontiguousarray(np.broadcast_to(x, (n,)), dtype=float) for x in (B, H, alpha, p, r)
     )
     if method != "exact":
+        if energy:
+            raise ModelError("energy=True needs method='exact'", "energy")
         return _approximate(acc, dt, building, floor, B, H, alpha, p, r, mk, ms, histories,
                             substeps)  # fmt: skip
     motion, row, d, dt, notes = _poly_source(acc, dt, building, floor)
@@ -315,6 +323,7 @@ def slide_rock(
     par[:, sk.P_MUK] = mk
     par[:, sk.P_MUS] = ms
     par[:, sk.P_R] = r
+    par[:, sk.P_ENERGY] = 1.0 if energy else 0.0
     states = np.zeros((B.size, sk.NCOL))
     states[:, sk.T_OVER] = -1.0
     states[:, sk.LIMIT_AT] = -1.0
@@ -336,7 +345,7 @@ def slide_rock(
                              sk.MAX_EVENTS, hist)  # fmt: skip
     _raise_errors(states, B, H)
     return _result(states, B, H, alpha, p, r, mk, ms, (npts - 1) * dt, hist if histories else None,
-                   notes)  # fmt: skip
+                   notes, energy)  # fmt: skip
 
 
 def _raise_errors(states, B, H) -> None:
@@ -398,7 +407,9 @@ def _mode(mode_time, overturned) -> str:
     return "slide" if slid else "rest"
 
 
-def _result(states, B, H, alpha, p, r, mk, ms, duration, hist, notes) -> SlideRockResult:
+def _result(
+    states, B, H, alpha, p, r, mk, ms, duration, hist, notes, with_energy
+) -> SlideRockResult:
     over = states[:, sk.MODE] == sk.OVERTURNED
     mode_time = states[:, sk.T_MODE : sk.T_MODE + 4].copy()
     e_end = np.array(
@@ -407,6 +418,8 @@ def _result(states, B, H, alpha, p, r, mk, ms, duration, hist, notes) -> SlideRo
     energy = np.column_stack(
         [e_end - states[:, sk.E0], states[:, sk.W_FLOOR], states[:, sk.W_FRIC], states[:, sk.W_IMP]]
     )
+    if not with_energy:
+        energy[:] = np.nan
     return SlideRockResult(
         width=B,
         height=H,

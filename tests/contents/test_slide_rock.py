@@ -176,11 +176,16 @@ def test_energy_balance_through_every_mode(kobe):
     H = np.array([1.6, 1.5, 1.2, 1.0])
     mk = np.array([0.26, 0.22, 0.45, 0.55])
     ms = np.array([0.3, 0.22, 0.55, 0.6])
-    r = fs.slide_rock(kobe, 0.01, W, H, mk, mu_s=ms)
+    r = fs.slide_rock(kobe, 0.01, W, H, mk, mu_s=ms, energy=True, histories=True)
     assert (r.mode_time[:, 3] > 0).sum() >= 3  # slide–rock happens
     dE, w_floor, w_fric, w_imp = r.energy.T
     assert (w_fric > 0).any() and (w_imp > 0).all()
     np.testing.assert_allclose(dE, w_floor - w_fric - w_imp, rtol=0, atol=1e-12 * w_floor.max())
+    # accounting the energy (the contact forces on every part) changes nothing else
+    plain = fs.slide_rock(kobe, 0.01, W, H, mk, mu_s=ms, histories=True)
+    assert np.isnan(plain.energy).all()
+    for name in ("theta", "slide", "mode_time", "peak_slide", "peak_ratio", "impacts"):
+        np.testing.assert_array_equal(getattr(plain, name), getattr(r, name))
 
 
 def test_mirror_symmetry(kobe):
