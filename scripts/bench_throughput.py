@@ -269,6 +269,44 @@ def carried(b: Bench) -> None:
         )
 
 
+def equipment(b: Bench) -> None:
+    """The targets of issue 32: slide–rock blocks batched on the ground where they rock, and
+    heavy equipment coupled with the roof of a 3-storey building."""
+    ag, dt = record_4000()
+    n = ag.size
+    acc = 3.5 * ag  # strong enough that every block rocks
+    k = 100
+    lam = np.linspace(0.15, 0.6, k)
+    W, H = lam * 1.5, np.full(k, 1.5)
+    b.add(
+        f"slide–rock blocks, ground, {k} blocks that rock (never slipping)",
+        n * k,
+        b.time(lambda: fs.slide_rock(acc, dt, W, H, 100.0)),
+        1e7,
+    )
+    b.add(
+        f"slide–rock blocks, ground, {k} blocks that rock and slide (mu_s 1.1 tan α)",
+        n * k,
+        b.time(lambda: fs.slide_rock(acc, dt, W, H, 1.02 * lam, mu_s=1.1 * lam)),
+        1e7,
+    )
+    b.add(
+        f"rocking blocks (fs.rock, full equation), ground, {k} blocks, same",
+        n * k,
+        b.time(lambda: fs.rock(acc, dt, W, H, method="nonlinear")),
+        None,
+        "the same blocks without friction: slide–rock's yardstick",
+    )
+    sup = fs.ShearBuilding.from_period(stories=3, period=0.5, damping=0.05)
+    for mu, what in ((2.0, "mu 2: stuck"), (0.15, "mu 0.15: sliding")):
+        b.add(
+            f"heavy equipment (3 % of the roof) coupled, 3-storey roof, {what}",
+            n,
+            b.time(lambda mu=mu: fs.slide_coupled(ag, dt, mu, mass=0.03, building=sup, floor=3)),
+            1e7,
+        )
+
+
 def _wall(cmd: list[str], env: dict | None = None, cwd: str | None = None) -> float:
     t0 = time.perf_counter()
     subprocess.run(cmd, check=True, capture_output=True, env=env, cwd=cwd)
@@ -306,6 +344,8 @@ def main() -> None:
         spectra(b)
         print("targets carried from issues 14–16 …", file=sys.stderr)
         carried(b)
+        print("equipment (issue 32) …", file=sys.stderr)
+        equipment(b)
     out = [
         f"Machine: {machine()}; {time.strftime('%Y-%m-%d')}.",
         "",
