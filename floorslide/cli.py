@@ -827,6 +827,13 @@ def slide(
     help="exact: the linearised (slender-block) equation, exact; nonlinear: the full equation, "
     "exact to rounding.",
 )
+@click.option(
+    "--mu",
+    metavar="MU[,MU...]",
+    help="Kinetic friction at the contact: the blocks may slide while they rock (slide–rock, "
+    "docs/design.md §10g; the full equations), one row per block and friction value.",
+)
+@click.option("--mu-s", metavar="MU[,MU...]", help="Static friction with --mu (default --mu).")
 @click.option("--scale-pga", type=NUMBER, metavar="G", help="Scale the record to this PGA, in g.")
 @click.option("--json", "as_json", is_flag=True, help="Print a JSON list (SI values) on stdout.")
 @building_options
@@ -838,6 +845,8 @@ def rock(
     height,
     restitution,
     method,
+    mu,
+    mu_s,
     scale_pga,
     as_json,
     building_spec,
@@ -855,9 +864,11 @@ def rock(
     building given with --building (and --floor) — one row per block: slenderness α =
     atan(B/H), peak rotation over slenderness θ/α (1 = overturned), impacts, uplifts, time spent
     rocking, and whether and when it overturned. Friction is assumed to hold the corner (Shenton:
-    mu_s > B/H; else the block slides: floorslide slide). Exact for the piecewise-linear record,
-    end to end; uplift, impacts and overturning located inside steps. No filtering unless asked.
-    The record's quality flags are printed as warnings on stderr.
+    mu_s > B/H; else the block slides: floorslide slide) — unless --mu is given: then each
+    block rests, slides, rocks or slides while it rocks (slide–rock, the full equations), and
+    the rows add the peak slide and the time in each mode. Exact for the piecewise-linear
+    record, end to end; uplift, impacts and overturning located inside steps. No filtering
+    unless asked. The record's quality flags are printed as warnings on stderr.
     """
     from floorslide.constants import G
     from floorslide.contents.rocking_block import rock as rock_blocks
@@ -870,6 +881,10 @@ def rock(
     _kernels(_family_of(building))
     tr, quality, fm = _record_on_floor(record, (fmt, units, dt, component), processing,
                                        scale_pga, building, floor_no)  # fmt: skip
+    if mu is not None or mu_s is not None:
+        _slide_rock_rows(record, tr, quality, fm, building, building_spec, floor_no, where, widths,
+                         heights, restitution, mu, mu_s, as_json)  # fmt: skip
+        return
     try:
         res = rock_blocks(fm, width=widths, height=heights, restitution=restitution, method=method)
     except ModelError as exc:
@@ -899,6 +914,60 @@ def rock(
             f"{row['width']:7.4g} {row['height']:7.4g} {row['width'] / row['height']:6.3f} "
             f"{row['alpha']:7.4f} {row['restitution']:6.3f} {row['peak_ratio']:10.4f} "
             f"{row['impacts']:8d} {row['uplifts']:8d} {row['rocking_time']:8.3f}s  {outcome}"
+        )
+
+
+def _slide_rock_rows(record, tr, quality, fm, building, building_spec, floor_no, where, widths,
+                     heights, restitution, mu, mu_s, as_json):  # fmt: skip
+    """``floorslide rock --mu``: slide–rock blocks, one row per block and friction value."""
+    import numpy as np
+
+    from floorslide.constants import G
+    from floorslide.contents.slide_rock import slide_rock
+    from floorslide.errors import ModelError
+
+    if mu is None:
+        raise click.BadParameter("--mu-s needs --mu (the kinetic friction)", param_hint="--mu-s")
+    mk = _floats(mu, "--mu")
+    ms = _floats(mu_s, "--mu-s") if mu_s is not None else list(mk)
+    if len(ms) != len(mk):
+        raise click.BadParameter(
+            f"give one --mu-s per --mu value ({len(mk)}), got {len(ms)}", param_hint="--mu-s"
+        )
+    B, H = np.broadcast_arrays(np.asarray(widths, float), np.asarray(heights, float))
+    nb, nm = B.size, len(mk)
+    try:
+        res = slide_rock(fm, None, np.repeat(B, nm), np.repeat(H, nm), np.tile(mk, nb),
+                         mu_s=np.tile(ms, nb), restitution=restitution)  # fmt: skip
+    except (ModelError, ValueError) as exc:
+        hint = getattr(exc, "where", None) or "width"
+        raise click.BadParameter(str(getattr(exc, "message", exc)),
+                                 param_hint=f"--{hint.replace('_', '-')}") from None  # fmt: skip
+    rows = res.to_records()
+    if as_json:
+        for row in rows:
+            row.update(record=record, method="slide-rock", building=building_spec, floor=floor_no)
+            row["qa_flags"] = list(quality.codes)
+        click.echo(_strict_json(rows))
+        return
+    click.echo(
+        f"{record}: dt = {tr.stats.delta:g} s, {tr.stats.npts} samples, slide–rock (full "
+        "equations)" + (f", {where}" if building is None else "")
+    )
+    if building is not None:
+        pfa = fm.peak()[0]
+        click.echo(f"{where}; PFA = {pfa:.4g} m/s2 ({pfa / G:.4f} g)")
+    click.echo(
+        f"{'B (m)':>7} {'H (m)':>7} {'mu_k':>6} {'mu_s':>6} {'peak th/a':>10} {'slide (m)':>10} "
+        f"{'impacts':>8} {'slide':>8} {'rock':>8} {'sl-rock':>8}  outcome"
+    )
+    for row in rows:
+        outcome = f"overturns at {row['overturn_time']:.4g} s" if row["overturned"] else row["mode"]
+        click.echo(
+            f"{row['width']:7.4g} {row['height']:7.4g} {row['mu_k']:6.3g} {row['mu_s']:6.3g} "
+            f"{row['peak_ratio']:10.4f} {row['peak_slide']:10.4g} {row['impacts']:8d} "
+            f"{row['time_slide']:7.3f}s {row['time_rock']:7.3f}s {row['time_slide_rock']:7.3f}s"
+            f"  {outcome}"
         )
 
 

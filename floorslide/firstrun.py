@@ -123,11 +123,12 @@ def _ground() -> None:
 
 def _floors() -> None:
     """Floors of linear buildings (``--building``, studies): the building's exact motion, its
-    peaks and samples, rigid blocks, rocking blocks and floor spectra on a floor; rocking
-    blocks and response spectra on the ground."""
+    peaks and samples, rigid blocks, rocking and slide–rock blocks and floor spectra on a floor;
+    rocking and slide–rock blocks and response spectra on the ground."""
     from floorslide.building.exact_motion import floor_motion
     from floorslide.building.model import ShearBuilding
     from floorslide.contents.rocking_block import rock
+    from floorslide.contents.slide_rock import slide_rock
     from floorslide.run import warmup
     from floorslide.spectra.core import response_spectrum
 
@@ -142,6 +143,8 @@ def _floors() -> None:
         fm.peak()
         rock(fm, width=[0.01, 0.3], height=[1.0, 1.0], restitution=None, method="exact")
         rock(fm, width=[0.01, 0.3], height=[1.0, 1.0], restitution=None, method="nonlinear")
+        slide_rock(fm, None, [0.01, 0.3], [1.0, 1.0], [0.3, 0.4], mu_s=[0.35, 0.5],
+                   histories=building is not None)  # fmt: skip
         response_spectrum(_record(), 0.01, np.array([0.0, 0.5]), [0.05], building=building,
                           floor=floor)  # fmt: skip
 

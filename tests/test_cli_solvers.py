@@ -275,6 +275,30 @@ def test_rock_table_and_bad_geometry():
     assert out.returncode == 2 and "--restitution" in out.stderr
 
 
+def test_rock_with_friction_is_slide_rock():
+    """``rock --mu``: each block under each friction value by fs.slide_rock (one row per block
+    and friction value, the JSON equal to the API's); a --mu-s below --mu is refused by name."""
+    acc, dt = load_slammer("ImperialValley_1940_ELC-180.txt")
+    out = run("rock", RECORD, "--width", "0.3,0.5", "--height", "1.2", "--mu", "0.25,0.45",
+              "--mu-s", "0.26,0.5", "--scale-pga", "0.6", "--json")  # fmt: skip
+    assert out.returncode == 0, out.stderr
+    rows = json.loads(out.stdout)
+    import floorslide as fs
+
+    a = acc * (0.6 * 9.80665 / np.max(np.abs(acc)))
+    ref = fs.slide_rock(a, dt, [0.3, 0.3, 0.5, 0.5], 1.2, [0.25, 0.45, 0.25, 0.45],
+                        mu_s=[0.26, 0.5, 0.26, 0.5])  # fmt: skip
+    assert [(r["width"], r["mu_k"]) for r in rows] == [(0.3, 0.25), (0.3, 0.45), (0.5, 0.25),
+                                                      (0.5, 0.45)]  # fmt: skip
+    np.testing.assert_allclose([r["peak_ratio"] for r in rows], ref.peak_ratio, rtol=1e-12)
+    np.testing.assert_allclose([r["peak_slide"] for r in rows], ref.peak_slide, rtol=1e-12)
+    assert [r["mode"] for r in rows] == list(ref.mode)
+    out = run("rock", RECORD, "--width", "0.3", "--height", "1.2", "--mu", "0.3")
+    assert out.returncode == 0 and "sl-rock" in out.stdout
+    out = run("rock", RECORD, "--width", "0.3", "--height", "1.2", "--mu", "0.3", "--mu-s", "0.2")
+    assert out.returncode == 2 and "--mu-s" in out.stderr
+
+
 # ------------------------------------------------------------------ two components (issue 16)
 PAIR_DIR = SLAMMER.parent / "pairs"
 H1 = str(PAIR_DIR / "RSN1084_NORTHR_SCS052.AT2")
