@@ -780,8 +780,9 @@ def figure_rocking(study: Study, record_set: str) -> Figure | None:
 
 def figure_overturning(study: Study, tables: DesignTables, record_set: str) -> Figure | None:
     """Fractions of the set's records under which each content with rocking results rocked
-    (dashed, open markers) and overturned (solid), against the buildings, one series per
-    content and floor; or None when the set has no row in the ``rocking`` table.
+    (dashed, open markers), overturned (solid) and slid while it rocked (dotted, triangles:
+    the slide–rock mode, where any did), against the buildings, one series per content, floor
+    and friction pair; or None when the set has no row in the ``rocking`` table.
 
     The x axis is the isolation period when the buildings are variants of one isolated
     building, each of its own period; else one position per building in the tables' order.
@@ -804,13 +805,14 @@ def figure_overturning(study: Study, tables: DesignTables, record_set: str) -> F
         fig,
         study,
         f"Rocking and overturning — set {record_set}\nfraction of the {n} records under which "
-        f"the block rocked (dashed, open) and overturned (solid)"
+        f"the block rocked (dashed, open), overturned (solid) and slid while rocking (dotted)"
         + (f"; caution: only {n} records (< {MIN_RECORDS})" if n < MIN_RECORDS else ""),
     )
     from matplotlib import colormaps
 
     cmap = colormaps["tab10"]
     handles, labels = [], []
+    any_slid = False
     for k, (content, floor, mu_k, mu_s) in enumerate(series):
         color = cmap(k % 10)
         sel = sorted(
@@ -824,8 +826,15 @@ def figure_overturning(study: Study, tables: DesignTables, record_set: str) -> F
         x = np.array([x_of[r["building"]] for r in sel])
         over = np.array([r["overturn_fraction"] for r in sel], dtype=float)
         rock = np.array([r["rock_fraction"] for r in sel], dtype=float)
+        # slid while it rocked (slide–rock, docs/design.md §10g); NaN in older files' tables
+        slid = np.array(
+            [r.get("n_slide_rock", math.nan) / r["n_records"] for r in sel], dtype=float
+        )
         ax.plot(x, rock, "--s", color=color, mfc="none", ms=6, lw=1.0)
         ax.plot(x, over, "-o", color=color, ms=5, lw=1.4)
+        if np.nansum(slid) > 0:
+            ax.plot(x, slid, ":^", color=color, mfc="none", ms=6, lw=1.0)
+            any_slid = True
         handles.append(Line2D([], [], color=color, marker="o", ms=5))
         labels.append(
             f"{content} on floor {floor}, mu {mu_k:g}/{mu_s:g} (B/H = {sel[0]['b_over_h']:.3g})"
@@ -835,6 +844,9 @@ def figure_overturning(study: Study, tables: DesignTables, record_set: str) -> F
         Line2D([], [], color="0.3", marker="s", mfc="none", ls="--", ms=6),
     ]
     labels += ["overturned", "rocked (overturned or not)"]
+    if any_slid:
+        handles.append(Line2D([], [], color="0.3", marker="^", mfc="none", ls=":", ms=6))
+        labels.append("slid while it rocked (slide–rock)")
     if numeric:
         ax.set_xlabel("isolation period T_i (s)")
     else:

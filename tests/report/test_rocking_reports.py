@@ -329,6 +329,13 @@ def test_the_rocking_figures_are_drawn_from_the_run(rocking, tmp_path):
     rows = tables["rocking"]
     np.testing.assert_array_equal(rock.get_ydata(), [r["rock_fraction"] for r in rows])
     np.testing.assert_array_equal(over.get_ydata(), [r["overturn_fraction"] for r in rows])
+    # the slide–rock mode: a dotted series of the fraction that slid while rocking, when any did
+    slid = [r["n_slide_rock"] / r["n_records"] for r in rows]
+    dotted = [ln for ln in ax.get_lines() if ln.get_linestyle() == ":"]
+    if sum(slid) > 0:
+        np.testing.assert_array_equal(dotted[0].get_ydata(), slid)
+    else:
+        assert not dotted
 
 
 def test_no_rocking_figures_without_rocking_results(study, tmp_path):
