@@ -30,6 +30,7 @@ import numpy as np
 
 from floorslide.building.exact import ExactStepper, model_substeps, spectral_radius
 from floorslide.building.model import LinearBuilding
+from floorslide.building.nonlinear import NonlinearIsolatedBuilding
 from floorslide.constants import G
 from floorslide.contents import _coupled_kernel as kern
 from floorslide.contents.events import SLIDE_MAX_EVENTS
@@ -81,7 +82,15 @@ class CoupledSlideResult:
         a floor response spectrum, :func:`~floorslide.response_spectrum` — sample-based
         then) and the mode (0 stuck, ±1 sliding with that sign of velocity).
     notes
-        What was done to the input record (unit conversion of a Trace), one line each.
+        What was done to the input record (unit conversion of a Trace), one line each; on a
+        building on nonlinear isolation also a layer beyond its capacity or a pendulum beyond
+        its small-angle range.
+    peak_isolator_displacement, residual_isolator_displacement
+        On a :class:`~floorslide.NonlinearIsolatedBuilding` only (else ``None``): the isolator's
+        true peak ``|u_0|`` (inside steps) and its displacement at the end, m, per case.
+    isolator_displacement
+        Its history at the samples, ``(n_cases, npts)``, with ``histories`` (nonlinear
+        isolation only).
     """
 
     mu_k: np.ndarray
@@ -106,6 +115,9 @@ class CoupledSlideResult:
     floor_acceleration: np.ndarray | None = field(default=None, repr=False)
     mode: np.ndarray | None = field(default=None, repr=False)
     notes: tuple[str, ...] = ()
+    peak_isolator_displacement: np.ndarray | None = None
+    residual_isolator_displacement: np.ndarray | None = None
+    isolator_displacement: np.ndarray | None = field(default=None, repr=False)
 
     def to_records(self) -> list[dict]:
         """One JSON-ready dict per case (snake_case keys, SI values)."""
@@ -127,6 +139,11 @@ class CoupledSlideResult:
             row = {k: float(getattr(self, k)[i]) for k in keys}
             row["slip_phases"] = int(self.slip_phases[i])
             row["floor"] = self.floor
+            if self.peak_isolator_displacement is not None:
+                row["peak_isolator_displacement"] = float(self.peak_isolator_displacement[i])
+                row["residual_isolator_displacement"] = float(
+                    self.residual_isolator_displacement[i]
+                )
             out.append(row)
         return out
 
@@ -139,12 +156,12 @@ def _check_building(building) -> LinearBuilding:
             "ground the block acts back on nothing, use slide",
             "building",
         )
-    if isinstance(building, LinearBuilding):
+    if isinstance(building, LinearBuilding | NonlinearIsolatedBuilding):
         return building
     if getattr(building, "segmented", False):
         raise ModelError(
-            f"a block coupled with a {type(building).__name__} (nonlinear isolation) is not "
-            "modelled yet: give a ShearBuilding or a linear IsolatedBuilding",
+            "acc must be the ground record and building the building: a floor motion cannot "
+            "carry a block that acts back on it",
             "building",
         )
     if hasattr(building, "h1") and hasattr(building, "h2"):
@@ -154,7 +171,9 @@ def _check_building(building) -> LinearBuilding:
             "building",
         )
     raise ModelError(
-        f"expected a ShearBuilding or IsolatedBuilding, got {type(building).__name__}", "building"
+        "expected a ShearBuilding, IsolatedBuilding or NonlinearIsolatedBuilding, got "
+        f"{type(building).__name__}",
+        "building",
     )
 
 
@@ -349,7 +368,8 @@ def slide_coupled(
         )
     building = _check_building(building)
     dof = _check_floor(building, floor)
-    f = int(building.dof_floors[dof])
+    nonlinear = isinstance(building, NonlinearIsolatedBuilding)
+    f = dof if nonlinear else int(building.dof_floors[dof])
     if mu_k is None:
         raise ModelError("mu_k (the kinetic friction coefficient) is required", "mu_k")
     mk, ms = friction_pairs(mu_k, mu_s)
@@ -375,6 +395,10 @@ def slide_coupled(
     shape = (ncase, npts) if histories else (ncase, 0)
     hs, hv, ha = np.zeros(shape), np.zeros(shape), np.zeros(shape)
     hm = np.zeros(shape, dtype=np.int64)
+    if nonlinear:
+        return _slide_coupled_nonlinear(
+            building, dof, a, dt, mk, ms, masses, floor_mass, histories, notes
+        )
     res = np.zeros((ncase, kern.NOUT))
     residual = np.zeros(ncase)
     substeps = 1
@@ -415,4 +439,76 @@ def slide_coupled(
         floor_acceleration=ha if histories else None,
         mode=hm if histories else None,
         notes=tuple(notes),
+    )
+
+
+def _slide_coupled_nonlinear(building, dof, a, dt, mk, ms, masses, floor_mass, histories, notes):
+    """:func:`slide_coupled` on a :class:`~floorslide.NonlinearIsolatedBuilding`
+    (:mod:`floorslide.contents.coupled_nonlinear`)."""
+    from floorslide.building.isolators import small_angle_exceeded, small_angle_note
+    from floorslide.contents import _coupled_nonlinear_kernel as nkern
+    from floorslide.contents import coupled_nonlinear as cnl
+
+    npts = a.size
+    ncase = mk.size
+    shape = (ncase, npts) if histories else (ncase, 0)
+    hs, hv, ha, hu = (np.zeros(shape) for _ in range(4))
+    hm = np.zeros(shape, dtype=np.int64)
+    res = np.zeros((ncase, nkern.NOUT))
+    residual = np.zeros(ncase)
+    residual_iso = np.zeros(ncase)
+    substeps = 1
+    n = building.n_dof
+    for i in range(ncase):
+        S, _consts = cnl.setup(building, dof, float(masses[i]), dt, float(ms[i]), float(mk[i]))
+        substeps = S.substeps
+        x = np.zeros(S.phi.shape[1])
+        branch = cnl.initial_branch(building)
+        nkern.coupled_nonlinear_run(S, a, x, branch, res[i], hs[i], hv[i], ha[i], hm[i], hu[i])
+        if res[i, nkern.LIMIT_AT] >= 0.0:
+            raise SolverLimitError(
+                f"slide_coupled: more than {SLIDE_MAX_EVENTS} friction or isolator events "
+                f"inside one sub-step at t = {res[i, nkern.LIMIT_AT]:.6g} s (mu_k = {mk[i]:g}, "
+                f"mass = {masses[i]:g} kg): chatter the exact solver cannot resolve; check the "
+                "record for spikes"
+            )
+        residual[i] = x[2 * n + 1]
+        residual_iso[i] = x[0]
+    peak_iso = res[:, nkern.ISO_PEAK].copy()
+    iso = building.isolator
+    worst = float(peak_iso.max())
+    if iso.capacity is not None and worst > iso.capacity:
+        notes = list(notes) + [
+            f"isolator displacement {worst:.4g} m exceeds its capacity {iso.capacity:g} m: the "
+            "impact that would follow is not modelled"
+        ]
+    if small_angle_exceeded(iso, worst):
+        notes = list(notes) + [small_angle_note(worst, iso.R)]
+    duration = (npts - 1) * dt
+    return CoupledSlideResult(
+        mu_k=mk,
+        mu_s=ms,
+        mass=masses,
+        mass_ratio=masses / floor_mass,
+        floor=dof,
+        floor_mass=floor_mass,
+        peak_slide=res[:, nkern.PEAK_SLIDE].copy(),
+        residual_slide=residual,
+        slide_fraction=res[:, nkern.SLIDE_TIME] / duration if duration > 0 else np.zeros(ncase),
+        slip_phases=res[:, nkern.SLIPS].astype(int),
+        time_of_peak=res[:, nkern.T_PEAK].copy(),
+        pfa=res[:, nkern.PFA].copy(),
+        time_of_pfa=res[:, nkern.T_PFA].copy(),
+        peak_abs_accel=res[:, nkern.BLOCK_PEAK_ACC].copy(),
+        duration=duration,
+        dt=dt,
+        substeps=int(substeps),
+        u=hs if histories else None,
+        v=hv if histories else None,
+        floor_acceleration=ha if histories else None,
+        mode=hm if histories else None,
+        notes=tuple(notes),
+        peak_isolator_displacement=peak_iso,
+        residual_isolator_displacement=residual_iso,
+        isolator_displacement=hu if histories else None,
     )
