@@ -478,12 +478,13 @@ def _slide_coupled_nonlinear(building, dof, a, dt, mk, ms, masses, floor_mass, h
     iso = building.isolator
     worst = float(peak_iso.max())
     if iso.capacity is not None and worst > iso.capacity:
-        notes = list(notes) + [
+        notes = [
+            *notes,
             f"isolator displacement {worst:.4g} m exceeds its capacity {iso.capacity:g} m: the "
-            "impact that would follow is not modelled"
+            "impact that would follow is not modelled",
         ]
     if small_angle_exceeded(iso, worst):
-        notes = list(notes) + [small_angle_note(worst, iso.R)]
+        notes = [*notes, small_angle_note(worst, iso.R)]
     duration = (npts - 1) * dt
     return CoupledSlideResult(
         mu_k=mk,

@@ -138,9 +138,7 @@ def setup(building, dof: int, mass: float, dt: float, mus: float, muk: float):
         EB = np.zeros((P, K + 1))
         FR = np.empty((P, K + 1, N))
         FB = np.empty((P, K + 1))
-        for j, (st, (_A, _b, (fr, fd), (er, ed))) in enumerate(
-            zip(steppers, systems, strict=True)
-        ):
+        for j, (st, (_A, _b, (fr, fd), (er, ed))) in enumerate(zip(steppers, systems, strict=True)):
             phi[j] = st.phi
             p[j], q[j] = st.input_weights()
             SR[j], SB[j] = st.taylor_rows(np.eye(N), order=K)
@@ -160,7 +158,7 @@ def setup(building, dof: int, mass: float, dt: float, mus: float, muk: float):
         layer = [1.0, 0.0, 0.0, consts["mu"] * consts["W"], consts["mu_s"] * consts["W"]]
     S = kern.CoupledNonlinearSetup(
         phi, p, q, SR, SB, ER, EB, FR, FB, mat_of, m, h,
-        np.array([mus * G, muk * G] + layer), int(building.n_dof), SLIDE_MAX_EVENTS,
+        np.array([mus * G, muk * G, *layer]), int(building.n_dof), SLIDE_MAX_EVENTS,
     )  # fmt: skip
     return S, consts
 
