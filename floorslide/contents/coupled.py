@@ -1,7 +1,8 @@
-"""Heavy equipment coupled with its floor: a rigid block on a linear building, one system.
+"""Heavy equipment coupled with its floor: a rigid block on a building, one system.
 
-A block of mass ``m`` stands on floor ``j`` of a linear building (fixed-base
-:class:`~floorslide.ShearBuilding` or linearly :class:`~floorslide.IsolatedBuilding`), 1-D,
+A block of mass ``m`` stands on floor ``j`` of a building (fixed-base
+:class:`~floorslide.ShearBuilding`, linearly :class:`~floorslide.IsolatedBuilding`, or on
+nonlinear isolation, :class:`~floorslide.NonlinearIsolatedBuilding`), 1-D,
 Coulomb friction ``mu_s`` (breakaway) and ``mu_k`` (sliding). Coordinates as everywhere in
 floorslide (docs/design.md §2): the building's displacements ``u`` relative to the ground, the
 block's slide ``s`` relative to its floor, the floor's absolute acceleration
@@ -20,6 +21,11 @@ if the stuck system needs at most ``mu_s·m·g`` of friction there, else slides 
 damping matrix ``C`` is the building's own: the block adds mass, not dashpots. Each phase is a
 linear time-invariant system and the ground is piecewise linear, so the whole response is exact
 (event-driven; :mod:`floorslide.contents._coupled_kernel`).
+
+On a building on nonlinear isolation (:class:`~floorslide.NonlinearIsolatedBuilding`) the mode is
+the pair (isolator branch, block phase), each pair linear time-invariant and the isolator's
+events those of the building alone (:mod:`floorslide.contents.coupled_nonlinear`,
+:mod:`floorslide.contents._coupled_nonlinear_kernel`).
 """
 
 from __future__ import annotations
@@ -318,8 +324,11 @@ def slide_coupled(
         Mass of the block, kg: ``0 < mass ≤`` the floor's own mass. `mu_k`, `mu_s` and `mass`
         broadcast together; each case is one integration of building and block.
     building
-        A :class:`~floorslide.ShearBuilding` or a linear :class:`~floorslide.IsolatedBuilding`
-        (its damping matrix is kept: the block adds mass, not damping).
+        A :class:`~floorslide.ShearBuilding`, a linear :class:`~floorslide.IsolatedBuilding` or
+        a :class:`~floorslide.NonlinearIsolatedBuilding` (lead-rubber or friction pendulum;
+        :mod:`floorslide.contents.coupled_nonlinear`: a pendulum carries the block's weight,
+        ``W = (M + m)·g``, a lead-rubber layer keeps its constants). Its damping matrix is kept:
+        the block adds mass, not damping.
     floor
         The floor the block stands on (1..N on a fixed-base building, 0..N isolated: 0 is the
         base mat).
@@ -337,10 +346,10 @@ def slide_coupled(
     ------
     ModelError
         A missing or invalid argument, one line naming it: no building or floor, floor 0 of a
-        fixed-base building (the ground), a building on nonlinear isolation or a BuildingPair
-        (not modelled yet), ``mass ≤ 0`` or larger than the floor's, ``mu_s < mu_k``.
+        fixed-base building (the ground), a BuildingPair (not modelled yet: the plane),
+        ``mass ≤ 0`` or larger than the floor's, ``mu_s < mu_k``.
     SolverLimitError
-        Stick–slip chatter beyond the event limit in one sub-step.
+        Stick–slip (or isolator) chatter beyond the event limit in one sub-step.
 
     Notes
     -----
@@ -359,8 +368,12 @@ def slide_coupled(
     Automatic Control* 23(3), 395–404 (the exact first-order-hold steps).
     """
     from floorslide.building.exact_motion import FloorMotion
+    from floorslide.building.nonlinear_motion import NonlinearMotion
+    from floorslide.building.plane_isolation import PlaneIsolatedMotion
 
-    if isinstance(acc, FloorMotion) or getattr(acc, "segmented", False):
+    if isinstance(acc, FloorMotion | NonlinearMotion | PlaneIsolatedMotion) or getattr(
+        acc, "segmented", False
+    ):
         raise ModelError(
             "acc must be the ground record: the block acts back on the building, so its floor "
             "motion cannot be integrated beforehand",
