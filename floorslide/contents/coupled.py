@@ -154,16 +154,26 @@ class CoupledSlideResult:
         return out
 
 
-def _check_building(building) -> LinearBuilding:
-    """The building, or a one-line ModelError naming ``building``."""
+def _check_building(building, *, nonlinear: bool = True):
+    """The building, or a one-line ModelError naming ``building`` (also for a building on
+    nonlinear isolation when not `nonlinear`: the approximate solvers are linear only)."""
     if building is None:
         raise ModelError(
             "slide_coupled needs building= (a ShearBuilding or IsolatedBuilding): on the "
             "ground the block acts back on nothing, use slide",
             "building",
         )
-    if isinstance(building, LinearBuilding | NonlinearIsolatedBuilding):
+    if isinstance(building, LinearBuilding):
         return building
+    if isinstance(building, NonlinearIsolatedBuilding):
+        if nonlinear:
+            return building
+        raise ModelError(
+            f"a block coupled with a {type(building).__name__} (nonlinear isolation) is not "
+            "modelled by the approximate solvers: give a ShearBuilding or a linear "
+            "IsolatedBuilding (slide_coupled integrates it exactly)",
+            "building",
+        )
     if getattr(building, "segmented", False):
         raise ModelError(
             "acc must be the ground record and building the building: a floor motion cannot "

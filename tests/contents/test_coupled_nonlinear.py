@@ -274,3 +274,14 @@ def test_motions_and_the_plane_are_refused(sup, elcentro):
     with pytest.raises(ModelError) as info:
         fs.slide_coupled(a[:100], dt, 0.2, mass=1000.0, building=b.motion(a[:100], dt), floor=3)
     assert info.value.where == "building"
+
+
+def test_the_approximate_coupled_solvers_refuse_nonlinear_isolation(sup, elcentro):
+    """The benchmark's approximate coupled solvers (linear only) still refuse it in one line."""
+    from floorslide.contents.coupled_approx import slide_coupled_newmark
+
+    a, dt = elcentro
+    b = nonlinear(sup, "pendulum")
+    with pytest.raises(ModelError, match="approximate solvers") as info:
+        slide_coupled_newmark(a[:100], dt, 0.2, mass=1000.0, building=b, floor=3)
+    assert info.value.where == "building" and "\n" not in str(info.value)
