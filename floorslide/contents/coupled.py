@@ -1,7 +1,8 @@
-"""Heavy equipment coupled with its floor: a rigid block on a linear building, one system.
+"""Heavy equipment coupled with its floor: a rigid block on a building, one system.
 
-A block of mass ``m`` stands on floor ``j`` of a linear building (fixed-base
-:class:`~floorslide.ShearBuilding` or linearly :class:`~floorslide.IsolatedBuilding`), 1-D,
+A block of mass ``m`` stands on floor ``j`` of a building (fixed-base
+:class:`~floorslide.ShearBuilding`, linearly :class:`~floorslide.IsolatedBuilding`, or on
+nonlinear isolation, :class:`~floorslide.NonlinearIsolatedBuilding`), 1-D,
 Coulomb friction ``mu_s`` (breakaway) and ``mu_k`` (sliding). Coordinates as everywhere in
 floorslide (docs/design.md §2): the building's displacements ``u`` relative to the ground, the
 block's slide ``s`` relative to its floor, the floor's absolute acceleration
@@ -20,6 +21,11 @@ if the stuck system needs at most ``mu_s·m·g`` of friction there, else slides 
 damping matrix ``C`` is the building's own: the block adds mass, not dashpots. Each phase is a
 linear time-invariant system and the ground is piecewise linear, so the whole response is exact
 (event-driven; :mod:`floorslide.contents._coupled_kernel`).
+
+On a building on nonlinear isolation (:class:`~floorslide.NonlinearIsolatedBuilding`) the mode is
+the pair (isolator branch, block phase), each pair linear time-invariant and the isolator's
+events those of the building alone (:mod:`floorslide.contents.coupled_nonlinear`,
+:mod:`floorslide.contents._coupled_nonlinear_kernel`).
 """
 
 from __future__ import annotations
@@ -30,6 +36,7 @@ import numpy as np
 
 from floorslide.building.exact import ExactStepper, model_substeps, spectral_radius
 from floorslide.building.model import LinearBuilding
+from floorslide.building.nonlinear import NonlinearIsolatedBuilding
 from floorslide.constants import G
 from floorslide.contents import _coupled_kernel as kern
 from floorslide.contents.events import SLIDE_MAX_EVENTS
@@ -81,7 +88,15 @@ class CoupledSlideResult:
         a floor response spectrum, :func:`~floorslide.response_spectrum` — sample-based
         then) and the mode (0 stuck, ±1 sliding with that sign of velocity).
     notes
-        What was done to the input record (unit conversion of a Trace), one line each.
+        What was done to the input record (unit conversion of a Trace), one line each; on a
+        building on nonlinear isolation also a layer beyond its capacity or a pendulum beyond
+        its small-angle range.
+    peak_isolator_displacement, residual_isolator_displacement
+        On a :class:`~floorslide.NonlinearIsolatedBuilding` only (else ``None``): the isolator's
+        true peak ``|u_0|`` (inside steps) and its displacement at the end, m, per case.
+    isolator_displacement
+        Its history at the samples, ``(n_cases, npts)``, with ``histories`` (nonlinear
+        isolation only).
     """
 
     mu_k: np.ndarray
@@ -106,6 +121,9 @@ class CoupledSlideResult:
     floor_acceleration: np.ndarray | None = field(default=None, repr=False)
     mode: np.ndarray | None = field(default=None, repr=False)
     notes: tuple[str, ...] = ()
+    peak_isolator_displacement: np.ndarray | None = None
+    residual_isolator_displacement: np.ndarray | None = None
+    isolator_displacement: np.ndarray | None = field(default=None, repr=False)
 
     def to_records(self) -> list[dict]:
         """One JSON-ready dict per case (snake_case keys, SI values)."""
@@ -127,12 +145,18 @@ class CoupledSlideResult:
             row = {k: float(getattr(self, k)[i]) for k in keys}
             row["slip_phases"] = int(self.slip_phases[i])
             row["floor"] = self.floor
+            if self.peak_isolator_displacement is not None:
+                row["peak_isolator_displacement"] = float(self.peak_isolator_displacement[i])
+                row["residual_isolator_displacement"] = float(
+                    self.residual_isolator_displacement[i]
+                )
             out.append(row)
         return out
 
 
-def _check_building(building) -> LinearBuilding:
-    """The building, or a one-line ModelError naming ``building``."""
+def _check_building(building, *, nonlinear: bool = True):
+    """The building, or a one-line ModelError naming ``building`` (also for a building on
+    nonlinear isolation when not `nonlinear`: the approximate solvers are linear only)."""
     if building is None:
         raise ModelError(
             "slide_coupled needs building= (a ShearBuilding or IsolatedBuilding): on the "
@@ -141,10 +165,19 @@ def _check_building(building) -> LinearBuilding:
         )
     if isinstance(building, LinearBuilding):
         return building
-    if getattr(building, "segmented", False):
+    if isinstance(building, NonlinearIsolatedBuilding):
+        if nonlinear:
+            return building
         raise ModelError(
             f"a block coupled with a {type(building).__name__} (nonlinear isolation) is not "
-            "modelled yet: give a ShearBuilding or a linear IsolatedBuilding",
+            "modelled by the approximate solvers: give a ShearBuilding or a linear "
+            "IsolatedBuilding (slide_coupled integrates it exactly)",
+            "building",
+        )
+    if getattr(building, "segmented", False):
+        raise ModelError(
+            "acc must be the ground record and building the building: a floor motion cannot "
+            "carry a block that acts back on it",
             "building",
         )
     if hasattr(building, "h1") and hasattr(building, "h2"):
@@ -154,7 +187,9 @@ def _check_building(building) -> LinearBuilding:
             "building",
         )
     raise ModelError(
-        f"expected a ShearBuilding or IsolatedBuilding, got {type(building).__name__}", "building"
+        "expected a ShearBuilding, IsolatedBuilding or NonlinearIsolatedBuilding, got "
+        f"{type(building).__name__}",
+        "building",
     )
 
 
@@ -299,8 +334,11 @@ def slide_coupled(
         Mass of the block, kg: ``0 < mass ≤`` the floor's own mass. `mu_k`, `mu_s` and `mass`
         broadcast together; each case is one integration of building and block.
     building
-        A :class:`~floorslide.ShearBuilding` or a linear :class:`~floorslide.IsolatedBuilding`
-        (its damping matrix is kept: the block adds mass, not damping).
+        A :class:`~floorslide.ShearBuilding`, a linear :class:`~floorslide.IsolatedBuilding` or
+        a :class:`~floorslide.NonlinearIsolatedBuilding` (lead-rubber or friction pendulum;
+        :mod:`floorslide.contents.coupled_nonlinear`: a pendulum carries the block's weight,
+        ``W = (M + m)·g``, a lead-rubber layer keeps its constants). Its damping matrix is kept:
+        the block adds mass, not damping.
     floor
         The floor the block stands on (1..N on a fixed-base building, 0..N isolated: 0 is the
         base mat).
@@ -318,10 +356,10 @@ def slide_coupled(
     ------
     ModelError
         A missing or invalid argument, one line naming it: no building or floor, floor 0 of a
-        fixed-base building (the ground), a building on nonlinear isolation or a BuildingPair
-        (not modelled yet), ``mass ≤ 0`` or larger than the floor's, ``mu_s < mu_k``.
+        fixed-base building (the ground), a BuildingPair (not modelled yet: the plane),
+        ``mass ≤ 0`` or larger than the floor's, ``mu_s < mu_k``.
     SolverLimitError
-        Stick–slip chatter beyond the event limit in one sub-step.
+        Stick–slip (or isolator) chatter beyond the event limit in one sub-step.
 
     Notes
     -----
@@ -340,8 +378,12 @@ def slide_coupled(
     Automatic Control* 23(3), 395–404 (the exact first-order-hold steps).
     """
     from floorslide.building.exact_motion import FloorMotion
+    from floorslide.building.nonlinear_motion import NonlinearMotion
+    from floorslide.building.plane_isolation import PlaneIsolatedMotion
 
-    if isinstance(acc, FloorMotion) or getattr(acc, "segmented", False):
+    if isinstance(acc, FloorMotion | NonlinearMotion | PlaneIsolatedMotion) or getattr(
+        acc, "segmented", False
+    ):
         raise ModelError(
             "acc must be the ground record: the block acts back on the building, so its floor "
             "motion cannot be integrated beforehand",
@@ -349,7 +391,8 @@ def slide_coupled(
         )
     building = _check_building(building)
     dof = _check_floor(building, floor)
-    f = int(building.dof_floors[dof])
+    nonlinear = isinstance(building, NonlinearIsolatedBuilding)
+    f = dof if nonlinear else int(building.dof_floors[dof])
     if mu_k is None:
         raise ModelError("mu_k (the kinetic friction coefficient) is required", "mu_k")
     mk, ms = friction_pairs(mu_k, mu_s)
@@ -375,6 +418,10 @@ def slide_coupled(
     shape = (ncase, npts) if histories else (ncase, 0)
     hs, hv, ha = np.zeros(shape), np.zeros(shape), np.zeros(shape)
     hm = np.zeros(shape, dtype=np.int64)
+    if nonlinear:
+        return _slide_coupled_nonlinear(
+            building, dof, a, dt, mk, ms, masses, floor_mass, histories, notes
+        )
     res = np.zeros((ncase, kern.NOUT))
     residual = np.zeros(ncase)
     substeps = 1
@@ -415,4 +462,77 @@ def slide_coupled(
         floor_acceleration=ha if histories else None,
         mode=hm if histories else None,
         notes=tuple(notes),
+    )
+
+
+def _slide_coupled_nonlinear(building, dof, a, dt, mk, ms, masses, floor_mass, histories, notes):
+    """:func:`slide_coupled` on a :class:`~floorslide.NonlinearIsolatedBuilding`
+    (:mod:`floorslide.contents.coupled_nonlinear`)."""
+    from floorslide.building.isolators import small_angle_exceeded, small_angle_note
+    from floorslide.contents import _coupled_nonlinear_kernel as nkern
+    from floorslide.contents import coupled_nonlinear as cnl
+
+    npts = a.size
+    ncase = mk.size
+    shape = (ncase, npts) if histories else (ncase, 0)
+    hs, hv, ha, hu = (np.zeros(shape) for _ in range(4))
+    hm = np.zeros(shape, dtype=np.int64)
+    res = np.zeros((ncase, nkern.NOUT))
+    residual = np.zeros(ncase)
+    residual_iso = np.zeros(ncase)
+    substeps = 1
+    n = building.n_dof
+    for i in range(ncase):
+        S, _consts = cnl.setup(building, dof, float(masses[i]), dt, float(ms[i]), float(mk[i]))
+        substeps = S.substeps
+        x = np.zeros(S.phi.shape[1])
+        branch = cnl.initial_branch(building)
+        nkern.coupled_nonlinear_run(S, a, x, branch, res[i], hs[i], hv[i], ha[i], hm[i], hu[i])
+        if res[i, nkern.LIMIT_AT] >= 0.0:
+            raise SolverLimitError(
+                f"slide_coupled: more than {SLIDE_MAX_EVENTS} friction or isolator events "
+                f"inside one sub-step at t = {res[i, nkern.LIMIT_AT]:.6g} s (mu_k = {mk[i]:g}, "
+                f"mass = {masses[i]:g} kg): chatter the exact solver cannot resolve; check the "
+                "record for spikes"
+            )
+        residual[i] = x[2 * n + 1]
+        residual_iso[i] = x[0]
+    peak_iso = res[:, nkern.ISO_PEAK].copy()
+    iso = building.isolator
+    worst = float(peak_iso.max())
+    if iso.capacity is not None and worst > iso.capacity:
+        notes = [
+            *notes,
+            f"isolator displacement {worst:.4g} m exceeds its capacity {iso.capacity:g} m: the "
+            "impact that would follow is not modelled",
+        ]
+    if small_angle_exceeded(iso, worst):
+        notes = [*notes, small_angle_note(worst, iso.R)]
+    duration = (npts - 1) * dt
+    return CoupledSlideResult(
+        mu_k=mk,
+        mu_s=ms,
+        mass=masses,
+        mass_ratio=masses / floor_mass,
+        floor=dof,
+        floor_mass=floor_mass,
+        peak_slide=res[:, nkern.PEAK_SLIDE].copy(),
+        residual_slide=residual,
+        slide_fraction=res[:, nkern.SLIDE_TIME] / duration if duration > 0 else np.zeros(ncase),
+        slip_phases=res[:, nkern.SLIPS].astype(int),
+        time_of_peak=res[:, nkern.T_PEAK].copy(),
+        pfa=res[:, nkern.PFA].copy(),
+        time_of_pfa=res[:, nkern.T_PFA].copy(),
+        peak_abs_accel=res[:, nkern.BLOCK_PEAK_ACC].copy(),
+        duration=duration,
+        dt=dt,
+        substeps=int(substeps),
+        u=hs if histories else None,
+        v=hv if histories else None,
+        floor_acceleration=ha if histories else None,
+        mode=hm if histories else None,
+        notes=tuple(notes),
+        peak_isolator_displacement=peak_iso,
+        residual_isolator_displacement=residual_iso,
+        isolator_displacement=hu if histories else None,
     )

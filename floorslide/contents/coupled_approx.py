@@ -100,7 +100,7 @@ class CoupledApproxResult:
 
 
 def _inputs(acc, dt, mu_k, mu_s, mass, building, floor):
-    building = _check_building(building)
+    building = _check_building(building, nonlinear=False)
     dof = _check_floor(building, floor)
     if mu_k is None:
         raise ModelError("mu_k (the kinetic friction coefficient) is required", "mu_k")

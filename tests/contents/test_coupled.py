@@ -179,11 +179,14 @@ def test_bad_input_is_refused_in_one_line(kwargs, key, fixed, elcentro):
     assert "\n" not in str(info.value)
 
 
-def test_nonlinear_building_is_not_modelled_yet(fixed, elcentro):
+def test_a_building_pair_is_not_modelled_yet(fixed, elcentro):
+    """The plane (one model per direction) is refused; a building on nonlinear isolation is
+    accepted (tests/contents/test_coupled_nonlinear.py)."""
     a, dt = elcentro
-    nl = fs.NonlinearIsolatedBuilding(fixed, 1.0, fs.FrictionPendulum(period=3.0, mu=0.05))
     with pytest.raises(ModelError, match="not modelled yet") as info:
-        slide_coupled(a[:100], dt, 0.2, mass=1000.0, building=nl, floor=3)
+        slide_coupled(
+            a[:100], dt, 0.2, mass=1000.0, building=fs.BuildingPair(fixed, fixed), floor=3
+        )
     assert info.value.where == "building"
     fm = fs.floor_motion(fixed, a[:100], 3, dt)
     with pytest.raises(ModelError, match="ground record"):
