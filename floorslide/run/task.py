@@ -371,8 +371,9 @@ def _run(task: Task, force: bool) -> TaskResult:
         return content.floor_mass_ratio is not None and content.coupled
 
     def heavy_mass(content, floor: int) -> float:
-        """The block's mass in the model's units: its ratio times its floor's mass."""
-        return content.floor_mass_ratio * float(model.mass[list(model.dof_floors).index(floor)])
+        """The block's mass in the model's units: its ratio times its floor's mass (the floor's
+        degree of freedom: a nonlinear building's are its floors, the mat first)."""
+        return content.floor_mass_ratio * float(model.mass[model.dof_of(floor)])
 
     for content, floor in task.contents:
         with _naming(f"content {content.id} on floor {floor}"):

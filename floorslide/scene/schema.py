@@ -1612,11 +1612,10 @@ def _contents(value, ck: _Checker, stories: set[int]) -> tuple[ContentSpec, ...]
 
 
 def _heavy_equipment(contents, buildings, records, ck: _Checker) -> None:
-    """Contents with a ``floor_mass_ratio``: coupled ones run on linear buildings under single
-    components only (one line by key path otherwise); a decoupled one heavier than
-    :data:`DECOUPLING_LIMIT` of its floor is warned about."""
+    """Contents with a ``floor_mass_ratio``: coupled ones run on linear buildings and on
+    nonlinear isolation, under single components only (one line by key path otherwise); a
+    decoupled one heavier than :data:`DECOUPLING_LIMIT` of its floor is warned about."""
     pairs = [r.set for r in records if r.pairs]
-    nonlinear = [b.id for b in buildings if b.isolator_model not in ("", "linear")]
     for i, c in enumerate(contents):
         if c.floor_mass_ratio is None:
             continue
@@ -1638,12 +1637,6 @@ def _heavy_equipment(contents, buildings, records, ck: _Checker) -> None:
                 w,
                 "heavy equipment coupled with its floor is 1-D: the record set "
                 f"{pairs[0]!r} is a set of pairs",
-            )
-        elif nonlinear:
-            ck.add(
-                w,
-                "heavy equipment coupled with its floor is not modelled on nonlinear isolation "
-                f"yet (building {nonlinear[0]!r}); set coupled = false to run it decoupled",
             )
 
 
