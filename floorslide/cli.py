@@ -1916,7 +1916,12 @@ def demo(out_dir, workers):
     metavar="DIR",
     help="Directory for bench.csv, bench.md, bench.json and the figures.",
 )
-def bench(quick, as_json, out):
+@click.option(
+    "--only",
+    metavar="KEY[,KEY...]",
+    help="Run only these solvers (the table's solver keys, e.g. slide-ground,slide-rock-ground).",
+)
+def bench(quick, as_json, out, only):
     """The accuracy-versus-cost study (docs/design.md §6): for every solver (rigid-block sliding on
     the
     ground, a stiff floor and an isolated roof, and in the plane under pairs of components; the
@@ -1929,10 +1934,12 @@ def bench(quick, as_json, out):
 
     Writes a table (CSV, Markdown, JSON) and one work-precision figure per solver (error versus
     CPU time, log-log) to DIR, and prints the Markdown table (or, with --json, the JSON).
-    --quick runs one record (and one pair) and fewer settings, in under a minute.
+    --quick runs one record (and one pair) and fewer settings, in under a minute; --only runs
+    the solvers named.
     """
     from floorslide.bench import run_bench, to_json, to_markdown, write_outputs
     from floorslide.bench.compile import fresh_compile_times
+    from floorslide.errors import ModelError
     from floorslide.firstrun import FAMILIES
 
     _kernels(*FAMILIES)
@@ -1942,7 +1949,15 @@ def bench(quick, as_json, out):
         if show:
             click.echo(f"\rbench: {message[:68]:<68}", err=True, nl=False)
 
-    result = run_bench(quick=quick, progress=progress)
+    keys = None
+    if only is not None:
+        keys = tuple(k.strip() for k in only.split(",") if k.strip())
+        if not keys:
+            raise click.BadParameter("give at least one solver key", param_hint="--only")
+    try:
+        result = run_bench(quick=quick, progress=progress, only=keys)
+    except ModelError as exc:
+        raise click.BadParameter(exc.message, param_hint="--only") from None
     if not quick:
         progress("numba compilation on an empty cache")
     compile_rows = None if quick else fresh_compile_times()

@@ -43,7 +43,18 @@ def quick():
 def quick_cli(tmp_path_factory):
     out = tmp_path_factory.mktemp("bench")
     proc = subprocess.run(
-        [sys.executable, "-m", "floorslide.cli", "bench", "--quick", "--json", "-o", str(out)],
+        [
+            sys.executable,
+            "-m",
+            "floorslide.cli",
+            "bench",
+            "--quick",
+            "--json",
+            "-o",
+            str(out),
+            "--only",
+            ",".join(CLI_SOLVERS),
+        ],
         capture_output=True,
         text=True,
         timeout=300,
@@ -52,10 +63,19 @@ def quick_cli(tmp_path_factory):
     return json.loads(proc.stdout), out
 
 
-def expected_methods():
+CLI_SOLVERS = ("slide-ground", "slide-rock-ground")
+"""The solvers the command-line test runs (``--only``): the API's test runs them all."""
+
+
+def expected_methods(only=None):
     """(solver, method, setting) of every method the quick study defines (peers included when
-    installed)."""
-    return {(s.key, m.method, m.setting) for s in solvers(QUICK) for m in s.methods}
+    installed), of the solvers `only` if given."""
+    return {
+        (s.key, m.method, m.setting)
+        for s in solvers(QUICK)
+        if only is None or s.key in only
+        for m in s.methods
+    }
 
 
 def test_every_solver_and_method_is_in_the_table(quick):
@@ -177,7 +197,8 @@ def test_cli_json(quick_cli):
     assert data["quick"] is True and data["compile"] is None
     assert {"rows", "records", "solvers", "metrics", "machine"} <= set(data)
     got = {(r["solver"], r["method"], r["setting"]) for r in data["rows"]}
-    assert got == expected_methods()
+    assert got == expected_methods(CLI_SOLVERS)
+    assert set(data["solvers"]) == set(CLI_SOLVERS)
     for r in data["rows"]:
         assert set(r) == set(COLUMNS)
         assert r["cpu_time"] > 0 and math.isfinite(r["error"])
@@ -190,6 +211,13 @@ def test_cli_json(quick_cli):
 def test_unknown_solver_is_a_model_error():
     with pytest.raises(ModelError, match="unknown solver"):
         run_bench(quick=True, only=("slide-moon",))
+    proc = subprocess.run(
+        [sys.executable, "-m", "floorslide.cli", "bench", "--quick", "--only", "slide-moon"],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert proc.returncode == 2 and "--only" in proc.stderr and "slide-moon" in proc.stderr
 
 
 def test_json_round_trip_and_summary(quick):
