@@ -274,7 +274,9 @@ def _as_column(values: list, dtype: str, shape: tuple) -> np.ndarray:
         return arr
     if not values:
         return np.empty((0, *shape), dtype=np.dtype(dtype))
-    return np.concatenate([np.asarray(v, dtype=np.dtype(dtype)).reshape(-1, *shape) for v in values])
+    return np.concatenate(
+        [np.asarray(v, dtype=np.dtype(dtype)).reshape(-1, *shape) for v in values]
+    )
 
 
 def _append(g: h5py.Group, name: str, data: np.ndarray, start: int, expect: int, dtype: str):
@@ -366,7 +368,9 @@ def _write_table(f, name: str, table: Table, insts: list[Instance], task_rows, s
     row = 0
     for inst in insts:
         for k, v in inst.coords.items():
-            coords.setdefault(k, []).append(np.full(inst.rows, v, dtype=object if isinstance(v, str) else np.int64))
+            coords.setdefault(k, []).append(
+                np.full(inst.rows, v, dtype=object if isinstance(v, str) else np.int64)
+            )
         if name == "contents":
             coords.setdefault("pair", []).append(np.arange(inst.rows, dtype=np.int64))
         for cname, col in table.columns.items():
@@ -388,14 +392,22 @@ def _write_table(f, name: str, table: Table, insts: list[Instance], task_rows, s
                 fill = _fill(col.dtype)
                 shape = col.shape
                 values[cname].append(
-                    np.full((inst.rows, *shape), fill, dtype=object if col.dtype == "text" else np.dtype(col.dtype))
+                    np.full(
+                        (inst.rows, *shape),
+                        fill,
+                        dtype=object if col.dtype == "text" else np.dtype(col.dtype),
+                    )
                 )
         row += inst.rows
     if task_rows is not None:
         for key in ("id", "sha256"):
-            _append(g, key, np.array([r[key] for r in task_rows], dtype=object), start, expect, "text")
+            _append(
+                g, key, np.array([r[key] for r in task_rows], dtype=object), start, expect, "text"
+            )
         for key in ("raw", "histories"):
-            _append(g, key, np.array([r[key] for r in task_rows], dtype=np.uint8), start, expect, "|u1")
+            _append(
+                g, key, np.array([r[key] for r in task_rows], dtype=np.uint8), start, expect, "|u1"
+            )
     for key, parts in coords.items():
         dtype = "text" if parts[0].dtype == object else "<i8"
         _append(g, key, np.concatenate(parts) if parts else np.empty(0), start, expect, dtype)
@@ -404,7 +416,14 @@ def _write_table(f, name: str, table: Table, insts: list[Instance], task_rows, s
         if col.kind == "r":
             base = _ragged_rows(g, cname, start)
             _append(g, cname, data, base, expect, col.dtype)
-            _append(g, f"{cname}#n", np.asarray(sum(counts[cname], []), dtype=np.int64), start, expect, "<i8")
+            _append(
+                g,
+                f"{cname}#n",
+                np.asarray([c for part in counts[cname] for c in part], dtype=np.int64),
+                start,
+                expect,
+                "<i8",
+            )
         else:
             _append(g, cname, data, start, expect, col.dtype)
         ds = g[cname]
@@ -541,7 +560,9 @@ class Columns:
         starts = [r for r in rows if cols["pair"][r] == 0]
         for r0 in starts:
             n = 1
-            while r0 + n < cols["#rows"] and cols["pair"][r0 + n] == n and cols["task"][r0 + n] == i:
+            while (
+                r0 + n < cols["#rows"] and cols["pair"][r0 + n] == n and cols["task"][r0 + n] == i
+            ):
                 n += 1
             inst = _rebuild(cols, self.broken["contents"], r0, r0, n)
             cname, gname = _text(cols["content"][r0]), _text(cols["group"][r0])
@@ -549,7 +570,9 @@ class Columns:
         spectra = node.group("spectra")
         cols = self.tables["spectra"]
         for r in self.members["spectra"].get(i, []):
-            spectra.children[_text(cols["group"][r])] = _rebuild(cols, self.broken["spectra"], r, r, 1)
+            spectra.children[_text(cols["group"][r])] = _rebuild(
+                cols, self.broken["spectra"], r, r, 1
+            )
         if tasks["histories"][i]:
             node.children["histories"] = snapshot(self.f["histories"][tid])
         return node

@@ -159,7 +159,6 @@ from floorslide.run.snapshot import (
     SnapshotError,
     digest,
     snapshot,
-    write_node,
 )
 
 FORMAT = 2
@@ -1220,9 +1219,7 @@ class ResultFile:
             return None, "no digest"
         return self._checked(node, stored, tid, frozenset())
 
-    def _checked(
-        self, node: Node, stored, tid: str, skip: frozenset
-    ) -> tuple[Node | None, str]:
+    def _checked(self, node: Node, stored, tid: str, skip: frozenset) -> tuple[Node | None, str]:
         try:
             ok = _s(stored) == digest(node, skip)
         except SnapshotError as exc:
