@@ -247,7 +247,7 @@ def _fill(dtype: str):
 def _chunk(shape: tuple, itemsize: int, expect: int) -> tuple:
     per_row = max(1, math.prod(shape) * itemsize)
     rows = max(1, min(max(expect, 1), CHUNK_BYTES // per_row))
-    return (rows, *shape)
+    return (rows, *(max(1, n) for n in shape))
 
 
 def _create(g: h5py.Group, name: str, dtype: str, shape: tuple, rows: int, expect: int, fill):
@@ -256,7 +256,7 @@ def _create(g: h5py.Group, name: str, dtype: str, shape: tuple, rows: int, expec
     ds = g.create_dataset(
         name,
         shape=(rows, *shape),
-        maxshape=(None, *shape),
+        maxshape=(None, *(n if n else None for n in shape)),  # a chunk is never empty
         dtype=np_dtype,
         chunks=_chunk(shape, itemsize, expect),
         fillvalue=None if dtype == "text" else fill,
