@@ -1,6 +1,38 @@
-"""The HDF5 result file: one writer, tasks written as they finish, a journal, resume.
+"""The HDF5 result file: one writer, tasks written in batches, a journal, resume.
 
-Layout (every dataset carries a ``units`` attribute; ``1`` means dimensionless)::
+**Format 2 (written now): columnar.** A task is built as the group below (format 1's layout,
+:func:`task_node`) and its digest is over that group, but it is stored as rows of three
+tables, one dataset per quantity over all tasks (:mod:`floorslide.run.columns` documents
+them)::
+
+    /                        attrs floorslide_format=2, floorslide_version, scene_name, created,
+                             task_digest, header_sha256
+    /scene, /plan            as below
+    /tasks/                  one row per task: id, sha256 (the task's digest), raw,
+                             histories, a column per task attribute (record, building, pga,
+                             …, fingerprint) and floors, pfa, pfa_components ragged
+                             (``<name>#n`` each row's length); attr rows (the rows done)
+    /contents/               one row per (task, content, floor, friction pair): task (its row
+                             of /tasks), content, group, floor, pair, a column per quantity
+                             (mu_k, mu_s, peak_slide, …, modes and outcomes as text) and the
+                             content's model, mode, skipped, vertical
+    /spectra/                one row per (task, floor): task, group, floor, periods (rows,
+                             periods), damping (rows, damping), psa, sa, sv, sd (rows, damping,
+                             periods), broadened.psa …, rotd100, psa_h1, psa_h2, broadening,
+                             orientation
+    /histories/<task>        the group histories/ below, of the tasks that keep histories
+    /raw/<task>              a task whose group does not fit the tables, stored whole (none today)
+
+Each table's ``present`` (rows, columns) says which columns a row has; a column carries the
+``units`` (and ``broadening``) its values had. The number of HDF5 objects does not grow with
+the tasks (about 150 for the demo's 288 tasks, against 10,700 in format 1). Reading rebuilds
+each task's group from the columns (a few large reads) and checks it against its ``sha256``
+as before: integrity, the journal and resume are unchanged in what they guarantee.
+
+**Format 1 (one group per task)** is read as before, by the same reader, with its checks;
+``floorslide upgrade OLD.h5 [-o NEW.h5]`` (:func:`upgrade`) converts it to format 2, and
+``--resume`` on it writes the file again in format 2. Its layout, which is also the group each
+task's digest is computed over::
 
     /                        attrs floorslide_format=1, floorslide_version, scene_name, created,
                              task_digest="sha256-1" (every task carries its digest)
@@ -104,8 +136,11 @@ that fails, naming the task, and ``--resume`` rebuilds such a task. A file witho
 attribute ``task_digest`` was written before floorslide kept digests: it reads as
 before, with a note that its values are unverified (:attr:`ResultFile.verified`).
 
-**Writing.** A task is first journaled, then written with its digest and the file closed
-(flushed), then marked done. The journal ``<file>.journal/`` beside the file keeps every
+**Writing.** A task is first journaled; then a batch of tasks (:attr:`ResultWriter.batch`:
+one for runs of fewer than 32 tasks, about a sixteenth of the run else, at most 64, and at
+least every :data:`FLUSH_SECONDS`) is appended to the tables with their digests and the file
+closed (flushed), then counted done (each table's ``rows``; rows beyond it, from a write cut
+short, are ignored and overwritten). The journal ``<file>.journal/`` beside the file keeps every
 finished task as its own file ``<task>.entry``, written atomically first (JSON and raw array
 bytes, checked against the task's digest when read, never able to run code: see
 :mod:`floorslide.run.journal`), so a run killed at any moment loses no finished task:
