@@ -608,7 +608,7 @@ def _rebuild(cols: dict, broken: dict, row: int, start: int, n: int) -> Node:
         if not present[start, k]:
             continue
         if name in broken:
-            raise ValueError(f"unreadable: {broken[name]}")
+            raise ValueError(broken[name])
         kind = kinds[name]
         data, attrs = cols[name]
         *path, leaf = name.split(".")
