@@ -1972,6 +1972,26 @@ def bench(quick, as_json, out, only):
 
 
 @cli.command()
+@click.argument("old", metavar="OLD.h5")
+@click.option(
+    "-o",
+    "--out",
+    metavar="NEW.h5",
+    help="Write the converted file here (default: replace OLD.h5 once converted).",
+)
+def upgrade(old, out):
+    """Convert a result file of format 1 (written before the columnar format; one HDF5 group per
+    task) to the columnar format written now (docs/design.md §5): every task is checked
+    against its digest, then written as rows of the tables with the same digest. Old files
+    also read as they are (slower); a file with a task that fails its integrity check is
+    refused (rebuild it with floorslide run --resume first). Prints the file written."""
+    from floorslide.run.store import upgrade as convert
+
+    path, n = convert(old, out)
+    click.echo(f"{path}: {n} tasks in the columnar format")
+
+
+@cli.command()
 @click.argument("path", default="scene.toml", required=False, metavar="[PATH]")
 def init(path):
     """Write a commented scene template to PATH (default scene.toml): every section of a

@@ -304,6 +304,12 @@ def _next_finished(finished: queue.Queue, client, waiting: _WorkerWait):
         return fut
 
 
+def write_batch(n_tasks: int) -> int:
+    """Tasks written into the result file at once: about a sixteenth of the run (1 for runs
+    of fewer than 32 tasks, at most 64), every task journaled first all the same."""
+    return max(1, min(64, n_tasks // 16))
+
+
 def execute(
     plan: Plan,
     out: str,
@@ -376,6 +382,7 @@ def execute(
         overwrite=overwrite,
         fingerprints=task_fingerprints(plan.tasks),
         warn=warn,
+        batch=write_batch(len(plan.tasks)),
     )
     todo = [t for t in plan.tasks if t.task_id not in writer.done]
     resumed = len(plan.tasks) - len(todo)
@@ -425,6 +432,9 @@ def execute(
                 raise
             finally:
                 bar.close()
+            if not received:
+                with _deferred(received):
+                    writer.flush()
             if not received and len(writer.done) == len(plan.tasks):
                 with _deferred(received):
                     writer.finish()

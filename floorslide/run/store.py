@@ -1,6 +1,38 @@
-"""The HDF5 result file: one writer, tasks written as they finish, a journal, resume.
+"""The HDF5 result file: one writer, tasks written in batches, a journal, resume.
 
-Layout (every dataset carries a ``units`` attribute; ``1`` means dimensionless)::
+**Format 2 (written now): columnar.** A task is built as the group below (format 1's layout,
+:func:`task_node`) and its digest is over that group, but it is stored as rows of three
+tables, one dataset per quantity over all tasks (:mod:`floorslide.run.columns` documents
+them)::
+
+    /                        attrs floorslide_format=2, floorslide_version, scene_name, created,
+                             task_digest, header_sha256
+    /scene, /plan            as below
+    /tasks/                  one row per task: id, sha256 (the task's digest), raw,
+                             histories, a column per task attribute (record, building, pga,
+                             …, fingerprint) and floors, pfa, pfa_components ragged
+                             (``<name>#n`` each row's length); attr rows (the rows done)
+    /contents/               one row per (task, content, floor, friction pair): task (its row
+                             of /tasks), content, group, floor, pair, a column per quantity
+                             (mu_k, mu_s, peak_slide, …, modes and outcomes as text) and the
+                             content's model, mode, skipped, vertical
+    /spectra/                one row per (task, floor): task, group, floor, periods (rows,
+                             periods), damping (rows, damping), psa, sa, sv, sd (rows, damping,
+                             periods), broadened.psa …, rotd100, psa_h1, psa_h2, broadening,
+                             orientation
+    /histories/<task>        the group histories/ below, of the tasks that keep histories
+    /raw/<task>              a task whose group does not fit the tables, stored whole (none today)
+
+Each table's ``present`` (rows, columns) says which columns a row has; a column carries the
+``units`` (and ``broadening``) its values had. The number of HDF5 objects does not grow with
+the tasks (about 150 for the demo's 288 tasks, against 10,700 in format 1). Reading rebuilds
+each task's group from the columns (a few large reads) and checks it against its ``sha256``
+as before: integrity, the journal and resume are unchanged in what they guarantee.
+
+**Format 1 (one group per task)** is read as before, by the same reader, with its checks;
+``floorslide upgrade OLD.h5 [-o NEW.h5]`` (:func:`upgrade`) converts it to format 2, and
+``--resume`` on it writes the file again in format 2. Its layout, which is also the group each
+task's digest is computed over::
 
     /                        attrs floorslide_format=1, floorslide_version, scene_name, created,
                              task_digest="sha256-1" (every task carries its digest)
@@ -104,8 +136,11 @@ that fails, naming the task, and ``--resume`` rebuilds such a task. A file witho
 attribute ``task_digest`` was written before floorslide kept digests: it reads as
 before, with a note that its values are unverified (:attr:`ResultFile.verified`).
 
-**Writing.** A task is first journaled, then written with its digest and the file closed
-(flushed), then marked done. The journal ``<file>.journal/`` beside the file keeps every
+**Writing.** A task is first journaled; then a batch of tasks (:attr:`ResultWriter.batch`:
+one for runs of fewer than 32 tasks, about a sixteenth of the run else, at most 64, and at
+least every :data:`FLUSH_SECONDS`) is appended to the tables with their digests and the file
+closed (flushed), then counted done (each table's ``rows``; rows beyond it, from a write cut
+short, are ignored and overwritten). The journal ``<file>.journal/`` beside the file keeps every
 finished task as its own file ``<task>.entry``, written atomically first (JSON and raw array
 bytes, checked against the task's digest when read, never able to run code: see
 :mod:`floorslide.run.journal`), so a run killed at any moment loses no finished task:
@@ -142,7 +177,7 @@ import numpy as np
 
 from floorslide import outputs
 from floorslide.errors import OutputError, OutputExistsError, ResultFileError, one_line
-from floorslide.run import journal
+from floorslide.run import columns, journal
 from floorslide.run.results import (
     PLANE_FIELDS,
     ROCK_FIELDS,
@@ -159,10 +194,16 @@ from floorslide.run.snapshot import (
     SnapshotError,
     digest,
     snapshot,
-    write_node,
 )
 
-FORMAT = 1
+FORMAT = 2
+"""The layout written: the columnar tables of :mod:`floorslide.run.columns`."""
+LEGACY_FORMAT = 1
+"""One group per task (``/tasks/<task>``): read as before, converted by ``floorslide upgrade``."""
+append_tasks = columns.append
+"""Writes a batch of tasks into the open file (a name of its own, so tests can fail it)."""
+FLUSH_SECONDS = 30.0
+"""A batch of tasks is written at least this often (seconds), whatever its size."""
 UNITS = {
     "floors": "1",
     "pfa": "m/s**2",
@@ -577,6 +618,7 @@ class ResultWriter:
         task_ids: Collection[str] | None = None,
         fingerprints: Mapping[str, str] | None = None,
         warn: Callable[[str], None] | None = None,
+        batch: int = 1,
     ):
         if resume and overwrite:
             raise ValueError("resume and overwrite exclude each other")
@@ -600,6 +642,9 @@ class ResultWriter:
         """Whether this writer created the file (so that a run that keeps nothing removes it)."""
         self._lock_fd: int | None = None
         self._made_journal = False
+        self.batch = max(1, int(batch))
+        self._pending: list[tuple[str, Node, str]] = []
+        self._last_flush = time.monotonic()
         self._check_target(resume, overwrite)
         try:
             self.path.parent.mkdir(parents=True, exist_ok=True)
@@ -734,7 +779,7 @@ class ResultWriter:
         buf = io.BytesIO()
         with h5py.File(buf, "w") as f:
             _write_header(f, self.scene_text, self.scene_path, self.scene_name, self.plan)
-            f.create_group("tasks")
+            columns.init(f)
         return buf.getvalue()
 
     def _create(self) -> None:
@@ -789,18 +834,15 @@ class ResultWriter:
         drop = set(reader.damaged) | set(problems)
         moves = self._reconcile(reader, drop)
         self.kept = set(self.done)
+        if reader.format != FORMAT or drop or moves or reader.partial:
+            # a file of format 1 is converted; tasks dropped or renamed: the file is written
+            # again with the tasks kept (a few large writes)
+            self._rebuild(reader, moves)
+            return
         try:
-            if drop & set(reader.damaged) or problems:
-                self._rebuild(reader, moves)
-            else:
-                _reserve(self.path, RESERVE_MIN + len(json.dumps(self.plan)) * 2)
-                with _open_h5(self.path, "a") as f:
-                    tasks = f["tasks"]
-                    for name in sorted(set(reader.partial) | drop):
-                        if name in tasks:
-                            del tasks[name]
-                    _move(tasks, moves)
-                    self._header(f)
+            _reserve(self.path, RESERVE_MIN + len(json.dumps(self.plan)) * 2)
+            with _open_h5(self.path, "a") as f:
+                self._header(f)
         except (*H5_ERRORS, OSError) as exc:
             if isinstance(exc, OutputError):
                 raise
@@ -862,21 +904,33 @@ class ResultWriter:
         _write_header(f, self.scene_text, self.scene_path, self.scene_name, self.plan)
 
     def _rebuild(self, reader: ResultFile, moves: Mapping[str, str] | None = None) -> None:
-        """Rewrite the file with its verified, current tasks only (a damaged group cannot
-        always be deleted in place: HDF5 reads it to free it)."""
+        """Rewrite the file (in the format written now) with its verified, current tasks
+        only, stored ids renamed by `moves`."""
         moves = moves or {}
         renamed = {dst for dst in moves.values()}
+        wanted = {}
+        for tid in reader.done_tasks():
+            name = moves.get(tid, tid)
+            if name in self.done and (tid in moves or tid not in renamed):
+                wanted[tid] = name
         tmp = None
         try:
             fd, tmp = outputs.temporary(self.path)
             os.close(fd)
             _write_file(tmp, self._image())
             _reserve(tmp, 2 * self.path.stat().st_size + RESERVE_MIN)
-            with _open_h5(self.path, "r") as src, _open_h5(tmp, "a") as dst:
-                for tid in reader.done_tasks():
-                    name = moves.get(tid, tid)
-                    if name in self.done and (tid in moves or tid not in renamed):
-                        src.copy(src["tasks"][tid], dst["tasks"], name=name)
+            with _open_h5(tmp, "a") as dst:
+                batch = []
+                for tid, node, _ in reader.nodes(list(wanted)):
+                    if node is None:  # verified a moment ago: only damage since then
+                        self.done.discard(wanted[tid])
+                        continue
+                    batch.append((wanted[tid], node, digest(node)))
+                    if len(batch) >= 256:
+                        append_tasks(dst, batch, len(wanted))
+                        batch = []
+                append_tasks(dst, batch, len(wanted))
+                columns.commit(dst)
             outputs.replace_atomically(tmp, self.path)
         except (*H5_ERRORS, OSError) as exc:
             if tmp is not None:
@@ -918,11 +972,12 @@ class ResultWriter:
                 if refused <= 10:
                     self.warn(f"{entry}: refused ({exc}); its task runs again")
                 continue
-            if tid not in self.done:
-                self._store(tid, node)
+            if tid not in self.done and tid not in {t for t, _, _ in self._pending}:
+                self._pending.append((tid, node, digest(node)))
             self.kept.add(tid)
         if refused > 10:
             self.warn(f"{self.journal}: {refused - 10} more entries refused; their tasks run again")
+        self.flush()
 
     # writing
 
@@ -944,7 +999,8 @@ class ResultWriter:
         )
 
     def write(self, result: TaskResult) -> None:
-        """Journal the task atomically, write it with its digest, close (flush), mark it done.
+        """Journal the task atomically; write it with its digest (a batch of :attr:`batch`
+        tasks at once, or every :data:`FLUSH_SECONDS`), close (flush), mark them done.
 
         Raises
         ------
@@ -963,36 +1019,60 @@ class ResultWriter:
         except OSError as exc:
             raise self._failure(exc, entry) from None
         self.kept.add(tid)
-        self._store(tid, node, node_digest)
+        self._pending.append((tid, node, node_digest))
+        due = time.monotonic() - self._last_flush >= FLUSH_SECONDS
+        if len(self._pending) >= self.batch or due:
+            self.flush()
 
-    def _store(self, tid: str, node: Node, node_digest: str | None = None) -> None:
-        """Write one task's group with its digest (`node_digest` if given, else computed),
-        close the file, then mark the task done."""
-        nbytes, objects = _node_size(node)
+    @property
+    def _expect(self) -> int:
+        n = self.plan.get("tasks")
+        return n if isinstance(n, int) and n > 0 else len(self.task_ids or ())
+
+    def flush(self) -> None:
+        """Write the tasks journaled but not yet in the file (one batch: a few large writes),
+        close the file (flushed), then count them done (the tables' ``rows``).
+
+        Raises
+        ------
+        OutputError
+            As :meth:`write`; the tasks stay in the journal.
+        """
+        self._last_flush = time.monotonic()
+        if not self._pending:
+            return
+        batch, self._pending = self._pending, []
+        nbytes = objects = 0
+        for _, node, _ in batch:
+            b, o = _node_size(node)
+            nbytes, objects = nbytes + b, objects + (o if "histories" in node.children else 0)
         try:
             _reserve(self.path, 2 * nbytes + RESERVE_PER_OBJECT * objects + RESERVE_MIN)
             with _open_h5(self.path, "a") as f:
-                tasks = f["tasks"]
-                if tid in tasks:
-                    del tasks[tid]
-                group = write_node(tasks, tid, node)
-                group.attrs[DIGEST_ATTR] = node_digest or digest(node, BOOKKEEPING)
-                f.flush()
+                append_tasks(f, batch, self._expect)
             _reserve(self.path, RESERVE_MIN)
             with _open_h5(self.path, "a") as f:
-                f["tasks"][tid].attrs["done"] = 1
+                columns.commit(f)
         except (*H5_ERRORS, OSError) as exc:
             raise self._failure(exc, self.path) from None
-        self.done.add(tid)
+        self.done.update(tid for tid, _, _ in batch)
+
+    def _flush_quietly(self) -> None:
+        """Write what is pending if the file takes it (else it stays in the journal)."""
+        with contextlib.suppress(OutputError):
+            self.flush()
+        self._pending = []
 
     def finish(self) -> None:
         """A completed run: the journal is no longer needed; the lock is released."""
+        self.flush()
         shutil.rmtree(self.journal, ignore_errors=True)
         self._unlock()
 
     def abandon(self) -> None:
         """A run that failed before keeping any task: remove the file it created (and its empty
         journal), so that the same command can simply be run again; the lock is released."""
+        self._flush_quietly()
         if self.created and not self.kept:
             with contextlib.suppress(OSError):
                 self.path.unlink()
@@ -1001,7 +1081,9 @@ class ResultWriter:
         self._unlock()
 
     def close(self) -> None:
-        """Release the lock (the journal stays for ``--resume``); nothing else changes."""
+        """Write what is pending, release the lock (the journal stays for ``--resume``)."""
+        if self._lock_fd is not None:
+            self._flush_quietly()
         self._unlock()
 
     def __enter__(self) -> ResultWriter:
@@ -1009,15 +1091,6 @@ class ResultWriter:
 
     def __exit__(self, *exc) -> None:
         self.close()
-
-
-def _move(tasks: h5py.Group, moves: Mapping[str, str]) -> None:
-    """Rename task groups (stored id → new id) through temporary names, so that one group's
-    new name may be another's old one."""
-    for src in moves:
-        tasks.move(src, f"moving-{src}")
-    for src, dst in moves.items():
-        tasks.move(f"moving-{src}", dst)
 
 
 # --- reading -----------------------------------------------------------------------------
@@ -1074,7 +1147,12 @@ class ResultFile:
             if not _is_hdf5(self.path):
                 raise ValueError("not an HDF5 file")
             with _open_h5(self.path, "r", wait=READ_LOCK_WAIT) as f:
-                if f.attrs.get("floorslide_format") != FORMAT or "tasks" not in f:
+                fmt = f.attrs.get("floorslide_format")
+                if fmt == FORMAT and all(t in f for t in columns.TABLES):
+                    self.format = FORMAT
+                elif fmt == LEGACY_FORMAT and "tasks" in f:
+                    self.format = LEGACY_FORMAT
+                else:
                     raise ResultFileError("not a floorslide result file", str(self.path))
                 self.verified = DIGESTS_ATTR in f.attrs
                 self.header_problem = _header_problem(f)
@@ -1095,7 +1173,9 @@ class ResultFile:
                 if not isinstance(self.plan, dict):
                     raise ValueError("the stored plan is not a JSON object")
                 tasks = f["tasks"]
-                for k in tasks:
+                if self.format == FORMAT:
+                    self._done = self._ids(f)
+                for k in tasks if self.format == LEGACY_FORMAT else ():
                     try:
                         g = tasks.get(k)  # None when a kill left the link but not the group
                         if not isinstance(g, h5py.Group):
@@ -1130,9 +1210,75 @@ class ResultFile:
                 f"corrupt or unreadable result file: {exc}{hint}", str(self.path)
             ) from None
 
+    @staticmethod
+    def _ids(f: h5py.File) -> list[str]:
+        """The ids of the rows counted in the task table of a file of format 2."""
+        g = f["tasks"]
+        n = g.attrs["rows"]
+        if not (np.ndim(n) == 0 and int(n) == n and n >= 0):
+            raise ValueError(f"the task table's row count is damaged ({n!r})")
+        if not n:
+            return []
+        ids = g["id"]
+        if not isinstance(ids, h5py.Dataset) or ids.shape[0] < n:
+            raise ValueError("the task table is damaged (fewer ids than rows)")
+        out = [columns._text(x) for x in ids[: int(n)]]
+        if len(set(out)) != len(out):
+            raise ValueError("the task table is damaged (an id appears twice)")
+        return out
+
     def done_tasks(self) -> list[str]:
         """Ids of the tasks marked done."""
         return list(self._done)
+
+    def _lookup(self, f: h5py.File) -> Callable[[str], tuple[Node | None, str]]:
+        """A function of the open file `f`: a done task's node (checked against its digest)
+        and "", or None and why it fails."""
+        if self.format == LEGACY_FORMAT:
+            tasks = f["tasks"]
+            return lambda tid: self._task(tasks, tid)
+        try:
+            cols = columns.Columns(f, H5_ERRORS)
+        except (*H5_ERRORS, SnapshotError) as exc:
+            broken = f"unreadable: {exc}"
+            return lambda tid: (None, broken)
+        return lambda tid: self._column_task(cols, tid)
+
+    def _column_task(self, cols: columns.Columns, tid: str) -> tuple[Node | None, str]:
+        try:
+            node = cols.node(tid)
+            stored = cols.digest_of(tid)
+        except (SnapshotError, *H5_ERRORS) as exc:
+            return None, f"unreadable: {exc}"
+        if not stored:
+            return None, "no digest"
+        return self._checked(node, stored, tid, frozenset())
+
+    def _checked(self, node: Node, stored, tid: str, skip: frozenset) -> tuple[Node | None, str]:
+        try:
+            ok = _s(stored) == digest(node, skip)
+        except SnapshotError as exc:
+            return None, f"unreadable: {exc}"
+        if not ok:
+            return None, "values changed after it was written"
+        planned = self.planned_fingerprints
+        if planned is not None and _s(node.attrs.get(FINGERPRINT_ATTR, "")) != planned.get(tid):
+            return None, "computed from other inputs than the stored plan's: two runs mixed"
+        return node, ""
+
+    def nodes(self, tids: Collection[str]) -> Iterator[tuple[str, Node | None, str]]:
+        """Each task of `tids` as its node (without bookkeeping attributes, its digest is the
+        task's) and "", or None and why it fails its integrity check."""
+        with _open_h5(self.path, "r", wait=READ_LOCK_WAIT) as f:
+            lookup = self._lookup(f)
+            for tid in tids:
+                node, problem = lookup(tid)
+                if node is not None and BOOKKEEPING & set(node.attrs):
+                    node = Node(
+                        {k: v for k, v in node.attrs.items() if k not in BOOKKEEPING},
+                        node.children,
+                    )
+                yield tid, node, problem
 
     @property
     def planned_fingerprints(self) -> dict[str, str] | None:
@@ -1146,6 +1292,15 @@ class ResultFile:
         stored or the group cannot be read)."""
         out = {}
         with _open_h5(self.path, "r") as f:
+            if self.format == FORMAT:
+                try:
+                    cols = columns.Columns(f, H5_ERRORS)
+                except (*H5_ERRORS, SnapshotError):
+                    return dict.fromkeys(tids, "")
+                for tid in tids:
+                    value = cols.attr(tid, FINGERPRINT_ATTR) if tid in cols.row_of else None
+                    out[tid] = "" if value is None else _s(value)
+                return out
             tasks = f["tasks"]
             for tid in tids:
                 try:
@@ -1184,24 +1339,15 @@ class ResultFile:
         stored = node.attrs.get(DIGEST_ATTR)
         if stored is None:
             return (None, "no digest") if self.verified else (node, "")
-        try:
-            ok = _s(stored) == digest(node, BOOKKEEPING)
-        except SnapshotError as exc:
-            return None, f"unreadable: {exc}"
-        if not ok:
-            return None, "values changed after it was written"
-        planned = self.planned_fingerprints
-        if planned is not None and _s(node.attrs.get(FINGERPRINT_ATTR, "")) != planned.get(tid):
-            return None, "computed from other inputs than the stored plan's: two runs mixed"
-        return node, ""
+        return self._checked(node, stored, tid, BOOKKEEPING)
 
     def verify(self) -> dict[str, str]:
         """Every done task that fails its integrity check, with why (empty when all pass)."""
         problems = {}
         with _open_h5(self.path, "r") as f:
-            tasks = f["tasks"]
+            lookup = self._lookup(f)
             for tid in self._done:
-                node, problem = self._task(tasks, tid)
+                node, problem = lookup(tid)
                 if node is None:
                     problems[tid] = problem
         return problems
@@ -1218,13 +1364,13 @@ class ResultFile:
         legacy = self._legacy_broadening()
         try:
             with _open_h5(self.path, "r", wait=READ_LOCK_WAIT) as f:
-                tasks = f["tasks"]
+                lookup = self._lookup(f)
                 for i, tid in enumerate(self._done):
-                    node, problem = self._task(tasks, tid)
+                    node, problem = lookup(tid)
                     if node is None:
                         problems = {tid: problem}
                         for other in self._done[i + 1 :]:
-                            if (found := self._task(tasks, other))[0] is None:
+                            if (found := lookup(other))[0] is None:
                                 problems[other] = found[1]
                         scene = self.scene_path or "SCENE.toml"
                         raise ResultFileError(
@@ -1414,3 +1560,82 @@ def _read_task(g: Node, tid: str, legacy_broadening: float = 0.0) -> TaskResult:
         histories=hist,
         seconds=float(g.attrs.get("seconds", 0.0)),
     )
+
+
+# --- converting ----------------------------------------------------------------------------
+
+
+def upgrade(src: str | Path, dst: str | Path | None = None) -> tuple[Path, int]:
+    """Convert a result file of format 1 (one group per task) to the format written now.
+
+    Every task is read through the reader of format 1 and checked against its digest (a file
+    with a task that fails is refused: rebuild it with ``floorslide run --resume`` first), then
+    written as rows of the tables with the same digest; the header (scene, plan, scene name,
+    creation time) is kept. The file is written beside `dst` and renamed into place at the end.
+
+    Parameters
+    ----------
+    src
+        The file of format 1.
+    dst
+        The new file (default: `src`, replaced).
+
+    Returns
+    -------
+    (path, tasks)
+        The file written and the number of tasks converted.
+
+    Raises
+    ------
+    ResultFileError
+        `src` is not a floorslide result file, is already of this format, or a task fails its
+        integrity check.
+    OutputError
+        `dst` cannot be written.
+    """
+    src = Path(src)
+    dst = src if dst is None else Path(dst)
+    reader = ResultFile(src)
+    if reader.format == FORMAT:
+        raise ResultFileError(f"already of format {FORMAT}; nothing to upgrade", str(src))
+    problems = reader.verify()
+    if problems:
+        scene = reader.scene_path or "SCENE.toml"
+        raise ResultFileError(_integrity_message(problems, scene, src), str(src))
+    if dst != src:
+        outputs.check_target(dst, replace=False, advice="choose another -o")
+    with _open_h5(src, "r") as f:
+        created = f.attrs.get("created")
+    tmp = None
+    try:
+        dst.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = outputs.temporary(dst)
+        os.close(fd)
+        with h5py.File(tmp, "w") as f:
+            if created is not None:
+                f.attrs["created"] = created
+            _write_header(f, reader.scene_text, reader.scene_path, reader.scene_name, reader.plan)
+            columns.init(f)
+            done = reader.done_tasks()
+            batch: list[tuple[str, Node, str]] = []
+            for tid, node, problem in reader.nodes(done):
+                if node is None:
+                    raise ResultFileError(_integrity_message({tid: problem}, "SCENE", src))
+                batch.append((tid, node, digest(node)))
+                if len(batch) >= 256:
+                    append_tasks(f, batch, len(done))
+                    batch = []
+            append_tasks(f, batch, len(done))
+            columns.commit(f)
+        outputs.replace_atomically(tmp, dst)
+        tmp = None
+    except (*H5_ERRORS, OSError) as exc:
+        if isinstance(exc, ResultFileError | OutputError):
+            raise
+        reason = getattr(exc, "strerror", None) or str(exc)
+        raise OutputError(f"cannot write {dst}: {reason}") from None
+    finally:
+        if tmp is not None:
+            with contextlib.suppress(OSError):
+                Path(tmp).unlink()
+    return dst, len(done)

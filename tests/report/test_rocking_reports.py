@@ -13,7 +13,6 @@ record and overturns under two (one of them the history record, Northridge RRS-2
 from __future__ import annotations
 
 import math
-import shutil
 
 import h5py
 import numpy as np
@@ -26,6 +25,7 @@ from floorslide.run.store import ResultFile
 from floorslide.scene.planner import plan
 from floorslide.scene.schema import load_scene
 from tests.conftest import ROOT
+from tests.format1 import to_format1
 
 CATALOG = (ROOT / "data" / "records" / "slammer" / "index.csv").as_posix()
 HISTORY = "Northridge_1994_RRS-228"
@@ -98,12 +98,13 @@ def rocking(tmp_path_factory):
 @pytest.fixture(scope="module")
 def older(rocking, tmp_path_factory):
     """The same file as one written before rocking was simulated: no rocking arrays, outcomes
-    or histories (each task signed again as an older writer signed it)."""
+    or histories (each task signed again as an older writer signed it; such files were of
+    format 1, one group per task)."""
     from floorslide.run.snapshot import digest, snapshot
     from floorslide.run.store import BOOKKEEPING
 
     out = tmp_path_factory.mktemp("older") / "out.h5"
-    shutil.copy(rocking, out)
+    to_format1(rocking, out)
     names = ("rock_peak_ratio", "rock_impacts", "rock_time", "overturned", "overturn_time")
     with h5py.File(out, "r+") as f:
         for g in f["tasks"].values():

@@ -45,3 +45,24 @@ def cli(*args: str, timeout: float = 300) -> subprocess.CompletedProcess:
         env=env,
         timeout=timeout,
     )
+
+
+def without_tasks(path, tids) -> None:
+    """Rewrite the result file `path` (format 2) without the tasks `tids`, as a run killed
+    before they were written leaves it."""
+    import h5py
+
+    from floorslide.run import columns
+    from floorslide.run.snapshot import digest
+    from floorslide.run.store import ResultFile
+
+    rf = ResultFile(path)
+    keep = [t for t in rf.done_tasks() if t not in set(tids)]
+    batch = [(t, node, digest(node)) for t, node, _ in rf.nodes(keep)]
+    with h5py.File(path, "a") as f:
+        for name in (*columns.TABLES, "histories", "raw"):
+            if name in f:
+                del f[name]
+        columns.init(f)
+        columns.append(f, batch)
+        columns.commit(f)

@@ -24,8 +24,9 @@ from tests.run.test_runs import SCENE, assert_same, results
 
 
 def fail_after(monkeypatch, n):
-    """Make the n-th write of a task into the open HDF5 file fail as on a full disk."""
-    real = store.write_node
+    """Make the n-th write of tasks into the open HDF5 file fail as on a full disk (a run of
+    fewer than 32 tasks writes each task as it finishes)."""
+    real = store.append_tasks
     calls = {"n": 0}
 
     def flaky(*args):
@@ -34,7 +35,7 @@ def fail_after(monkeypatch, n):
             raise OSError(errno.ENOSPC, "No space left on device")
         return real(*args)
 
-    monkeypatch.setattr(store, "write_node", flaky)
+    monkeypatch.setattr(store, "append_tasks", flaky)
 
 
 def test_full_disk_gives_a_clear_error_and_keeps_what_finished(
@@ -76,16 +77,17 @@ def test_corrupt_result_file_is_detected_then_rebuilt_from_the_journal(
 def test_damaged_task_entry_is_detected_then_rebuilt_from_the_journal(
     the_plan, reference, tmp_path, monkeypatch
 ):
-    """A SIGKILL can leave a task's link in the file without its group (found by the
-    kill-and-resume test): the file is not trusted and --resume rebuilds it from the journal."""
+    """A SIGKILL can leave the task table counting rows it lacks (in format 1: a task's link
+    without its group, found by the kill-and-resume test): the file is not trusted and
+    --resume rebuilds it from the journal."""
     out = tmp_path / "d.h5"
     fail_after(monkeypatch, 5)
     with pytest.raises(OutputError):
         execute(the_plan, str(out), workers=1, progress=False)
     monkeypatch.undo()
     with h5py.File(out, "a") as f:
-        f["tasks"]["cut-short"] = h5py.SoftLink("/tasks/never-written")
-    with pytest.raises(ResultFileError, match=r"task cut-short is damaged.*--resume"):
+        f["tasks"].attrs["rows"] = 7  # more rows than it holds ids
+    with pytest.raises(ResultFileError, match=r"the task table is damaged.*--resume"):
         ResultFile(out)
     summary = execute(the_plan, str(out), workers=1, progress=False, resume=True)
     assert summary.resumed == 5
@@ -131,7 +133,7 @@ def fork_while_open(monkeypatch, hold: float) -> list[int]:
     """Fork a child process while the writer has the result file open for the first task (as
     a Dask nanny restarting a lost worker in the writer's process does); the child keeps its
     copy of the file's descriptor, and so HDF5's lock, for `hold` seconds."""
-    real = store.write_node
+    real = store.append_tasks
     children: list[int] = []
 
     def write_then_fork(*args):
@@ -144,7 +146,7 @@ def fork_while_open(monkeypatch, hold: float) -> list[int]:
             children.append(pid)
         return group
 
-    monkeypatch.setattr(store, "write_node", write_then_fork)
+    monkeypatch.setattr(store, "append_tasks", write_then_fork)
     return children
 
 

@@ -1,10 +1,16 @@
 """Issue 19 item 4: each task carries a SHA-256 digest of its group; every reader checks it.
 A value changed in place, a flipped byte in the data or in an object header: ``table``,
 ``plot`` and the Python reports refuse the file naming the task, ``--resume`` rebuilds it. A
-file from before the digests reads, with a note that it is unverified."""
+file from before the digests reads, with a note that it is unverified.
+
+Format 2 (issue 34) stores the tasks as rows of columns: a value edited in a row fails that
+row's task; a damaged column (its object header, its dtype, its attributes) fails every task
+that uses it. Files from before the digests were of format 1: those cases edit a format-1 copy
+(tests/format1.py)."""
 
 from __future__ import annotations
 
+import json
 import shutil
 
 import h5py
@@ -14,13 +20,47 @@ import pytest
 from floorslide.errors import FloorslideError, ResultFileError
 from floorslide.report import design_tables, plot_figures, record_table
 from floorslide.report.study import load_study
+from floorslide.run import columns
 from floorslide.run.execute import execute
 from floorslide.run.store import ResultFile
+from tests.format1 import to_format1
 from tests.robustness.conftest import cli
 from tests.run.test_runs import assert_same, results
 
 TASK = "t00004"
-DATASET = f"tasks/{TASK}/contents/cabinet/floor_2/peak_slide"
+DATASET = "contents/peak_slide"
+"""The column of the peak slides of every task, content, floor and friction pair."""
+
+
+def task_row(f: h5py.File, tid: str) -> int:
+    """The row of task `tid` in the task table."""
+    n = int(f["tasks"].attrs["rows"])
+    return [columns._text(x) for x in f["tasks/id"][:n]].index(tid)
+
+
+def row(f: h5py.File, tid: str = TASK, content="cabinet", floor=2, pair=0) -> int:
+    """The row of the contents table of (task, content, floor, friction pair)."""
+    c = f["contents"]
+    n = int(c.attrs["rows"])
+    names = np.array([columns._text(x) for x in c["content"][:n]])
+    hit = np.flatnonzero(
+        (c["task"][:n] == task_row(f, tid))
+        & (names == content)
+        & (c["floor"][:n] == floor)
+        & (c["pair"][:n] == pair)
+    )
+    assert hit.size == 1, hit
+    return int(hit[0])
+
+
+def users(f: h5py.File, column: str) -> set[str]:
+    """The tasks with a value in `column` of the contents table."""
+    c = f["contents"]
+    n = int(c.attrs["rows"])
+    names = json.loads(c.attrs["names"])
+    rows = c["task"][:n][c["present"][:n, names.index(column)].astype(bool)]
+    ids = [columns._text(x) for x in f["tasks/id"][: int(f["tasks"].attrs["rows"])]]
+    return {ids[int(r)] for r in rows}
 
 
 @pytest.fixture()
@@ -55,7 +95,7 @@ def flip(path, offset: int, mask: int) -> None:
 
 def test_a_value_changed_in_place_is_refused_by_every_report(copy, tmp_path):
     with h5py.File(copy, "a") as f:
-        f[DATASET][1] *= 1.01  # a plausible, wrong value
+        f[DATASET][row(f, pair=1)] *= 1.01  # a plausible, wrong value
     out = cli("table", str(copy))
     assert out.returncode == 2 and not out.stdout, out.stderr
     (line,) = out.stderr.strip().splitlines()
@@ -73,17 +113,27 @@ def test_a_value_changed_in_place_is_refused_by_every_report(copy, tmp_path):
 def test_every_failing_task_is_named(copy):
     with h5py.File(copy, "a") as f:
         for tid in ("t00001", "t00006"):
-            f[f"tasks/{tid}"].attrs["pga"] = 0.0  # attributes count too
-        f["tasks/t00002/pfa"].attrs["units"] = "g"
+            f["tasks/pga"][task_row(f, tid)] = 0.0  # attributes count too
+        f[DATASET][row(f, "t00002")] += 1e-3
     with pytest.raises(ResultFileError) as err:
         list(ResultFile(copy).tasks())
     assert str(err.value).startswith(f"{copy}: tasks t00001 (values changed")
     assert "t00002 (" in str(err.value) and "t00006 (" in str(err.value)
+    assert "t00000" not in str(err.value)
+
+
+def test_a_column_attribute_changed_fails_every_task_using_it(copy):
+    with h5py.File(copy, "a") as f:
+        f["tasks/pfa"].attrs["units"] = "g"  # the units of every task's pfa
+        tids = [columns._text(x) for x in f["tasks/id"][: int(f["tasks"].attrs["rows"])]]
+    problems = ResultFile(copy).verify()
+    assert set(problems) == set(tids) and len(tids) == 9
+    assert set(problems.values()) == {"values changed after it was written"}
 
 
 def test_resume_rebuilds_the_task_that_fails(the_plan, reference, copy):
     with h5py.File(copy, "a") as f:
-        f[DATASET][0] = 0.123
+        f[DATASET][row(f)] = 0.123
     warned = []
     summary = execute(
         the_plan, str(copy), workers=1, progress=False, resume=True, warn=warned.append
@@ -98,8 +148,12 @@ def test_resume_rebuilds_the_task_that_fails(the_plan, reference, copy):
 
 def test_a_flipped_data_byte_is_refused_then_rebuilt(the_plan, reference, copy):
     with h5py.File(copy, "r") as f:
-        offset = f[DATASET].id.get_offset()
-    flip(copy, offset + 3, 0x01)  # the third byte of the first peak slide
+        ds = f[DATASET]
+        r = row(f)
+        chunk = r // ds.chunks[0]
+        offset = ds.id.get_chunk_info_by_coord((chunk * ds.chunks[0],)).byte_offset
+        offset += (r - chunk * ds.chunks[0]) * ds.dtype.itemsize
+    flip(copy, offset + 3, 0x01)  # the third byte of the task's first peak slide
     out = cli("table", str(copy))
     assert out.returncode == 2 and f"task {TASK} fails the integrity check" in out.stderr
     done = cli("run", str(the_plan.scene.path), "-o", str(copy), "--resume", "--workers", "1")
@@ -110,21 +164,30 @@ def test_a_flipped_data_byte_is_refused_then_rebuilt(the_plan, reference, copy):
 
 def test_resume_on_a_damaged_object_header_without_journal(the_plan, reference, copy):
     """A flipped version of a dataset's datatype message (the kind of flip that made
-    ``--resume`` end in a KeyError traceback): the task is reported, and since HDF5 cannot
-    delete such a group, the file is rewritten without it and the task rebuilt."""
+    ``--resume`` end in a KeyError traceback): in format 2 the dataset is a column, so every
+    task with a value in it is reported, and since HDF5 cannot delete such a dataset, the
+    file is rewritten without them and they are rebuilt."""
+    with h5py.File(copy, "r") as f:
+        tids = users(f, "peak_slide")
+    assert TASK in tids
     flip(copy, header_message(copy, DATASET, kind=3), 0x70)
-    with pytest.raises(ResultFileError, match=f"task {TASK} fails the integrity check \\(unread"):
+    every = r"t00000 \(unreadable: /contents/peak_slide: .* and 6 more fail"
+    with pytest.raises(ResultFileError, match=every):
         list(ResultFile(copy).tasks())
+    assert set(ResultFile(copy).verify()) == tids
     done = cli("run", str(the_plan.scene.path), "-o", str(copy), "--resume", "--workers", "1")
     assert done.returncode == 0 and "Traceback" not in done.stderr, done.stderr
-    (line,) = done.stderr.strip().splitlines()
-    assert line.startswith(f"floorslide: warning: {copy}: task {TASK} fails the integrity check")
-    assert "1 tasks run, 8 already done" in done.stdout
+    lines = done.stderr.strip().splitlines()
+    assert len(lines) == len(tids), lines
+    for tid, line in zip(sorted(tids), lines, strict=True):
+        assert line.startswith(f"floorslide: warning: {copy}: task {tid} fails the integrity")
+    assert f"{len(tids)} tasks run, {9 - len(tids)} already done" in done.stdout
     assert_same(results(copy), reference)
     assert cli("table", str(copy)).returncode == 0
 
 
 def test_a_file_from_before_the_digests_reads_unverified(reference, copy):
+    to_format1(copy)  # files from before the digests were of format 1
     with h5py.File(copy, "a") as f:
         del f.attrs["task_digest"]
         for task in f["tasks"].values():
@@ -142,13 +205,37 @@ def test_a_file_from_before_the_digests_reads_unverified(reference, copy):
 
 def test_a_digest_removed_from_a_task_is_refused(copy):
     with h5py.File(copy, "a") as f:
+        f["tasks/sha256"][task_row(f, TASK)] = ""
+    with pytest.raises(ResultFileError, match=f"task {TASK} fails the integrity check \\(no dig"):
+        list(ResultFile(copy).tasks())
+
+
+def test_a_digest_removed_from_a_format1_task_is_refused(copy):
+    to_format1(copy)
+    with h5py.File(copy, "a") as f:
         del f[f"tasks/{TASK}"].attrs["sha256"]
     with pytest.raises(ResultFileError, match=f"task {TASK} fails the integrity check \\(no dig"):
         list(ResultFile(copy).tasks())
 
 
+def test_digest_covers_the_dtype_of_a_column(copy):
+    """The same numbers stored with another dtype fail every task that has them."""
+    with h5py.File(copy, "a") as f:
+        ds = f[DATASET]
+        data, attrs, chunks = ds[()], dict(ds.attrs), ds.chunks
+        tids = users(f, "peak_slide")
+        del f[DATASET]
+        new = f.create_dataset(
+            DATASET, data=data.astype(np.float32), chunks=chunks, maxshape=(None,)
+        )
+        new.attrs.update(attrs)
+    assert set(ResultFile(copy).verify()) == tids and TASK in tids
+
+
 def test_digest_covers_values_dtypes_shapes_and_attributes(copy):
-    """The same numbers stored with another dtype or shape fail too."""
+    """The same numbers stored with another dtype or shape fail too (format 1: a group per
+    task, read by the reader of format 1)."""
+    to_format1(copy)
     with h5py.File(copy, "a") as f:
         g = f[f"tasks/{TASK}"]
         pfa = g["pfa"][()]

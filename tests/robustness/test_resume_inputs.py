@@ -29,7 +29,7 @@ from floorslide.run.task import run_task
 from floorslide.scene.planner import plan
 from floorslide.scene.schema import load_scene
 from tests.conftest import ROOT
-from tests.robustness.conftest import cli
+from tests.robustness.conftest import cli, without_tasks
 from tests.run.test_runs import SCENE, assert_same, results
 
 SLAMMER = ROOT / "data" / "records" / "slammer"
@@ -66,9 +66,7 @@ def planned(scene):
 
 def drop_tasks(path, tids):
     """Leave `path` as a run killed before these tasks were written."""
-    with h5py.File(path, "a") as f:
-        for tid in tids:
-            del f["tasks"][tid]
+    without_tasks(path, tids)
 
 
 def test_a_deleted_catalog_row_never_mixes_records(tmp_path):

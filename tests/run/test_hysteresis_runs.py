@@ -10,6 +10,7 @@ import pytest
 
 from floorslide.building.nonlinear import isolator_response
 from floorslide.run.store import ResultFile
+from tests.format1 import to_format1
 from tests.run.isolation_study import FPS, LRB, run_study
 
 
@@ -43,10 +44,10 @@ def test_the_hysteresis_loop_round_trips_and_equals_the_api(tmp_path, isolator):
     fixed = tasks[("rec1", "fixed")].histories
     assert fixed.isolator_displacement is None and fixed.isolator_force_ratio is None
     with h5py.File(out, "r") as f:
-        g = f[f"tasks/{tasks[('rec1', 'iso')].task_id}/histories"]
+        g = f[f"histories/{tasks[('rec1', 'iso')].task_id}"]
         assert g["isolator_displacement"].attrs["units"] == "m"
         assert g["isolator_force_ratio"].attrs["units"] == "1"
-        other = f[f"tasks/{tasks[('rec1', 'fixed')].task_id}/histories"]
+        other = f[f"histories/{tasks[('rec1', 'fixed')].task_id}"]
         assert "isolator_displacement" not in other
 
 
@@ -68,6 +69,7 @@ def test_a_file_without_the_loop_still_loads(tmp_path):
     from floorslide.run.store import BOOKKEEPING
 
     _, out = run(tmp_path, FPS, n=1)
+    to_format1(out)  # files before the loop were of format 1: one group per task
     tid = next(t.task_id for t in ResultFile(out).tasks() if t.meta["building"] == "iso")
     with h5py.File(out, "r+") as f:
         g = f[f"tasks/{tid}"]

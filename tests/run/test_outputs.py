@@ -15,6 +15,7 @@ from floorslide.scene.planner import plan
 from floorslide.scene.schema import parse_scene
 from floorslide.spectra.core import broaden, response_spectrum
 from tests.conftest import ROOT
+from tests.format1 import to_format1
 
 CATALOG = (ROOT / "data" / "records" / "slammer" / "index.csv").as_posix()
 RECORD = "ImperialValley_1940_ELC-180"
@@ -76,20 +77,21 @@ def test_unbroadened_and_broadened_spectra_are_both_stored(run):
     np.testing.assert_array_equal(s.psa_broadened, wide.psa)
     np.testing.assert_array_equal(s.sv_broadened, wide.sv)
     assert (s.psa_broadened >= s.psa).all() and (s.psa_broadened > s.psa).any()
-    with h5py.File(path, "r") as f:
-        g = f["tasks"][task.task_id]["spectra"]["floor_1"]
-        assert g.attrs["broadening"] == 0.15
+    with h5py.File(path, "r") as f:  # format 2: the spectra table, one row per floor
+        g = f["spectra"]
+        assert g.attrs["rows"] == 1 and g["group"][0] == b"floor_1"
+        assert g["broadening"][0] == 0.15
         assert g["psa"].attrs["broadening"] == 0.0 and g["psa"].attrs["units"] == "m/s**2"
-        assert g["broadened"]["psa"].attrs["broadening"] == 0.15
-        assert g["broadened"]["sd"].attrs["units"] == "m"
+        assert g["broadened.psa"].attrs["broadening"] == 0.15
+        assert g["broadened.sd"].attrs["units"] == "m"
+        np.testing.assert_array_equal(g["broadened.psa"][0], wide.psa)
 
 
 def test_a_file_from_before_keeps_reading(run, tmp_path):
     """Without the labels (an older file), stored spectra of a scene with broadening are the
     broadened ones, and are read as such: the unbroadened ones are NaN (they were lost)."""
     _, path = run
-    old = tmp_path / "old.h5"
-    old.write_bytes(path.read_bytes())
+    old = to_format1(path, tmp_path / "old.h5")  # an older file: one group per task
     with h5py.File(old, "a") as f:
         del f.attrs["task_digest"]  # an older file kept no digests either
         for task in f["tasks"].values():
@@ -129,7 +131,7 @@ def test_oscillator_results_and_histories(run):
     np.testing.assert_array_equal(h.slides[key], ref.u)
     np.testing.assert_array_equal(h.deformation[key], ref.z)
     np.testing.assert_array_equal(h.top_accel[key], ref.top_accel)
-    with h5py.File(path, "r") as f:
-        g = f["tasks"][task.task_id]["histories"]["slides"]["rack"]["floor_1"]
+    with h5py.File(path, "r") as f:  # format 2: histories stay a group per task
+        g = f["histories"][task.task_id]["slides"]["rack"]["floor_1"]
         assert g.attrs["model"] == "oscillator"
         assert g["z"].attrs["units"] == "m" and g["top_accel"].attrs["units"] == "m/s**2"
