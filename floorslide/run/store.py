@@ -201,6 +201,9 @@ FORMAT = 2
 LEGACY_FORMAT = 1
 """One group per task (``/tasks/<task>``): read as before, converted by ``floorslide upgrade``."""
 append_tasks = columns.append
+COPY_BATCH = 256
+"""Tasks appended per batch when a file is rebuilt or upgraded (each batch committed before the
+next: rows are appended after the committed ones)."""
 """Writes a batch of tasks into the open file (a name of its own, so tests can fail it)."""
 FLUSH_SECONDS = 30.0
 """A batch of tasks is written at least this often (seconds), whatever its size."""
@@ -926,8 +929,9 @@ class ResultWriter:
                         self.done.discard(wanted[tid])
                         continue
                     batch.append((wanted[tid], node, digest(node)))
-                    if len(batch) >= 256:
+                    if len(batch) >= COPY_BATCH:
                         append_tasks(dst, batch, len(wanted))
+                        columns.commit(dst)  # the next batch's rows follow these
                         batch = []
                 append_tasks(dst, batch, len(wanted))
                 columns.commit(dst)
@@ -1622,8 +1626,9 @@ def upgrade(src: str | Path, dst: str | Path | None = None) -> tuple[Path, int]:
                 if node is None:
                     raise ResultFileError(_integrity_message({tid: problem}, "SCENE", src))
                 batch.append((tid, node, digest(node)))
-                if len(batch) >= 256:
+                if len(batch) >= COPY_BATCH:
                     append_tasks(f, batch, len(done))
+                    columns.commit(f)  # the next batch's rows follow these
                     batch = []
             append_tasks(f, batch, len(done))
             columns.commit(f)

@@ -168,3 +168,26 @@ def test_resume_rebuilds_a_task_that_fails(two_studies, tmp_path):
     again = {t.task_id: t for t in ResultFile(path).tasks()}
     assert again.keys() == reference.keys()
     np.testing.assert_array_equal(again[tid].spectra[0].psa, reference[tid].spectra[0].psa)
+
+
+def test_upgrade_and_rebuild_in_several_batches(tmp_path, two_studies, monkeypatch):
+    """Copies append tasks in batches, each committed before the next: with batches of 2 (the
+    fixture's 3 tasks; a rebuild of 4) every task is kept — a later batch once overwrote the
+    rows of the first (the demo's 288 tasks upgraded to 32)."""
+    import floorslide.run.store as store
+
+    monkeypatch.setattr(store, "COPY_BATCH", 2)
+    new, n = upgrade(FORMAT1, tmp_path / "new.h5")
+    rf = ResultFile(new)
+    assert n == 3 and len(rf.done_tasks()) == 3 and rf.complete
+    for a, b in zip(ResultFile(FORMAT1).tasks(), rf.tasks(), strict=True):
+        assert_same_tasks(a, b)
+    # a resume that rebuilds the file copies its tasks in batches too
+    path = tmp_path / "r.h5"
+    shutil.copyfile(two_studies["small"], path)
+    with h5py.File(path, "a") as f:
+        f["spectra/psa"][0] = 0.0
+    p = plan(parse_scene(scene(["PET-090", "RIO-360"]), tmp_path / "s.toml"))
+    summary = execute(p, str(path), workers=1, progress=False, resume=True)
+    assert summary.ran == 1 and summary.resumed == 3
+    assert len(ResultFile(path).done_tasks()) == 4 and not ResultFile(path).verify()
