@@ -216,6 +216,21 @@ def _stuck_or_slip(st, par, a, g):
     return True
 
 
+@njit(cache=True, inline="always")
+def _sincos_order(k, t, u, S, C):
+    """Order ``k ≥ 1`` of the series of ``sin u`` and ``cos u`` (``u = α s − θ``, so
+    ``u_k = −t_k``) from the lower orders: ``k S_k = Σ j u_j C_{k−j}``,
+    ``k C_k = −Σ j u_j S_{k−j}`` (Jorba & Zou 2005, §2)."""
+    u[k] = -t[k]
+    ss = 0.0
+    cc = 0.0
+    for j in range(1, k + 1):
+        ss += j * u[j] * C[k - j]
+        cc += j * u[j] * S[k - j]
+    S[k] = ss / k
+    C[k] = -cc / k
+
+
 @njit(cache=True)
 def sliderock_series(s, sig, th, thd, par, g, D, t, S, C, u, P1, P2, W, Dn, Nm, Q):
     """Taylor coefficients ``t[0..D]`` of ``θ`` about a part's start for a block sliding and
@@ -234,14 +249,7 @@ def sliderock_series(s, sig, th, thd, par, g, D, t, S, C, u, P1, P2, W, Dn, Nm, 
     C[0] = np.cos(u[0])
     for k in range(D - 1):
         if k >= 1:
-            u[k] = -t[k]
-            ss = 0.0
-            cc = 0.0
-            for j in range(1, k + 1):
-                ss += j * u[j] * C[k - j]
-                cc += j * u[j] * S[k - j]
-            S[k] = ss / k
-            C[k] = -cc / k
+            _sincos_order(k, t, u, S, C)
         acc = 0.0
         for j in range(k + 1):
             acc += (j + 1) * t[j + 1] * (k - j + 1) * t[k - j + 1]
@@ -264,17 +272,8 @@ def sliderock_series(s, sig, th, thd, par, g, D, t, S, C, u, P1, P2, W, Dn, Nm, 
             acc -= Dn[j] * Q[k - j]
         Q[k] = acc / Dn[0]
         t[k + 2] = -Q[k] / (R * (k + 1) * (k + 2))
-    # sin u and cos u to degree D − 1
-    k = D - 1
-    if k >= 1:
-        u[k] = -t[k]
-        ss = 0.0
-        cc = 0.0
-        for j in range(1, k + 1):
-            ss += j * u[j] * C[k - j]
-            cc += j * u[j] * S[k - j]
-        S[k] = ss / k
-        C[k] = -cc / k
+    if D - 1 >= 1:
+        _sincos_order(D - 1, t, u, S, C)  # sin u and cos u to degree D − 1
     return Dn[0]
 
 

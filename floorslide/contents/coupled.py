@@ -438,30 +438,41 @@ def slide_coupled(
                 "the record for spikes"
             )
         residual[i] = x[S.index[0]]
+    return _result(kern, res, mk, ms, masses, f, floor_mass, residual, npts, dt, substeps,
+                   (hs, hv, ha, hm) if histories else None, notes)  # fmt: skip
+
+
+def _result(K, res, mk, ms, masses, floor, floor_mass, residual, npts, dt, substeps, hist, notes,
+            **extra) -> CoupledSlideResult:  # fmt: skip
+    """The :class:`CoupledSlideResult` of a kernel's result rows `res` (columns of the kernel
+    module `K`: the linear or the nonlinear one, which name them alike); `hist` the histories
+    ``(u, v, floor acceleration, mode)`` or None; `extra` the nonlinear building's fields."""
     duration = (npts - 1) * dt
+    hs, hv, ha, hm = hist if hist is not None else (None,) * 4
     return CoupledSlideResult(
         mu_k=mk,
         mu_s=ms,
         mass=masses,
         mass_ratio=masses / floor_mass,
-        floor=f,
+        floor=floor,
         floor_mass=floor_mass,
-        peak_slide=res[:, kern.PEAK_SLIDE].copy(),
+        peak_slide=res[:, K.PEAK_SLIDE].copy(),
         residual_slide=residual,
-        slide_fraction=res[:, kern.SLIDE_TIME] / duration if duration > 0 else np.zeros(ncase),
-        slip_phases=res[:, kern.SLIPS].astype(int),
-        time_of_peak=res[:, kern.T_PEAK].copy(),
-        pfa=res[:, kern.PFA].copy(),
-        time_of_pfa=res[:, kern.T_PFA].copy(),
-        peak_abs_accel=res[:, kern.BLOCK_PEAK_ACC].copy(),
+        slide_fraction=res[:, K.SLIDE_TIME] / duration if duration > 0 else np.zeros(len(res)),
+        slip_phases=res[:, K.SLIPS].astype(int),
+        time_of_peak=res[:, K.T_PEAK].copy(),
+        pfa=res[:, K.PFA].copy(),
+        time_of_pfa=res[:, K.T_PFA].copy(),
+        peak_abs_accel=res[:, K.BLOCK_PEAK_ACC].copy(),
         duration=duration,
         dt=dt,
         substeps=int(substeps),
-        u=hs if histories else None,
-        v=hv if histories else None,
-        floor_acceleration=ha if histories else None,
-        mode=hm if histories else None,
+        u=hs,
+        v=hv,
+        floor_acceleration=ha,
+        mode=hm,
         notes=tuple(notes),
+        **extra,
     )
 
 
@@ -508,31 +519,8 @@ def _slide_coupled_nonlinear(building, dof, a, dt, mk, ms, masses, floor_mass, h
         ]
     if small_angle_exceeded(iso, worst):
         notes = [*notes, small_angle_note(worst, iso.R)]
-    duration = (npts - 1) * dt
-    return CoupledSlideResult(
-        mu_k=mk,
-        mu_s=ms,
-        mass=masses,
-        mass_ratio=masses / floor_mass,
-        floor=dof,
-        floor_mass=floor_mass,
-        peak_slide=res[:, nkern.PEAK_SLIDE].copy(),
-        residual_slide=residual,
-        slide_fraction=res[:, nkern.SLIDE_TIME] / duration if duration > 0 else np.zeros(ncase),
-        slip_phases=res[:, nkern.SLIPS].astype(int),
-        time_of_peak=res[:, nkern.T_PEAK].copy(),
-        pfa=res[:, nkern.PFA].copy(),
-        time_of_pfa=res[:, nkern.T_PFA].copy(),
-        peak_abs_accel=res[:, nkern.BLOCK_PEAK_ACC].copy(),
-        duration=duration,
-        dt=dt,
-        substeps=int(substeps),
-        u=hs if histories else None,
-        v=hv if histories else None,
-        floor_acceleration=ha if histories else None,
-        mode=hm if histories else None,
-        notes=tuple(notes),
-        peak_isolator_displacement=peak_iso,
-        residual_isolator_displacement=residual_iso,
-        isolator_displacement=hu if histories else None,
-    )
+    return _result(nkern, res, mk, ms, masses, dof, floor_mass, residual, npts, dt, substeps,
+                   (hs, hv, ha, hm) if histories else None, notes,
+                   peak_isolator_displacement=peak_iso,
+                   residual_isolator_displacement=residual_iso,
+                   isolator_displacement=hu if histories else None)  # fmt: skip
