@@ -445,9 +445,25 @@ def _result(
         method="exact",
         theta=None if hist is None else hist[:, 0].copy(),
         slide=None if hist is None else hist[:, 1].copy(),
-        mode_history=None if hist is None else hist[:, 2].astype(np.int8),
+        mode_history=None if hist is None else _with_start(hist[:, 2], states),
         notes=tuple(notes),
     )
+
+
+def _with_start(modes: np.ndarray, states: np.ndarray) -> np.ndarray:
+    """The mode codes at the samples with sample 0 filled in: the mode the block is in after the
+    events at t = 0 (a record that starts beyond the rest level starts a slide or a rock at
+    once), the last one logged at t = 0."""
+    out = modes.astype(np.int8)
+    for i in range(out.shape[0]):
+        n = min(int(states[i, sk.NLOG]), sk.LOG_SIZE)
+        code = sk.REST
+        for j in range(n):
+            if states[i, sk.LOG + 2 * j] > 0.0:
+                break
+            code = int(states[i, sk.LOG + 2 * j + 1])
+        out[i, 0] = code
+    return out
 
 
 def _par_row(alpha, B, H) -> np.ndarray:

@@ -160,6 +160,18 @@ def test_shenton_boundary(lam, ratio):
     assert initial_mode(0.99 * min(a, lam), lam, lam * 1.5, lam * 1.5) == "rest"
 
 
+def test_the_mode_at_the_first_sample_is_the_one_the_block_starts_in():
+    """A record that starts beyond the rest level starts the mode at t = 0: the mode history's
+    first sample says so (θ and the slide are still 0 there)."""
+    acc = np.full(50, -0.5 * G)
+    r = fs.slide_rock(acc, 0.01, [1.0, 0.3, 0.3], 1.0, [0.2, 0.5, 0.5], mu_s=[0.2, 0.5, 0.5],
+                      histories=True)  # fmt: skip
+    assert r.mode_history[:, 0].tolist() == [1, 2, 2]  # slide (B/H > mu_s), rock, rock
+    assert (r.theta[:, 0] == 0).all() and (r.slide[:, 0] == 0).all()
+    still = fs.slide_rock(np.zeros(5), 0.01, 0.3, 1.0, 0.5, histories=True)
+    assert still.mode_history[0].tolist() == [0] * 5
+
+
 def test_shenton_limit_values():
     """μ_c = λ at a = λ (rocking starts with the friction static equilibrium needs) and tends
     to (1 + 4λ²)/(3λ) for a large acceleration (Shenton 1996)."""
