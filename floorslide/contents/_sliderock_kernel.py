@@ -498,22 +498,20 @@ def _part(st, par, cw0, K, Lq, t_part, g, D, max_events, WS, work):
             to = rise_within(q, D, lo, L, alpha, work)
             if to >= 0.0 and to <= te:
                 te, kind = to, 2
-            if not quiet:
+            if not quiet:  # (a quiet part is a rocking one: σ = 0)
                 for j in range(dF + 1):
                     q[j] = -Np[j]
                 te, kind = _first(te, kind, rise_within(q, dF, lo, L, 0.0, work), 3)
-            if quiet:
-                pass
-            elif sig == 0.0:
-                for j in range(dF + 1):
-                    f = Fp[j] + (cw[j] if j <= K else 0.0)
-                    q[j] = f - mus * Np[j]
-                te, kind = _first(te, kind, rise_within(q, dF, lo, L, 0.0, work), 4)
-                for j in range(dF + 1):
-                    f = Fp[j] + (cw[j] if j <= K else 0.0)
-                    q[j] = -f - mus * Np[j]
-                te, kind = _first(te, kind, rise_within(q, dF, lo, L, 0.0, work), 4)
-            else:
+                if sig == 0.0:
+                    for j in range(dF + 1):
+                        f = Fp[j] + (cw[j] if j <= K else 0.0)
+                        q[j] = f - mus * Np[j]
+                    te, kind = _first(te, kind, rise_within(q, dF, lo, L, 0.0, work), 4)
+                    for j in range(dF + 1):
+                        f = Fp[j] + (cw[j] if j <= K else 0.0)
+                        q[j] = -f - mus * Np[j]
+                    te, kind = _first(te, kind, rise_within(q, dF, lo, L, 0.0, work), 4)
+            if sig != 0.0:
                 for j in range(dF + 2):
                     q[j] = -sig * Vs[j]
                 te, kind = _first(te, kind, rise_within(q, dF + 1, lo, L, 0.0, work), 5)

@@ -192,10 +192,9 @@ def _poly_source(acc, dt, building, floor):
         else:
             motion = building.motion(a, dt, floors=[floor])
         return SegmentedPolyMotion(motion, [floor]), 0, 0, dt, tuple(notes)
-    if isinstance(fm, FloorMotion) or fm is None:
-        poly = LinearPolyMotion(building, a, np.zeros_like(a), dt, floors=[floor])
-        return poly, 0, 0, dt, tuple(notes)
-    raise ModelError(f"cannot put blocks on {type(acc).__name__}", "acc")  # pragma: no cover
+    # a linear building's (a FloorMotion's or the record's): its floor polynomials
+    poly = LinearPolyMotion(building, a, np.zeros_like(a), dt, floors=[floor])
+    return poly, 0, 0, dt, tuple(notes)
 
 
 def slide_rock(
