@@ -56,19 +56,9 @@ set = "s"
 catalog = "{catalog}"
 where = {{ {where} }}
 
-[[buildings]]
-id = "fixed"
-kind = "fixed"
-stories = 2
-period = 0.3
-{buildings}
+{fixed}{buildings}
 
-[[contents]]
-id = "c"
-floors = "all"
-mu = [0.05, 0.3, 1.0]
-{content}
-
+{contents}
 [spectra]
 floors = "all"
 periods = {{ min = 0.05, max = 2.0, n = 4 }}
@@ -78,8 +68,23 @@ history_record = "{history}"
 """
 """A study of one record, as small as a study gets: its tasks run what a real study's run."""
 
+_CONTENTS = '[[contents]]\nid = "c"\nfloors = "roof"\nmu = [0.05, 0.3, 1.0]\n{content}\n'
+"""The study's contents (left out when only the building and its spectra are compiled)."""
 
-def _study(buildings: str = "", content: str = "width = 0.3\nheight = 1.0", pairs=False) -> None:
+_FIXED = '[[buildings]]\nid = "fixed"\nkind = "fixed"\nstories = 2\nperiod = 0.3\n'
+"""The study's fixed-base building (the superstructure of its isolated buildings)."""
+
+_ISOLATORS = ('{ model = "friction_pendulum", mu = 0.06 }',
+              '{ model = "bilinear", q_ratio = 0.06, yield_disp = 0.02 }')  # fmt: skip
+"""Both kinds of nonlinear isolation, as a scene spells them."""
+
+
+def _study(
+    buildings: str = "",
+    content: str | None = "width = 0.3\nheight = 1.0",
+    pairs: bool = False,
+    nonlinear_only: bool = False,
+) -> None:
     """Plan a one-record study (the dry run's evaluation included) and run its tasks here,
     as ``floorslide run`` does: the kernels get the argument types of a real study (records
     read from files are read-only arrays, for one)."""
@@ -87,6 +92,7 @@ def _study(buildings: str = "", content: str = "width = 0.3\nheight = 1.0", pair
     import tempfile as tf
 
     from floorslide.run.task import run_task
+    from floorslide.run.warmup import family
     from floorslide.scene.planner import plan
     from floorslide.scene.schema import load_scene
 
@@ -101,12 +107,18 @@ def _study(buildings: str = "", content: str = "width = 0.3\nheight = 1.0", pair
         else:
             catalog, where = folder / "slammer" / "index.csv", 'station_id = "PET-090"'
             history = "CapeMendocino_1992_PET-090"
+        contents = _CONTENTS.format(content=content) if content is not None else ""
         text = _STUDY.format(catalog=catalog.as_posix(), where=where, buildings=buildings,
-                             content=content, history=history)  # fmt: skip
+                             contents=contents, history=history,
+                             fixed=_FIXED)  # fmt: skip
         path = Path(tmp) / "study.toml"
         path.write_text(text, encoding="utf-8")
-        for task in plan(load_scene(path), evaluate=True).tasks:
-            run_task(task)
+        # (a study of nonlinear isolation alone runs only the tasks on it, not the fixed-base
+        # building its superstructure names, nor the planner's evaluation: what the linear
+        # study compiles)
+        for task in plan(load_scene(path), evaluate=not nonlinear_only).tasks:
+            if not nonlinear_only or family(task) == "nonlinear":
+                run_task(task)
 
 
 def _ground() -> None:
@@ -121,10 +133,21 @@ def _ground() -> None:
     slide(_record(), 0.01, mu_k=[0.1], histories=True)
 
 
+def _study_linear() -> None:
+    """A study's tasks on linear buildings (fixed-base and linearly isolated), the planner's
+    evaluation included: the building's exact motion, its peaks and samples, rigid blocks,
+    slide–rock blocks, floor spectra and histories."""
+    _study(
+        'damping = 0.02\n\n[[buildings]]\nid = "iso"\nkind = "isolated"\n'
+        'superstructure = "fixed"\nperiod = 2.0'
+    )
+
+
 def _floors() -> None:
-    """Floors of linear buildings (``--building``, studies): the building's exact motion, its
-    peaks and samples, rigid blocks, rocking and slide–rock blocks and floor spectra on a floor;
-    rocking and slide–rock blocks and response spectra on the ground."""
+    """Floors of linear buildings for the one-record commands (``--building``) and the Python
+    API: the building's exact motion, its peaks and samples, rigid blocks, rocking and
+    slide–rock blocks and floor spectra on a floor; rocking and slide–rock blocks and response
+    spectra on the ground."""
     from floorslide.building.exact_motion import floor_motion
     from floorslide.building.model import ShearBuilding
     from floorslide.contents.rocking_block import rock
@@ -132,11 +155,7 @@ def _floors() -> None:
     from floorslide.run import warmup
     from floorslide.spectra.core import response_spectrum
 
-    warmup._linear_tasks()  # what a study's tasks run
-    _study(
-        'damping = 0.02\n\n[[buildings]]\nid = "iso"\nkind = "isolated"\n'
-        'superstructure = "fixed"\nperiod = 2.0'
-    )
+    warmup._linear_tasks()
     fixed = ShearBuilding.from_period(stories=1, period=0.2, damping=0.02)
     for building, floor in ((None, None), (fixed, 1)):  # as the one-record commands call them
         fm = floor_motion(building, _record(), floor, 0.01)
@@ -164,16 +183,37 @@ def _oscillator() -> None:
 
 def _nonlinear() -> None:
     """Buildings on nonlinear isolation (lead-rubber, friction pendulum) and the contents and
-    spectra that read their motion."""
+    spectra that read their motion, as the one-record commands and the Python API call them."""
+    import floorslide as fs
     from floorslide.run import warmup
 
     warmup._nonlinear_tasks()
-    for isolator in ('{ model = "friction_pendulum", mu = 0.06 }',
-                     '{ model = "bilinear", q_ratio = 0.06, yield_disp = 0.02 }'):  # fmt: skip
-        _study(
-            '\n[[buildings]]\nid = "iso"\nkind = "isolated"\nsuperstructure = "fixed"\n'
-            f"period = 3.0\nisolator = {isolator}"
-        )
+    sup = fs.ShearBuilding.from_period(stories=1, period=0.3, damping=0.03)
+    b = fs.NonlinearIsolatedBuilding(sup, 1.0, fs.FrictionPendulum(mu=0.05, period=3.0))
+    fm = b.motion(_record(), 0.01).floor(1)
+    fs.rock(fm, width=0.01, height=1.0)
+
+
+def _iso_studies() -> str:
+    """A scene's buildings on both kinds of nonlinear isolation."""
+    return "".join(
+        f'[[buildings]]\nid = "iso{i}"\nkind = "isolated"\nsuperstructure = "fixed"\n'
+        f"period = 3.0\nisolator = {isolator}\n\n"
+        for i, isolator in enumerate(_ISOLATORS)
+    )
+
+
+def _nonlinear_core() -> None:
+    """A study's buildings on nonlinear isolation alone, with floor spectra and nothing on the
+    floors: the building's kernel and the spectra on its segments, which no other family
+    compiles (so that they compile beside the linear study's)."""
+    _study(_iso_studies(), content=None, nonlinear_only=True)
+
+
+def _study_nonlinear() -> None:
+    """A study's tasks on nonlinear isolation (both kinds): what they add to the linear study's
+    kernels and the building's (compiled first, :data:`FAMILIES` ``after``)."""
+    _study(_iso_studies(), nonlinear_only=True)
 
 
 def _plane() -> None:
@@ -217,39 +257,63 @@ class Family:
         development machine, one family at a time): what the estimate is made of.
     run
         Calls each kernel of the family once on a short input.
+    after
+        Families compiled first when they are compiled too (their kernels are then loaded
+        from the disk cache instead of compiled twice side by side).
     """
 
     name: str
     title: str
     seconds: float
     run: Callable[[], None]
+    after: tuple[str, ...] = ()
 
 
+# fmt: off
 FAMILIES: dict[str, Family] = {
     f.name: f
     for f in (
+        Family("study", "a study's tasks on linear buildings", 50.0, _study_linear),
+        Family("nonlinear-core", "buildings on nonlinear isolation", 25.0, _nonlinear_core),
+        Family("study-nonlinear", "a study's tasks on nonlinear isolation", 5.0,
+               _study_nonlinear, after=("study", "nonlinear-core")),
         Family("ground", "rigid blocks on the ground", 15.0, _ground),
-        Family("floors", "linear buildings, blocks, rocking and spectra", 60.0, _floors),
-        Family("oscillator", "2-DOF sliding equipment", 25.0, _oscillator),
-        Family("nonlinear", "nonlinear isolation", 65.0, _nonlinear),
-        Family("plane", "two horizontal components", 65.0, _plane),
+        Family("floors", "one-record commands on linear buildings", 40.0, _floors,
+               after=("study",)),
+        Family("oscillator", "2-DOF sliding equipment", 25.0, _oscillator, after=("study",)),
+        Family("nonlinear", "one-record commands on nonlinear isolation", 30.0, _nonlinear,
+               after=("study-nonlinear",)),
+        Family("plane", "two horizontal components", 65.0, _plane, after=("study",)),
         Family("bench", "approximate methods of the bench", 30.0, _bench),
     )
 }
+# fmt: on
 """Every family, in the order ``floorslide warmup`` lists them."""
 
-USER_FAMILIES = ("ground", "floors", "oscillator", "nonlinear", "plane")
+USER_FAMILIES = (
+    "study",
+    "nonlinear-core",
+    "study-nonlinear",
+    "ground",
+    "floors",
+    "oscillator",
+    "nonlinear",
+    "plane",
+)
 """What ``floorslide warmup`` compiles by default: every kernel a study or a one-record
 command runs (the bench's approximate methods only when asked for)."""
 
 
 def scene_families(scene) -> list[str]:
     """The families a study of `scene` (a validated :class:`floorslide.scene.schema.Scene`)
-    runs: linear buildings always (the planner integrates them), and nonlinear isolation, 2-DOF
-    equipment and pairs of components where the scene has them."""
-    names = ["floors"]
+    runs: linear buildings always (the planner integrates them), and equipment on the ground,
+    nonlinear isolation, 2-DOF equipment and pairs of components where the scene has them."""
+    names = ["study"]
+    fixed = [b for b in scene.buildings if b.kind == "fixed"]
+    if any(0 in c.floors_of(b.stories) for c in scene.contents for b in fixed):
+        names.append("ground")  # equipment on the ground (floor 0 of a fixed-base building)
     if any(b.isolator_model not in ("", "linear") for b in scene.buildings):
-        names.append("nonlinear")
+        names += ["nonlinear-core", "study-nonlinear"]
     if any(c.model == "oscillator" for c in scene.contents):
         names.append("oscillator")
     if any(r.pairs for r in scene.records):
@@ -329,13 +393,23 @@ def _workers(requested: int | None) -> int:
         return max(1, os.cpu_count() or 1)
 
 
+def _depth(name: str, among: list[str]) -> int:
+    """How many `after` families (among `among`) come before `name`, at most, in a chain."""
+    deps = [a for a in FAMILIES[name].after if a in among]
+    return 1 + max(_depth(a, among) for a in deps) if deps else 0
+
+
 def estimate(names: Iterable[str], workers: int, load: float = 0.0) -> float:
     """Wall time to compile `names` on `workers` processes, longest first, s: the families'
     measured compile times, stretched when the machine's `load` (processes already running,
     e.g. the 1-minute load average) and the workers together exceed its cores."""
+    names = list(names)
     lanes = [0.0] * max(1, workers)
-    for name in sorted(names, key=lambda n: -FAMILIES[n].seconds):
-        lanes[lanes.index(min(lanes))] += FAMILIES[name].seconds
+    end: dict[str, float] = {}
+    for name in sorted(names, key=lambda n: (_depth(n, names), -FAMILIES[n].seconds)):
+        lane = lanes.index(min(lanes))
+        start = max([lanes[lane]] + [end.get(a, 0.0) for a in FAMILIES[name].after])
+        end[name] = lanes[lane] = start + FAMILIES[name].seconds
     cores = _workers(None)
     return max(lanes) * max(1.0, (load + min(workers, cores)) / cores)
 
@@ -349,6 +423,13 @@ def _load() -> float:
 
 def _say(line: str) -> None:
     print(f"floorslide: {line}", file=sys.stderr, flush=True)
+
+
+def _next(queue: list[str], running: Iterable[str]) -> str | None:
+    """The first family of `queue` (longest first) whose ``after`` families are neither queued
+    nor running (done, or not asked for), or None while each waits for one."""
+    waiting = set(queue) | set(running)
+    return next((n for n in queue if not set(FAMILIES[n].after) & waiting), None)
 
 
 def compile_families(
@@ -383,8 +464,11 @@ def compile_families(
     clock = sys.stderr.isatty()
     env = dict(os.environ, PYTHONWARNINGS="ignore")
     while queue or running:
-        while queue and len(running) < workers:
-            name = queue.pop(0)
+        while len(running) < workers:
+            name = _next(queue, running)
+            if name is None:
+                break
+            queue.remove(name)
             err = tempfile.TemporaryFile()  # a file, not a pipe: a chatty child never blocks
             proc = subprocess.Popen(
                 [sys.executable, "-m", "floorslide.firstrun", name],

@@ -88,8 +88,35 @@ def test_estimate_packs_families_on_the_cores():
 def test_scene_families():
     from floorslide.scene.schema import load_scene
 
+    # the demo: a study on linear buildings and on nonlinear isolation, nothing for the
+    # one-record commands (rocking without friction, ground spectra, ...) nor the ground
     assert firstrun.scene_families(load_scene(ROOT / "data/scenes/demo.toml")) == [
-        "floors",
-        "nonlinear",
+        "study",
+        "nonlinear-core",
+        "study-nonlinear",
     ]
-    assert "plane" in firstrun.scene_families(load_scene(ROOT / "data/scenes/pairs.toml"))
+    pairs = firstrun.scene_families(load_scene(ROOT / "data/scenes/pairs.toml"))
+    assert pairs[0] == "study" and "plane" in pairs and "nonlinear-core" not in pairs
+    # equipment on the ground (floor 0 of the fixed-base building) adds its family
+    assert "ground" in firstrun.scene_families(load_scene(ROOT / "data/scenes/design.toml"))
+
+
+def test_families_wait_for_those_they_build_on():
+    """A family whose kernels another compiles starts after it when both are asked for (the
+    demo's nonlinear study loads the linear study's and the building's kernels instead of
+    compiling them a second time beside them), and at once when it is asked for alone."""
+    f = firstrun.FAMILIES
+    demo = ["study", "nonlinear-core", "study-nonlinear"]
+    queue = sorted(demo, key=lambda n: -f[n].seconds)
+    assert firstrun._next(queue, []) == "study"
+    assert firstrun._next(["nonlinear-core", "study-nonlinear"], ["study"]) == "nonlinear-core"
+    assert firstrun._next(["study-nonlinear"], ["study", "nonlinear-core"]) is None
+    assert firstrun._next(["study-nonlinear"], ["study"]) is None
+    assert firstrun._next(["study-nonlinear"], []) == "study-nonlinear"
+    assert firstrun._next(["floors"], []) == "floors"  # "study" not asked for
+    # two workers: the two first side by side, the third after the longer of them
+    two = max(f["study"].seconds, f["nonlinear-core"].seconds) + f["study-nonlinear"].seconds
+    if firstrun._workers(None) >= 2:
+        assert firstrun.estimate(demo, 2) == pytest.approx(two)
+    for name, family in f.items():  # every `after` names a family, never itself
+        assert set(family.after) <= set(f) - {name}

@@ -438,11 +438,11 @@ def nonlinear_run(mat_of, PHI, PP, QQ, RR, BB, ER, EB, OR, OB, G, K, consts, acc
     GT = np.ascontiguousarray(G.transpose(0, 2, 3, 1))
     PHT = np.ascontiguousarray(PHI.transpose(0, 2, 1))
     need = np.zeros(nout, dtype=np.bool_)
-    z_valid = False  # z0 holds the outputs' values at the sub-step's start
+    z_valid = np.bool_(False)  # z0 holds the outputs' values at the sub-step's start
     branch = carry[0]
     fresh = carry[1] != 0
     n_ev = carry[2]
-    nseg = 0
+    nseg = np.int64(0)
     want_outputs = Yo.shape[0] == acc.size
     if k0 == 0:
         for i in range(N):
@@ -453,7 +453,7 @@ def nonlinear_run(mat_of, PHI, PP, QQ, RR, BB, ER, EB, OR, OB, G, K, consts, acc
                 Yo[0, i] = _value(G[mat_of[branch], i + 1], x, acc[0])
     fo = np.zeros(4, dtype=np.int64)
     k = k0
-    r = 0
+    r = np.int64(0)
     while k < k1:
         # the common sub-steps in one compiled loop (_fast_run), which stops before a
         # sub-step its bound cannot clear (then ``pre = -1``) or after one whose outputs need a

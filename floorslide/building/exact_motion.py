@@ -270,6 +270,11 @@ class FloorMotion:
     rv: np.ndarray = field(default_factory=lambda: np.zeros(0))
     rd: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
+    def __post_init__(self) -> None:
+        # read-only like the states and the record: a kernel reading them compiles once
+        for name in ("R", "beta", "rv", "rd"):
+            object.__setattr__(self, name, frozen(getattr(self, name)))
+
     @property
     def ground(self) -> bool:
         """True when the floor is the ground (its rows read no building state)."""
@@ -369,12 +374,11 @@ def building_motion(
     if getattr(building, "segmented", False):  # on nonlinear isolation: its segments
         return building.motion(ground_acc, dt, max_bytes=max_bytes)
     a, dt, notes = as_record(ground_acc, dt, "ground_acc")
-    if copy:
-        a = np.array(a, dtype=float)
-        a.setflags(write=False)
+    a = frozen(np.array(a, dtype=float) if copy else a)
     steps = a.size - 1
     if building is None:  # no states: zero-width, kept whole
-        return BuildingMotion(None, a, dt, 1, dt, None, max(steps, 1), notes, np.zeros((a.size, 0)))
+        X = frozen(np.zeros((a.size, 0)))
+        return BuildingMotion(None, a, dt, 1, dt, None, max(steps, 1), notes, X)
     st = stepper(building, dt)
     if substeps is not None and int(substeps) != st.substeps:
         if int(substeps) < st.substeps:
@@ -395,6 +399,18 @@ def building_motion(
         return BuildingMotion(building, a, dt, m, st.h, st, max(steps, 1), notes, X, None)
     L = max(1, min(steps, CHUNK_BYTES // (8 * n * m)))
     return BuildingMotion(building, a, dt, m, st.h, st, L, notes, None, [])
+
+
+def frozen(x: np.ndarray) -> np.ndarray:
+    """`x` read-only: itself if it is already, else a read-only view (no copy; `x` itself
+    stays writable). The arrays handed to the kernels are read-only whatever their source (a
+    record read from a file is; one made in memory is not), so that each kernel compiles once
+    and not once for either kind (numba types a read-only array apart)."""
+    if not x.flags.writeable:
+        return x
+    v = x.view()
+    v.setflags(write=False)
+    return v
 
 
 def _check_states(X: np.ndarray, t_end: float) -> None:

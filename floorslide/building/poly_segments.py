@@ -33,7 +33,7 @@ from floorslide._jit import njit
 from floorslide.building._instep import substep_inputs, taylor_coefficients
 from floorslide.building._kernels import foh_states
 from floorslide.building.directions import per_direction
-from floorslide.building.exact_motion import stepper
+from floorslide.building.exact_motion import frozen, stepper
 from floorslide.errors import ModelError
 from floorslide.pair import as_pair
 
@@ -341,8 +341,8 @@ class LinearPolyMotion:
             raise ModelError("LinearPolyMotion needs a building (GroundPolyMotion: the ground)",
                              "building")  # fmt: skip
         self.building = building
-        self.h1 = np.ascontiguousarray(pair.h1, dtype=float)
-        self.h2 = np.ascontiguousarray(pair.h2, dtype=float)
+        self.h1 = frozen(np.ascontiguousarray(pair.h1, dtype=float))
+        self.h2 = frozen(np.ascontiguousarray(pair.h2, dtype=float))
         self.dt = float(pair.dt)
         self.npts = int(self.h1.size)
         self.floors: tuple[int, ...] = tuple(bx.check_floors(floors))

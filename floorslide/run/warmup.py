@@ -21,11 +21,11 @@ import numpy as np
 
 def _linear_tasks() -> None:
     """One short call of each kernel a task on a linear building runs: the building's motion,
-    its floors' peaks and samples, rigid blocks with and without histories, rocking blocks,
-    floor spectra."""
+    its floors' peaks and samples, rigid blocks with and without histories, slide–rock blocks
+    (a study's rockers), floor spectra."""
     from floorslide.building.exact_motion import building_motion
     from floorslide.building.model import IsolatedBuilding, ShearBuilding
-    from floorslide.contents.rocking_block import rock
+    from floorslide.contents.slide_rock import slide_rock
     from floorslide.contents.sliding import slide
     from floorslide.spectra.core import response_spectrum
 
@@ -38,14 +38,14 @@ def _linear_tasks() -> None:
         fm = motion.floor(1)
         slide(fm, None, np.array([0.1]), np.array([0.1]))
         slide(fm, None, np.array([0.1]), np.array([0.1]), histories=True)
-        rock(fm, width=0.01, height=1.0)
+        slide_rock(fm, None, [0.3], [1.0], [0.4], mu_s=[0.5])
         response_spectrum(fm, None, np.array([0.5]), [0.05])
 
 
 def _nonlinear_tasks() -> None:
     """One short call of each kernel a task on nonlinear isolation runs: the building's motion
-    (its segments), rigid blocks with and without histories, rocking blocks, 2-DOF oscillators
-    and floor spectra reading them."""
+    (its segments), rigid blocks with and without histories, slide–rock blocks (a study's
+    rockers), 2-DOF oscillators and floor spectra reading them."""
     import floorslide as fs
 
     sup = fs.ShearBuilding.from_period(stories=1, period=0.3, damping=0.03)
@@ -54,7 +54,7 @@ def _nonlinear_tasks() -> None:
     fm = b.motion(ag, 0.01).floor(1)
     fs.slide(fm, mu_k=[0.1])
     fs.slide(fm, mu_k=[0.1], histories=True)
-    fs.rock(fm, width=0.01, height=1.0)
+    fs.slide_rock(fm, None, [0.3], [1.0], [0.4], mu_s=[0.5])
     fs.slide_oscillator(fm, mu=[0.1], frequency=5.0)
     fs.response_spectrum(fm, periods=[0.5])
 
