@@ -1874,7 +1874,9 @@ def demo(out_dir, workers):
         from floorslide.firstrun import scene_families
 
         _kernels(*scene_families(sc), workers=workers)
-        plan = make_plan(sc)
+        # as `floorslide run`: the per-object rules are left to the tasks (each building
+        # integrated once per record, not a second time to count them beforehand)
+        plan = make_plan(sc, evaluate=False)
     click.echo(plan.describe())
     summary = execute(plan, str(h5), workers=workers, overwrite=replace)
     if summary.interrupted:

@@ -83,17 +83,25 @@ def _loaded(family: str) -> bool:
     return bool(k.slide_kernel.signatures)
 
 
+COMPILED_BY = {"linear": ("study",), "nonlinear": ("nonlinear-core", "study-nonlinear")}
+"""The :mod:`floorslide.firstrun` families that compile a kernel family's tasks' kernels."""
+
+
 def start(families) -> list:
     """Start a side process per kernel family (``"linear"``, ``"nonlinear"``) this process has
-    not loaded yet; returns them (:func:`finish` them before the tasks run). None on platforms
-    without ``fork``."""
+    not loaded yet and the disk cache does not hold yet; returns them (:func:`finish` them
+    before the tasks run). None on platforms without ``fork``."""
     if sys.platform == "win32":  # pragma: no cover - spawn would re-import everything
         return []
+    from floorslide.firstrun import missing
+
     ctx = multiprocessing.get_context("fork")
     target = {"linear": _linear_tasks, "nonlinear": _nonlinear_tasks}
     procs = []
     for family in families:
-        if not _loaded(family):
+        # compiled already (floorslide.firstrun's families, marked in the disk cache): a side
+        # process would only load them, for nothing
+        if not _loaded(family) and missing(COMPILED_BY[family]):
             p = ctx.Process(target=_quietly, args=(target[family],), daemon=True)
             p.start()
             procs.append(p)

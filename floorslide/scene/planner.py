@@ -99,6 +99,9 @@ class Plan:
     scaling: list[dict] = field(default_factory=list)
     """Per scaled set (``scale`` or ``scale_pga``): its family, level, method, each record's
     factor (and misfit) and, for a target, the suite check (docs/design.md §10e)."""
+    evaluated: bool = True
+    """Whether the per-object rules were evaluated (and counted) here; else each task decides
+    them from its floor's true PFA."""
 
     def quality(self) -> dict:
         """The quality checks of the study (JSON-ready, stored in the plan): ``action`` (the
@@ -220,6 +223,11 @@ class Plan:
         lines.append("runs:")
         for what, count in sorted(self.runs.items()):
             lines.append(f"  {count:7d}  {what}")
+        if not self.evaluated and any(t.contents for t in self.tasks):
+            lines.append(
+                "  (which objects rock and which never slide: each task decides from its "
+                "floor's true PFA; `floorslide run --dry-run` counts them beforehand)"
+            )
         lines.append("skipped:")
         if not self.skipped:
             lines.append("        0  (nothing)")
@@ -864,7 +872,15 @@ def plan(scene: Scene, *, force: bool = False, evaluate: bool = True) -> Plan:
     if history is None and records:
         history = records[0].record
     tasks: list[Task] = []
-    p = Plan(scene, tasks, records, failures, rejected=rejected, scaling=scaling.finish(scene))
+    p = Plan(
+        scene,
+        tasks,
+        records,
+        failures,
+        rejected=rejected,
+        scaling=scaling.finish(scene),
+        evaluated=evaluate,
+    )
     if rejected:
         p.skipped["records rejected by the quality checks ([scene] qa = 'reject')"] += len(rejected)
     needs_vertical = [c.id for c in scene.contents if c.vertical]

@@ -184,3 +184,17 @@ def test_the_kernels_warm_up_in_side_processes():
     warmup._linear_tasks()  # (from the disk cache the side processes filled)
     warmup._nonlinear_tasks()
     assert warmup.start(["linear", "nonlinear"]) == []
+
+
+def test_no_side_process_for_kernels_the_disk_cache_holds(monkeypatch):
+    """Kernels compiled already (the first run's families, marked in the disk cache) are not
+    loaded in side processes for nothing: a warm run starts none, even in a process that has
+    not loaded them yet."""
+    from floorslide import firstrun
+    from floorslide.run import warmup
+
+    monkeypatch.setattr(warmup, "_loaded", lambda family: False)
+    asked: list[str] = []
+    monkeypatch.setattr(firstrun, "missing", lambda names: asked.extend(names) or [])
+    assert warmup.start(["linear", "nonlinear"]) == []
+    assert asked == ["study", "nonlinear-core", "study-nonlinear"]
