@@ -67,9 +67,17 @@ class Profiler:
         self.quick = quick
         self.rows: list[list] = []
         self.found: dict[str, dict] = {}
+        self.bares: list[float] = [bare]
 
     def time(self, fn) -> float:
         return timeit(fn, repeat=3 if self.quick else 7)
+
+    def bare_now(self) -> float:
+        """The bare loop's rate now (the machine is shared: each case is compared with the
+        bare loop measured beside it), kept in ``self.bare`` and ``self.bares``."""
+        self.bare = bare_rate(2_000_000)
+        self.bares.append(self.bare)
+        return self.bare
 
     def share(self, ns_per_step: float) -> float:
         """Share of the bare loop of a cost of `ns_per_step` per object·step."""
@@ -79,6 +87,7 @@ class Profiler:
         a = c.acc
         steps = len(a) - 1
         quiet = c.quiet * a
+        before = self.bare_now()
         t_short = self.time(lambda: c.run(a[:SHORT].copy()))
         t_quiet = self.time(lambda: c.run(quiet))
         t_real = self.time(lambda: c.run(a))
@@ -87,6 +96,7 @@ class Profiler:
         e_real = c.events(r_real)
         busy = c.busy(r_real, steps) if c.busy else None
         work = steps * c.objects
+        self.bare = 0.5 * (before + bare_rate(2_000_000))  # the mean of both sides
         # per call: the short record less its own steps at the quiet rate (a fixed point)
         q = t_quiet / work
         for _ in range(3):
@@ -115,6 +125,7 @@ class Profiler:
         self.rows.append(
             [
                 c.name,
+                f"{self.bare:.2e}",
                 f"{100 * c.target:.0f} %",
                 f"{100 * d['share_real']:.2f} %",
                 f"{per_call * 1e6:.0f} µs ({100 * d['call_share']:.0f} %)",
@@ -142,6 +153,15 @@ def _slips(r) -> int:
     return int(np.sum(r.slip_phases))
 
 
+def _rock_events(r) -> int:
+    print(
+        f"    rock: {int(np.sum(r.uplifts))} uplifts, {int(np.sum(r.impacts))} impacts "
+        f"({int(np.sum(r.significant_impacts))} significant)",
+        file=sys.stderr,
+    )
+    return int(np.sum(r.impacts) + np.sum(r.uplifts))
+
+
 def _sliding(r, steps) -> float:
     return float(np.sum(r.slide_fraction)) * steps
 
@@ -154,7 +174,7 @@ def cases() -> list[Case]:
     out.append(
         Case(
             "floor blocks, 1-storey fixed roof (T = 0.2 s), 100 objects",
-            lambda a: fs.slide(a, dt, mu, building=fixed, floor=1),
+            lambda a, mu=mu: fs.slide(a, dt, mu, building=fixed, floor=1),
             ag,
             100,
             _slips,
@@ -208,7 +228,7 @@ def cases() -> list[Case]:
                 lambda a, w=widths: fs.rock(a, dt, width=w, height=1.5),
                 ag,
                 k,
-                lambda r: int(np.sum(r.impacts) + np.sum(r.uplifts)),
+                _rock_events,
                 0.05,
                 "uplifts + impacts",
                 lambda r, steps: float(np.sum(r.rocking_time)) / dt,
@@ -252,9 +272,17 @@ def breakdowns(p: Profiler) -> list[list]:
     rows: list[list] = []
 
     def row(what, seconds, work, note=""):
+        p.bare_now()
         ns = seconds / work * 1e9
         rows.append(
-            [what, f"{seconds * 1e3:.3g} ms", f"{ns:.1f}", f"{100 * p.share(ns):.2f} %", note]
+            [
+                what,
+                f"{seconds * 1e3:.3g} ms",
+                f"{ns:.1f}",
+                f"{p.bare:.2e}",
+                f"{100 * p.share(ns):.2f} %",
+                note,
+            ]
         )
         print(f"  {what}: {ns:.1f} ns per unit", file=sys.stderr)
 
@@ -295,6 +323,18 @@ def breakdowns(p: Profiler) -> list[list]:
         p.time(lambda: fs.slide(q, dt, mu)),
         steps * 100,
     )
+    # the same events on linear segments: the roof's samples given as a ground record (the
+    # ground's kernel) — what the events cost without the floor's Taylor polynomial
+    roof = fm.samples()
+    r_roof, r_samp = fs.slide(fm, mu_k=mu), fs.slide(roof, dt, mu)
+    row(
+        "100 blocks on the roof's samples as a ground record (ground kernel, real)",
+        p.time(lambda: fs.slide(roof, dt, mu)),
+        steps * 100,
+        f"{int(r_samp.slip_phases.sum()):,} slip phases (on the roof: "
+        f"{int(r_roof.slip_phases.sum()):,}), sliding share "
+        f"{r_samp.slide_fraction.mean():.3f} (roof: {r_roof.slide_fraction.mean():.3f})",
+    )
     for k in (1, 100):
         muk = np.linspace(0.05, 0.5, k) if k > 1 else 0.2
         for where, kw in (("ground", {}), ("fixed roof", dict(building=fixed, floor=1))):
@@ -308,6 +348,16 @@ def breakdowns(p: Profiler) -> list[list]:
                     ),
                     steps * k,
                 )
+    muk = np.linspace(0.05, 0.5, 100)
+    osc = dict(frequency=5.0, damping=0.02, mass_ratio=1.0)
+    r_o = fs.slide_oscillator(roof, dt, mu=muk, **osc)
+    row(
+        "oscillator, 100 mu on the roof's samples as a ground record (real): per mu·step",
+        p.time(lambda: fs.slide_oscillator(roof, dt, mu=muk, **osc)),
+        steps * 100,
+        f"{int(r_o.slip_phases.sum()):,} slip phases, sliding share "
+        f"{r_o.slide_fraction.mean():.3f}",
+    )
     # isolators: the linear engine on the same building (the elastic isolator as a linear
     # one): its states alone, then with the floor samples, then with the true in-step peaks
     sup = fs.ShearBuilding.from_period(stories=1, period=0.3, damping=0.02)
@@ -435,6 +485,88 @@ def oscillator_parts(p: Profiler) -> list[list]:
     return rows
 
 
+def slide_paths(p: Profiler) -> list[list]:
+    """Which path the blocks on the fixed roof take, sub-step by sub-step: an instrumented copy
+    of :mod:`floorslide.contents._kernels` (counters added, nothing else changed; compiled
+    here, not cached) counts the object·sub-steps cleared stuck, cleared sliding one way (the
+    closed form) and sent to the event search (:func:`_general`), stuck or sliding."""
+    import importlib.util
+    import tempfile
+
+    from floorslide.constants import G
+    from floorslide.contents import _kernels as kn
+    from floorslide.contents.events import SLIDE_MAX_EVENTS
+
+    src = Path(kn.__file__).read_text(encoding="utf-8")
+    edits = [
+        (
+            "                ab_abs = max(amax, -amin)\n",
+            "                flags[9] += 1\n                ab_abs = max(amax, -amin)\n",
+        ),
+        (
+            "                if monotone:\n",
+            "                if monotone:\n                    flags[8] += 1\n",
+        ),
+        (
+            "        if not have_c:\n",
+            "        flags[6 if mode == 0.0 else 7] += 1\n        if not have_c:\n",
+        ),
+        (
+            "max_events, 0, nobj], dtype=np.int64",
+            "max_events, 0, nobj, 0, 0, 0, 0], dtype=np.int64",
+        ),
+        (
+            "    liftoff[2] = 1.0 if in_lift else 0.0",
+            "    liftoff[2] = 1.0 if in_lift else 0.0\n    return flags",
+        ),
+        ("cache=True", "cache=False"),
+    ]
+    for old, new in edits:
+        if old not in src:
+            print("  slide_paths: the kernel's source changed; skipped", file=sys.stderr)
+            return []
+        src = src.replace(old, new)
+    tmp = Path(tempfile.mkdtemp()) / "_kernels_counted.py"
+    tmp.write_text(src, encoding="utf-8")
+    spec = importlib.util.spec_from_file_location("_kernels_counted", tmp)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+
+    ag, dt = record_4000()
+    steps = ag.size - 1
+    fixed = fs.ShearBuilding.from_period(stories=1, period=0.2, damping=0.02)
+    mu = np.linspace(0.02, 0.5, 100)
+    rows = []
+    for scale, what in ((QUIET, "quiet"), (1.0, "real")):
+        a = scale * ag
+        fm = fs.floor_motion(fixed, a, 1, dt)
+        states = np.zeros((mu.size, kn.NCOL))
+        states[:, kn.LIMIT_AT] = -1.0
+        total = np.zeros(4, dtype=np.int64)
+        for k0, X in fm.chunks():
+            flags = mod.slide_kernel(
+                X, k0, fm.R, fm.beta, fm.rv, fm.rd, a, np.zeros(1), False, fm.substeps, fm.h,
+                G, mu, mu, True, True, states, np.zeros((0, 0)), np.zeros((0, 0)),
+                np.zeros((0, 0)), False, np.zeros(3), SLIDE_MAX_EVENTS,
+            )  # fmt: skip
+            total += flags[6:]
+        ref = fs.slide(fm, mu_k=mu)
+        same = np.array_equal(states[:, kn.PEAK_DISP], ref.peak_slide)
+        n = mu.size * steps * fm.substeps
+        rows.append(
+            [
+                f"fixed roof, 100 blocks, {what}",
+                f"{100 * total[3] / n:.2f} %",
+                f"{100 * total[2] / n:.2f} %",
+                f"{100 * total[0] / n:.2f} %",
+                f"{100 * total[1] / n:.2f} %",
+                "yes" if same else "NO",
+            ]
+        )
+        print(f"  slide paths {rows[-1]}", file=sys.stderr)
+    return rows
+
+
 # ---- main ----------------------------------------------------------------------------------
 
 
@@ -458,13 +590,16 @@ def main() -> None:
         print("breakdowns …", file=sys.stderr)
         brows = [] if args.only else breakdowns(p)
         orows = [] if args.only else oscillator_parts(p)
+        srows = [] if args.only else slide_paths(p)
         bare2 = bare_rate()
     out = [
         f"Machine: {machine()}; {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}; "
         f"load average (1, 5, 15 min) {load0} at the start, {_load()} at the end.",
         "",
         f"Bare loop `x = a·x + b[i]` (numba): **{bare:.2e} steps/s** at the start, "
-        f"{bare2:.2e} at the end (shares below use the first).",
+        f"{bare2:.2e} at the end; measured again beside every case and row (from "
+        f"{min(p.bares):.2e} to {max(p.bares):.2e}), and each share is of the bare loop "
+        "measured beside it.",
         "",
         f"Per call: a {SHORT}-sample record (its own steps at the quiet rate taken off), and its "
         "share of the real call. Quiet: the record scaled by "
@@ -477,6 +612,7 @@ def main() -> None:
         markdown_table(
             [
                 "case",
+                "bare loop (/s)",
                 "target",
                 "real share",
                 "per call",
@@ -495,7 +631,27 @@ def main() -> None:
             "",
             "Breakdowns (time per call; ns per unit named in the row; share of the bare loop):",
             "",
-            markdown_table(["variant", "time per call", "ns", "share", "note"], brows),
+            markdown_table(
+                ["variant", "time per call", "ns", "bare loop (/s)", "share", "note"], brows
+            ),
+        ]
+    if srows:
+        out += [
+            "",
+            "The blocks on the fixed roof, by path (an instrumented copy of the kernel counts "
+            "object·sub-steps; its peaks are checked equal to `fs.slide`'s):",
+            "",
+            markdown_table(
+                [
+                    "blocks",
+                    "stuck, cleared",
+                    "sliding one way, closed form",
+                    "event search from stick",
+                    "event search while sliding",
+                    "same peaks",
+                ],
+                srows,
+            ),
         ]
     if orows:
         out += [
