@@ -455,7 +455,11 @@ def oscillator_parts(p: Profiler) -> list[list]:
                 a = scale * ag
                 fm = floor_motion(bld, a, fl, dt)
                 counts = np.zeros(batch.C_NCOL, dtype=np.int64)
-                _oscillator_run(fm, a, mk, ms, w, xi, r, counts)
+                mine = _oscillator_run(fm, a, mk, ms, w, xi, r, counts)
+                ref = fs.slide_oscillator(
+                    fm, mu=mk, frequency=5.0, damping=0.02, mass_ratio=1.0
+                ).peak_slide
+                same = np.array_equal(mine[:, 5], ref)  # O_PEAK_U
                 n = counts.sum()
                 st, sl = counts[:5], counts[5:]
                 scratch = np.zeros(batch.C_NCOL, dtype=np.int64)
@@ -479,6 +483,7 @@ def oscillator_parts(p: Profiler) -> list[list]:
                         pc(sl[1]),
                         f"{ns:.1f}",
                         f"{ns_pre:.1f}" if what == "quiet" else "—",
+                        "yes" if same else "NO",
                     ]
                 )
                 print(f"  oscillator parts {rows[-1]}", file=sys.stderr)
@@ -674,6 +679,7 @@ def main() -> None:
                     "slip: event kernel",
                     "kernel ns/mu·step",
                     "same, peaks preset",
+                    "same peaks as the API",
                 ],
                 orows,
             ),
