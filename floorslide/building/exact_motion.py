@@ -226,7 +226,7 @@ class BuildingMotion:
             peak, t = ground_peak(self.acc, self.dt)
             return np.array([peak]), np.array([t])
         C, D, _ = self.building.output_matrices(floors, output)
-        R, beta = self.stepper.taylor_rows(C, D[:, 0])
+        R, beta = (frozen(x) for x in self.stepper.taylor_rows(C, D[:, 0]))
         peak = np.zeros(C.shape[0])
         tpk = np.zeros(C.shape[0])
         for k0, X in self.chunks():
@@ -314,7 +314,7 @@ class FloorMotion:
         """The building states chunk by chunk, as :meth:`BuildingMotion.chunks` (on the ground
         one chunk of zero-width states)."""
         if self.ground:
-            yield 0, np.zeros((self.acc.size, 0))
+            yield 0, frozen(np.zeros((self.acc.size, 0)))
             return
         yield from self.motion.chunks()
 
