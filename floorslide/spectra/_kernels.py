@@ -91,6 +91,110 @@ def _floor_bounds(phi_s, p_s, q_s, R, beta, K, x, a, a1, ms, hs, c, xs, xn, f0, 
 
 
 @njit(cache=True)
+def _floor_piece(setup, X, row0, AK, L, dt, f0, FK, W, c, xs, xn):
+    """The floor acceleration and its bounds on the ``L`` steps of a piece, into rows
+    ``0 … L − 1`` of ``FK``: ``f0, f1`` at the step's ends, then ``max|a_f|``, the deviation
+    from the chord, ``max|a_f'|`` and ``max|a_f'''|`` of :func:`_floor_bounds`. ``X[row0 + k]``
+    is the building state at the start of step ``k``, ``AK[k]`` the ground there; ``f0`` the
+    floor acceleration at the piece's start; returns that at its end.
+
+    When the building takes one sub-step per step (the kernel's grid is the building's own),
+    the same arithmetic as :func:`_floor_bounds`, operation for operation, is done for all the
+    piece's steps at once, step index innermost so that the compiler vectorises it (``W``:
+    scratch of at least ``(K + n + 4, L + 1)``); else step by step."""
+    b_R = setup.b_R
+    b_beta = setup.b_beta
+    K = setup.b_K
+    n = X.shape[1]
+    if setup.b_m != 1:
+        for k in range(L):
+            a = AK[k]
+            a1 = AK[k + 1]
+            xe = X[row0 + k + 1]
+            f1 = b_beta[0] * a1
+            for j in range(n):
+                f1 += b_R[0, j] * xe[j]
+            abound, fdev, jbound, m3f = _floor_bounds(
+                setup.b_phi,
+                setup.b_p,
+                setup.b_q,
+                b_R,
+                b_beta,
+                K,
+                X[row0 + k],
+                a,
+                a1,
+                setup.b_m,
+                dt / setup.b_m,
+                c,
+                xs,
+                xn,
+                f0,
+                f1,
+            )
+            FK[k, 0] = f0
+            FK[k, 1] = f1
+            FK[k, 2] = abound
+            FK[k, 3] = fdev
+            FK[k, 4] = jbound
+            FK[k, 5] = m3f
+            f0 = f1
+        return f0
+    hs = dt / setup.b_m
+    KR = b_R.shape[0]
+    # rows of W: the states (n), the floor values, three sums, the Taylor coefficients (K + 1)
+    F, S1, S2, S3, CT = n, n + 1, n + 2, n + 3, n + 4
+    for i in range(n):
+        for k in range(L + 1):
+            W[i, k] = X[row0 + k, i]
+    W[F, 0] = f0
+    for k in range(1, L + 1):
+        W[F, k] = b_beta[0] * AK[k]
+    for i in range(n):
+        r = b_R[0, i]
+        for k in range(1, L + 1):
+            W[F, k] += r * W[i, k]
+    for j in range(K + 1):
+        for k in range(L):
+            W[CT + j, k] = 0.0
+    for j in range(min(KR, K + 1)):
+        for i in range(n):
+            r = b_R[j, i]
+            for k in range(L):
+                W[CT + j, k] += r * W[i, k]
+        bj = b_beta[j]
+        for k in range(L):
+            W[CT + j, k] += bj * (AK[k] + (AK[k + 1] - AK[k]) * 0.0)
+        if j >= 1:
+            gj = b_beta[j - 1] / j
+            for k in range(L):
+                W[CT + j, k] += gj * ((AK[k + 1] - AK[k]) / (1 * hs))
+    for k in range(L):
+        W[S1, k] = 0.0
+        W[S2, k] = 0.0
+        W[S3, k] = 0.0
+    for j in range(K, 0, -1):
+        for k in range(L):
+            W[S1, k] = W[S1, k] * hs + j * abs(W[CT + j, k])
+        if j >= 2:
+            for k in range(L):
+                W[S2, k] = W[S2, k] * hs + j * (j - 1) * abs(W[CT + j, k])
+        if j >= 3:
+            for k in range(L):
+                W[S3, k] = W[S3, k] * hs + j * (j - 1) * (j - 2) * abs(W[CT + j, k])
+    e8 = (1 * hs) ** 2 / 8.0
+    for k in range(L):
+        dev = e8 * max(0.0, W[S2, k])
+        FK[k, 0] = W[F, k]
+        FK[k, 1] = W[F, k + 1]
+        FK[k, 2] = max(abs(W[F, k]), abs(W[F, k + 1])) + dev
+        FK[k, 3] = dev
+        FK[k, 4] = max(0.0, W[S1, k])
+        FK[k, 5] = max(0.0, W[S3, k])
+    return W[F, L]
+
+
+@njit(cache=True)
 def _floor_bound(phi_s, p_s, q_s, R, beta, K, x, a, a1, ms, hs, c, xs, xn, f0, f1):
     """Bounds of the floor acceleration ``a_f`` over one step (the building's own ``ms``
     sub-steps of ``hs``): its largest deviation from the straight line between its step-end
@@ -953,45 +1057,26 @@ def sample_peaks(setup, X, k0, acc, up, dt, S, FB):
         f0 += b_R[0, j] * X[0, j]
     L = CHUNK
     AK = np.zeros(L + 1)
+    FK = np.zeros((L, 6))
+    W = np.zeros((n + setup.b_K + 5, L + 1))
     for c0 in range(kf0, kf1, L):
         c1 = min(c0 + L, kf1)
         for k in range(c0, c1 + 1):
             AK[k - c0] = _sample(acc, k, up)
-        for k in range(c0, c1):
-            a = AK[k - c0]
-            a1 = AK[k + 1 - c0]
-            if n == 0:
+        if n == 0:
+            for k in range(c0, c1):
+                a = AK[k - c0]
+                a1 = AK[k + 1 - c0]
                 FB[FB_F] = max(FB[FB_F], abs(a), abs(a1))
                 FB[FB_S] = max(FB[FB_S], abs((a1 - a) / dt))
-                continue
-            xe = X[k + 1 - kf0]
-            f1 = b_beta[0] * a1
-            for j in range(n):
-                f1 += b_R[0, j] * xe[j]
-            abound, fdev, jbound, _ = _floor_bounds(
-                setup.b_phi,
-                setup.b_p,
-                setup.b_q,
-                b_R,
-                b_beta,
-                setup.b_K,
-                X[k - kf0],
-                a,
-                a1,
-                setup.b_m,
-                dt / setup.b_m,
-                c,
-                xs,
-                xn,
-                f0,
-                f1,
-            )
-            FB[FB_F] = max(FB[FB_F], abs(f0), abs(f1))
-            FB[FB_S] = max(FB[FB_S], abs((f1 - f0) / dt))
-            FB[FB_AB] = max(FB[FB_AB], abound)
-            FB[FB_DEV] = max(FB[FB_DEV], fdev)
-            FB[FB_J] = max(FB[FB_J], jbound)
-            f0 = f1
+        else:
+            f0 = _floor_piece(setup, X, c0 - kf0, AK, c1 - c0, dt, f0, FK, W, c, xs, xn)
+            for k in range(c1 - c0):
+                FB[FB_F] = max(FB[FB_F], abs(FK[k, 0]), abs(FK[k, 1]))
+                FB[FB_S] = max(FB[FB_S], abs((FK[k, 1] - FK[k, 0]) / dt))
+                FB[FB_AB] = max(FB[FB_AB], FK[k, 2])
+                FB[FB_DEV] = max(FB[FB_DEV], FK[k, 3])
+                FB[FB_J] = max(FB[FB_J], FK[k, 4])
         for blk in range(nblk):
             Cb = C[blk]
             Sb = S[blk]
@@ -1153,13 +1238,9 @@ def spectrum_kernel(setup, X, k0, acc, up, dt, search_all, S, out, counts):
     PX = setup.PX
     w = setup.w
     xi = setup.xi
-    b_phi = setup.b_phi
-    b_p = setup.b_p
-    b_q = setup.b_q
     b_R = setup.b_R
     b_beta = setup.b_beta
     b_K = setup.b_K
-    b_m = setup.b_m
     grp = setup.grp
     G_m = setup.G_m
     G_K = setup.G_K
@@ -1184,9 +1265,6 @@ def spectrum_kernel(setup, X, k0, acc, up, dt, search_all, S, out, counts):
     f0 = b_beta[0] * _sample(acc, kf0, up)  # the floor acceleration at the chunk start
     for j in range(n):
         f0 += b_R[0, j] * X[0, j]
-    f1 = f0
-    abound = 0.0
-    fdev = 0.0
     Kmax = max(G_K.max(), b_K)
     c = np.zeros(Kmax + 2)
     Q = np.zeros(Kmax + 2)
@@ -1204,47 +1282,15 @@ def spectrum_kernel(setup, X, k0, acc, up, dt, search_all, S, out, counts):
     L = CHUNK
     # floor: f0, f1, max|a_f|, deviation from the line, max|a_f'|, max|a_f'''|
     FK = np.zeros((L, 6))
+    W = np.zeros((n + b_K + 5, L + 1))
     AK = np.zeros(L + 1)  # the record on the kernel's grid through the piece
     for c0 in range(kf0, kf1, L):
         c1 = min(c0 + L, kf1)
         for k in range(c0, c1 + 1):
             AK[k - c0] = _sample(acc, k, up)
         # the floor through this piece, once for every block
-        for k in range(c0, c1):
-            if n == 0:
-                break
-            a = AK[k - c0]
-            a1 = AK[k + 1 - c0]
-            x = X[k - kf0]
-            xe = X[k + 1 - kf0]  # building state at the step end
-            f1 = b_beta[0] * a1  # floor acceleration at the step end
-            for j in range(n):
-                f1 += b_R[0, j] * xe[j]
-            abound, fdev, jbound, m3f = _floor_bounds(
-                b_phi,
-                b_p,
-                b_q,
-                b_R,
-                b_beta,
-                b_K,
-                x,
-                a,
-                a1,
-                b_m,
-                dt / b_m,
-                c,
-                xs,
-                xn,
-                f0,
-                f1,
-            )
-            FK[k - c0, 0] = f0
-            FK[k - c0, 1] = f1
-            FK[k - c0, 2] = abound
-            FK[k - c0, 3] = fdev
-            FK[k - c0, 4] = jbound
-            FK[k - c0, 5] = m3f
-            f0 = f1
+        if n > 0:
+            f0 = _floor_piece(setup, X, c0 - kf0, AK, c1 - c0, dt, f0, FK, W, c, xs, xn)
         # each block of oscillators through the chunk, its data staying in the L1 cache
         for blk in range(nblk):
             Cb = C[blk]
