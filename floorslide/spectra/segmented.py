@@ -22,6 +22,10 @@ BY_SERIES = False
 """Private switch: advance every oscillator by the series on every segment (the reference path
 of the tests) instead of the exact linear update on whole sub-steps."""
 
+EVENT_MEMORY = 64 * 2**20
+"""Bytes the first pass may keep of the segments between events (5 numbers per oscillator and
+segment; beyond it the second pass repeats their series)."""
+
 LAST_STATS = np.zeros(4, dtype=np.int64)
 """Counters of the last call (sub-steps on the fast path, oscillator·sub-steps there, flagged
 oscillator·sub-steps, polynomial searches): for profiling and tests."""
@@ -57,10 +61,28 @@ def spectrum_on_segments(fm, T: np.ndarray, Z: np.ndarray, notes: tuple[str, ...
         else:
             PH, OW, RC = np.zeros((4, 0)), np.zeros((0, 2, kn.N + 2, 0)), np.zeros((sk.NRC, 0))
         GT = kn.GT
-        for SI, SF, SX, SY, count in mo.chunks():
+        TH = np.zeros((3, w.size))
+        none = np.zeros((0, 5, w.size))
+        kept = []  # per chunk, what the first pass found on the segments between events
+        if fast:
+            # two passes (see _segment_kernels): the peaks at the ends, then the filters and
+            # searches against them; the oscillators start again at rest
+            FB = np.zeros((kn.G.shape[1], sk.NFBR))
+            room = EVENT_MEMORY // (5 * 8 * w.size)
+            for SI, SF, SX, SY, count in mo.chunks():
+                ne = int(np.count_nonzero(SI[:count, 2] != 1))
+                EV = np.zeros((ne, 5, w.size)) if 0 < ne <= room else none
+                room -= EV.shape[0]
+                kept.append(EV)
+                sk.peaks_at_ends(SI, SF, SX, SY, count, kn.G, GT, kn.OR, kn.OB, kn.K, mo.h, out,
+                                 w, xi, rho, S, P, D, PH, OW, RC, FB, EV)  # fmt: skip
+            sk.rider_thresholds(P, RC, out, FB, TH)
+            S[:] = 0.0
+        for c, (SI, SF, SX, SY, count) in enumerate(mo.chunks()):
+            EV = kept[c] if c < len(kept) else none
             sk.oscillators_on_segments(SI, SF, SX, SY, count, kn.G, GT, kn.OR, kn.OB, kn.K, mo.h,
                                        out, w, xi, rho, S, P, D, fast, PH, OW, RC,
-                                       stats)  # fmt: skip
+                                       stats, TH, fast, EV)  # fmt: skip
         LAST_STATS[:] = stats
         peaks = P.T[np.argsort(order, kind="stable")]
         for (i, j), (q, v, a) in zip(cells, peaks, strict=True):
