@@ -285,29 +285,31 @@ def _rider_tests(i0, i1, S, P, RC, S0, FL, f0, f1, fdev, h):
     fsl = (f1 - f0) / h
     amax = max(abs(f0), abs(f1))
     mf = 8.0 * fdev / (h * h)  # the bound of |a_f''|
-    Sq, Sv, S0q, S0v = S[0], S[1], S0[0], S0[1]
-    Pd, Pv, Pa = P[0], P[1], P[2]
+    Sq, Sv, S0q, S0v = S[0, i0:i1], S[1, i0:i1], S0[0, i0:i1], S0[1, i0:i1]
+    Pd, Pv, Pa = P[0, i0:i1], P[1, i0:i1], P[2, i0:i1]
+    RCb = RC[:, i0:i1]
+    fl = FL[i0:i1]
     nf = 0
-    for i in range(i0, i1):
+    for i in range(i1 - i0):
         q0 = S0q[i]
         v0 = S0v[i]
         q1 = Sq[i]
         v1 = Sv[i]
-        w = RC[R_W, i]
-        w2 = RC[R_W2, i]
-        c2 = RC[R_C2, i]
+        w = RCb[R_W, i]
+        w2 = RCb[R_W2, i]
+        c2 = RCb[R_C2, i]
         A0 = w2 * q0 + c2 * v0
         A1 = w2 * q1 + c2 * v1
-        iw2 = RC[R_IW2, i]
+        iw2 = RCb[R_IW2, i]
         bet = -fsl * iw2
-        alp = fsl * RC[R_AS, i] - f0 * iw2
+        alp = fsl * RCb[R_AS, i] - f0 * iw2
         e0 = q0 - alp
-        ci = (v0 - bet + RC[R_XIW, i] * e0) * RC[R_IWD, i]
+        ci = (v0 - bet + RCb[R_XIW, i] * e0) * RCb[R_IWD, i]
         cm = np.sqrt(e0 * e0 + ci * ci) * MARGIN
         # the response to the deviation and its derivatives
-        dq = fdev * RC[R_IH0, i]
-        dv = fdev * RC[R_IH1, i]
-        da = fdev * RC[R_IH2, i]
+        dq = fdev * RCb[R_IH0, i]
+        dv = fdev * RCb[R_IH1, i]
+        da = fdev * RCb[R_IH2, i]
         d2 = fdev + da
         d3 = h * mf + w2 * dv + c2 * d2
         d4 = mf + w2 * d2 + c2 * d3
@@ -334,12 +336,12 @@ def _rider_tests(i0, i1, S, P, RC, S0, FL, f0, f1, fdev, h):
         ld = max(abs(q0), abs(q1)) + k8 * m2 > pd
         lv = max(abs(v0), abs(v1)) + k8 * m3 > pv
         la = max(abs(A0), abs(A1)) + k8 * m2a > pa
-        no = RC[R_OK, i] == 0.0
+        no = RCb[R_OK, i] == 0.0
         fd = ((bd > pd) & ld & zd) | no
         fv = ((bv > pv) & lv & zv) | no
         fa = ((ba > pa) & la & za) | no
         f = fd + 2 * fv + 4 * fa
-        FL[i] = f
+        fl[i] = f
         nf += f
     return nf
 
@@ -347,7 +349,7 @@ def _rider_tests(i0, i1, S, P, RC, S0, FL, f0, f1, fdev, h):
 @njit(cache=True, _nrt=False)
 def _riders_fast(m, GT, OR, OB, OW, x, ax, aa, slope, h, K, z0, z1, osc_out, osc_w, osc_xi,
                  osc_rho, S, P, D, PH, RC, Z, U, S0, FL, c, CS, d, dv, da, work,
-                 stats, TH, screen):  # fmt: skip
+                 stats, TH, SPLIT, screen):  # fmt: skip
     """Advance the riders through a full sub-step without events (the common case) by their
     exact linear update, and search inside it only the quantities whose peak a rigorous
     filter cannot rule out (:func:`_rider_flags`), floor by floor.
@@ -381,11 +383,15 @@ def _riders_fast(m, GT, OR, OB, OW, x, ax, aa, slope, h, K, z0, z1, osc_out, osc
         fdev = _tight_deviation(GTm, o + 1, x, ax, aa, slope, h)
         if screen:
             # the second pass: the filter only where the screen lets a sub-step through
+            # (riders from `split` on have screens that let most sub-steps through: the
+            # filter, vectorised, on all of them)
             _rider_update(i0, i1, S, P, PH, U, RC, S0)
-            nf = _rider_screen(i0, i1, S, RC, S0, FL, TH)
-            if nf > 0:
-                nf = 0
-                for i in range(i0, i1):
+            split = SPLIT[i0]
+            nf = 0
+            if split < i1:
+                nf = _rider_tests(split, i1, S, P, RC, S0, FL, z0[o + 1], z1[o + 1], fdev, h)
+            if split > i0 and _rider_screen(i0, split, S, RC, S0, FL, TH) > 0:
+                for i in range(i0, split):
                     if FL[i] != 0:
                         nf += _rider_tests(
                             i, i + 1, S, P, RC, S0, FL, z0[o + 1], z1[o + 1], fdev, h
@@ -439,7 +445,7 @@ def _riders_fast(m, GT, OR, OB, OW, x, ax, aa, slope, h, K, z0, z1, osc_out, osc
 
 @njit(cache=True)
 def oscillators_on_segments(SI, SF, SX, SY, nseg, G, GT, OR, OB, K, h, osc_out, osc_w, osc_xi,
-                            osc_rho, S, P, D, fast, PH, OW, RC, stats, TH, screen,
+                            osc_rho, S, P, D, fast, PH, OW, RC, stats, TH, SPLIT, screen,
                             EV):  # fmt: skip
     """Advance linear oscillators through the segments ``0 … nseg − 1`` of a building's motion
     (the arrays of :class:`~floorslide.building.nonlinear_motion.NonlinearMotion`: ``SI[s] =
@@ -488,7 +494,7 @@ def oscillators_on_segments(SI, SF, SX, SY, nseg, G, GT, OR, OB, K, h, osc_out, 
                     last = o
             _riders_fast(m, GT, OR, OB, OW, x, oax, a_s, slope, L, K, z0, z1, osc_out, osc_w,
                          osc_xi, osc_rho, S, P, D, PH, RC, oZ, oU, oS0, oFL, co, CS, d, dv, da,
-                         ow, stats, TH, screen)  # fmt: skip
+                         ow, stats, TH, SPLIT, screen)  # fmt: skip
         else:
             _oscillators(OR[m], OB[m], x, a_s, slope, L, K, osc_out, osc_w, osc_xi, osc_rho, S,
                          P, D, co, CS, d, dv, da, ow, EV, e, use_ev)  # fmt: skip
@@ -541,15 +547,23 @@ SCREEN_MARGIN = 1.0 + 1e-6
 """Relative margin of the screen's deviation bounds (rounding of the record-wide bounds)."""
 
 
+WEAK = 0.75
+"""A rider's screen is weak when a threshold is below this fraction of its peak (it would let
+many sub-steps through): such riders take the filter on every sub-step."""
+
+
 @njit(cache=True)
-def rider_thresholds(P, RC, osc_out, FB, TH):
+def rider_thresholds(P, RC, osc_out, FB, TH, SPLIT):
     """The screen thresholds ``TH[:, i]`` of :func:`_rider_screen` after the first pass: each
     quantity's peak at the ends ``P`` less the largest chord deviation the tests of
     :func:`_rider_tests` allow it in any whole sub-step (``h²/8`` times ``m2, m3, m2a`` there),
     bounded from ``FB`` (:func:`peaks_at_ends`, rows ``FBR_*`` per floor row): a sub-step's
     start state is an end state, so ``|q0| ≤ P[0]``, ``|q'0| ≤ P[1]``; with the largest
     ``|a_f|``, chord slope and deviation the particular solution, ``|C|`` and the deviation's
-    response are bounded. Riders the filter does not apply to (``R_OK`` 0) get ``−∞``."""
+    response are bounded. Riders the filter does not apply to (``R_OK`` 0) get ``−∞``.
+
+    ``SPLIT[i0]``, for the riders ``i0 … i1 − 1`` of one floor (sorted by their rate), is the
+    first of the last run of riders whose screen is weak (:data:`WEAK`)."""
     for i in range(P.shape[1]):
         if RC[R_OK, i] == 0.0:
             TH[0, i] = -np.inf
@@ -577,6 +591,21 @@ def rider_thresholds(P, RC, osc_out, FB, TH):
         TH[0, i] = P[0, i] - k8 * m2
         TH[1, i] = P[1, i] - k8 * m3
         TH[2, i] = P[2, i] - k8 * m2a
+    nosc = P.shape[1]
+    i0 = 0
+    while i0 < nosc:
+        i1 = i0
+        while i1 < nosc and osc_out[i1] == osc_out[i0]:
+            i1 += 1
+        split = i1
+        while split > i0 and (
+            TH[0, split - 1] < WEAK * P[0, split - 1]
+            or TH[1, split - 1] < WEAK * P[1, split - 1]
+            or TH[2, split - 1] < WEAK * P[2, split - 1]
+        ):
+            split -= 1
+        SPLIT[i0] = split
+        i0 = i1
 
 
 @njit(cache=True)
