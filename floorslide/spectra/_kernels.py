@@ -6,6 +6,14 @@ of ``building/exact.py``; on the ground this is the recurrence of Nigam & Jennin
 floor the record is stepped on the building's own sub-steps (``ρ(A)·h ≤ 0.5``; the ground is
 linear inside a record step, so this is the same input).
 
+The record is gone through twice. The first pass (:func:`sample_peaks`) steps the oscillators
+at the samples alone and keeps their peaks there, lower bounds of the true peaks; the second
+(:func:`spectrum_kernel`) steps them again (the same states, bit for bit) and tests each step
+against those peaks: first a screen of its end values against the peak less a record-wide
+bound of the chord deviation (:func:`screen_thresholds`), then, for the few steps that pass it,
+the tests below. Against the whole record's peaks they flag a few steps per oscillator near
+its peak; against the running peaks (one pass) they flagged most steps early in the record.
+
 Every step is one branch-free pass over the oscillators that the compiler vectorises: the
 oscillators' data are held in blocks of ``NB`` as rows of a compile-time stride, and each block
 goes through a chunk of the record while its rows stay in the L1 cache. The pass flags the
@@ -15,7 +23,7 @@ for the straight line through the input's step-end values) plus a damped free vi
 ``e = Re(C e^{λτ})`` (``|e^(k)| ≤ |C|ω^k``) plus, on a floor, the zero-state response to the
 floor's deviation ``δ`` from that line (``|q_δ| ≤ max|δ|·∫|h|``). A quantity is flagged when
 
-- its bound ``max|particular| + |C|ω^k (+ max|δ|·∫|h^(k)|)`` exceeds its peak so far;
+- its bound ``max|particular| + |C|ω^k (+ max|δ|·∫|h^(k)|)`` exceeds its peak;
 - on the ground, also its end values plus the linear interpolation error ``h²/8·max|f''|``;
 - on the ground, for oscillators with ``ω·h ≤ 0.5``, also the sign of its first or second
   derivative changes between the step ends (every derivative of the free vibration has at

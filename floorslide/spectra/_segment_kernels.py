@@ -5,6 +5,9 @@ motion, by its exact linear update on a whole sub-step without isolator events (
 filter that leaves few sub-steps to search, :func:`_riders_fast`) and by the Taylor series of its
 exact response to the floor's in-step polynomial through a segment between events
 (:func:`_oscillators`). The building is integrated once, without them; they read its segments.
+The oscillators go through the segments twice: first for their peaks at the ends
+(:func:`peaks_at_ends`), then with the filters and searches against those peaks (see the notes
+before :func:`_rider_screen`).
 """
 
 from __future__ import annotations
