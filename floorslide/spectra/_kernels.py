@@ -1161,6 +1161,8 @@ def spectrum_state(nblk: int, f0: float) -> np.ndarray:
     ``f0`` the floor acceleration at ``t = 0``), ``(nblk, NSTATE·NB)``."""
     S = np.zeros((nblk, NSTATE * NB))
     S[:, _D * NB : (_D + 1) * NB] = -f0
+    # no screen until screen_thresholds sets one: every step goes to the full tests
+    S[:, _TD * NB : (_TA + 1) * NB] = -np.inf
     return S
 
 
