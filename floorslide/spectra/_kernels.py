@@ -6,6 +6,14 @@ of ``building/exact.py``; on the ground this is the recurrence of Nigam & Jennin
 floor the record is stepped on the building's own sub-steps (``ρ(A)·h ≤ 0.5``; the ground is
 linear inside a record step, so this is the same input).
 
+The record is gone through twice. The first pass (:func:`sample_peaks`) steps the oscillators
+at the samples alone and keeps their peaks there, lower bounds of the true peaks; the second
+(:func:`spectrum_kernel`) steps them again (the same states, bit for bit) and tests each step
+against those peaks: first a screen of its end values against the peak less a record-wide
+bound of the chord deviation (:func:`screen_thresholds`), then, for the few steps that pass it,
+the tests below. Against the whole record's peaks they flag a few steps per oscillator near
+its peak; against the running peaks (one pass) they flagged most steps early in the record.
+
 Every step is one branch-free pass over the oscillators that the compiler vectorises: the
 oscillators' data are held in blocks of ``NB`` as rows of a compile-time stride, and each block
 goes through a chunk of the record while its rows stay in the L1 cache. The pass flags the
@@ -15,7 +23,7 @@ for the straight line through the input's step-end values) plus a damped free vi
 ``e = Re(C e^{λτ})`` (``|e^(k)| ≤ |C|ω^k``) plus, on a floor, the zero-state response to the
 floor's deviation ``δ`` from that line (``|q_δ| ≤ max|δ|·∫|h|``). A quantity is flagged when
 
-- its bound ``max|particular| + |C|ω^k (+ max|δ|·∫|h^(k)|)`` exceeds its peak so far;
+- its bound ``max|particular| + |C|ω^k (+ max|δ|·∫|h^(k)|)`` exceeds its peak;
 - on the ground, also its end values plus the linear interpolation error ``h²/8·max|f''|``;
 - on the ground, for oscillators with ``ω·h ≤ 0.5``, also the sign of its first or second
   derivative changes between the step ends (every derivative of the free vibration has at
@@ -88,6 +96,110 @@ def _floor_bounds(phi_s, p_s, q_s, R, beta, K, x, a, a1, ms, hs, c, xs, xn, f0, 
                 xs[i] = xn[i]
     dev = (ms * hs) ** 2 / 8.0 * m2
     return max(abs(f0), abs(f1)) + dev, dev, m1, m3
+
+
+@njit(cache=True)
+def _floor_piece(setup, X, row0, AK, L, dt, f0, FK, W, c, xs, xn):
+    """The floor acceleration and its bounds on the ``L`` steps of a piece, into rows
+    ``0 … L − 1`` of ``FK``: ``f0, f1`` at the step's ends, then ``max|a_f|``, the deviation
+    from the chord, ``max|a_f'|`` and ``max|a_f'''|`` of :func:`_floor_bounds`. ``X[row0 + k]``
+    is the building state at the start of step ``k``, ``AK[k]`` the ground there; ``f0`` the
+    floor acceleration at the piece's start; returns that at its end.
+
+    When the building takes one sub-step per step (the kernel's grid is the building's own),
+    the same arithmetic as :func:`_floor_bounds`, operation for operation, is done for all the
+    piece's steps at once, step index innermost so that the compiler vectorises it (``W``:
+    scratch of at least ``(K + n + 4, L + 1)``); else step by step."""
+    b_R = setup.b_R
+    b_beta = setup.b_beta
+    K = setup.b_K
+    n = X.shape[1]
+    if setup.b_m != 1:
+        for k in range(L):
+            a = AK[k]
+            a1 = AK[k + 1]
+            xe = X[row0 + k + 1]
+            f1 = b_beta[0] * a1
+            for j in range(n):
+                f1 += b_R[0, j] * xe[j]
+            abound, fdev, jbound, m3f = _floor_bounds(
+                setup.b_phi,
+                setup.b_p,
+                setup.b_q,
+                b_R,
+                b_beta,
+                K,
+                X[row0 + k],
+                a,
+                a1,
+                setup.b_m,
+                dt / setup.b_m,
+                c,
+                xs,
+                xn,
+                f0,
+                f1,
+            )
+            FK[k, 0] = f0
+            FK[k, 1] = f1
+            FK[k, 2] = abound
+            FK[k, 3] = fdev
+            FK[k, 4] = jbound
+            FK[k, 5] = m3f
+            f0 = f1
+        return f0
+    hs = dt / setup.b_m
+    KR = b_R.shape[0]
+    # rows of W: the states (n), the floor values, three sums, the Taylor coefficients (K + 1)
+    F, S1, S2, S3, CT = n, n + 1, n + 2, n + 3, n + 4
+    for i in range(n):
+        for k in range(L + 1):
+            W[i, k] = X[row0 + k, i]
+    W[F, 0] = f0
+    for k in range(1, L + 1):
+        W[F, k] = b_beta[0] * AK[k]
+    for i in range(n):
+        r = b_R[0, i]
+        for k in range(1, L + 1):
+            W[F, k] += r * W[i, k]
+    for j in range(K + 1):
+        for k in range(L):
+            W[CT + j, k] = 0.0
+    for j in range(min(KR, K + 1)):
+        for i in range(n):
+            r = b_R[j, i]
+            for k in range(L):
+                W[CT + j, k] += r * W[i, k]
+        bj = b_beta[j]
+        for k in range(L):
+            W[CT + j, k] += bj * (AK[k] + (AK[k + 1] - AK[k]) * 0.0)
+        if j >= 1:
+            gj = b_beta[j - 1] / j
+            for k in range(L):
+                W[CT + j, k] += gj * ((AK[k + 1] - AK[k]) / (1 * hs))
+    for k in range(L):
+        W[S1, k] = 0.0
+        W[S2, k] = 0.0
+        W[S3, k] = 0.0
+    for j in range(K, 0, -1):
+        for k in range(L):
+            W[S1, k] = W[S1, k] * hs + j * abs(W[CT + j, k])
+        if j >= 2:
+            for k in range(L):
+                W[S2, k] = W[S2, k] * hs + j * (j - 1) * abs(W[CT + j, k])
+        if j >= 3:
+            for k in range(L):
+                W[S3, k] = W[S3, k] * hs + j * (j - 1) * (j - 2) * abs(W[CT + j, k])
+    e8 = (1 * hs) ** 2 / 8.0
+    for k in range(L):
+        dev = e8 * max(0.0, W[S2, k])
+        FK[k, 0] = W[F, k]
+        FK[k, 1] = W[F, k + 1]
+        FK[k, 2] = max(abs(W[F, k]), abs(W[F, k + 1])) + dev
+        FK[k, 3] = dev
+        FK[k, 4] = max(0.0, W[S1, k])
+        FK[k, 5] = max(0.0, W[S3, k])
+    return W[F, L]
 
 
 @njit(cache=True)
@@ -475,13 +587,22 @@ def _ground_search(
 NB = 32
 # record steps per chunk (on a floor the building is stepped once per chunk for every block)
 CHUNK = 1024
+# a block runs the full skip tests vectorised for the rest of a chunk when the screen let more
+# than 1/SCREEN_RATIO of its oscillator·steps through in the chunk's first SCREEN_TRIAL steps
+SCREEN_TRIAL = 64
+SCREEN_RATIO = 8
 # coefficient rows: exact record-step recurrence, then constants of the skip tests
 P0, P1, P2, P3, P4, P5, X0, X1 = range(8)
 W, W2, C2, IW2, AS, XIW, IWD, KD2, KV2, KA2, SA, SA2, ONE, IH0, IH1, IH2 = range(8, 24)
 NCOEF = 24
-# state rows: q, q', q'' at the step end; peaks; q, q' at the step start; coupling terms
-_Q, _V, _D, _PD, _PV, _PA, _QS, _VS, _CP0, _CP1 = range(10)
-NSTATE = 10
+# state rows: q, q', q'' at the step end; peaks; q, q' at the step start; coupling terms;
+# screen thresholds of |q|, |q'|, |ω²q + 2ξωq'| (see screen_thresholds)
+_Q, _V, _D, _PD, _PV, _PA, _QS, _VS, _CP0, _CP1, _TD, _TV, _TA = range(13)
+NSTATE = 13
+# record-wide bounds of the motion, from sample_peaks: max|f|, max|f'| over the steps' chords,
+# and on a floor the largest of the steps' max|a_f|, deviation from the chord, max|a_f'|
+FB_F, FB_S, FB_AB, FB_DEV, FB_J = range(5)
+NFB = 5
 
 
 _MARGIN2 = (1.0 + 1e-6) ** 2
@@ -673,11 +794,375 @@ def _stage_floor(C, S, flag, nb, a, a1, dt, f0, f1, fdev, abound, jbound):
     return nf
 
 
+# The two passes of a spectrum. A first pass (sample_peaks) steps every oscillator through the
+# whole record at the samples alone: its peaks at the samples, which are lower bounds of the
+# true peaks. With them known in advance, a step can contain a larger peak only where a
+# quantity's end value comes within a record-wide bound of its chord deviation of that lower
+# bound (screen_thresholds): the second pass (spectrum_kernel) steps the oscillators again (the
+# same recurrence, the same states bit for bit), compares each step's end values with these
+# thresholds (_screen_ground, _screen_floor: an update and three comparisons per oscillator),
+# applies the full skip tests of _stage_ground and _stage_floor to the few steps that pass
+# (_ground_test, _floor_test, the same tests with the same arithmetic) and searches the steps
+# those flag. Against the peaks of the samples of the whole record the tests flag a few steps
+# per oscillator near its peak, where with the running peaks they flagged most steps early in
+# the record; the peaks found are the same numbers (every peak is the largest of the sample
+# values and of the interior critical values of the steps searched, and a step skipped is
+# proven not to exceed the samples' peak).
+
+
+@njit(cache=True)
+def _screen_ground(C, S, flag, nb, a, a1):
+    """Advance the first ``nb`` oscillators of a block by one record step on the ground (the
+    recurrence of :func:`_stage_ground`) and flag those whose step-end values of a quantity
+    exceed its screen threshold (rows ``_TD, _TV, _TA``: the peak of the samples less the
+    largest chord deviation the quantity can have in a step, :func:`screen_thresholds`); a step
+    not flagged has no interior value above that peak. Returns the number of flags set.
+    Branch-free: the compiler vectorises it."""
+    nf = 0
+    for o in range(nb):
+        q0 = S[_Q * NB + o]
+        v0 = S[_V * NB + o]
+        w2 = C[W2 * NB + o]
+        c2 = C[C2 * NB + o]
+        q1 = C[P0 * NB + o] * q0 + C[P1 * NB + o] * v0 + C[P4 * NB + o] * a + C[X0 * NB + o] * a1
+        v1 = C[P2 * NB + o] * q0 + C[P3 * NB + o] * v0 + C[P5 * NB + o] * a + C[X1 * NB + o] * a1
+        A0 = w2 * q0 + c2 * v0
+        A1 = w2 * q1 + c2 * v1
+        fd = max(abs(q0), abs(q1)) > S[_TD * NB + o]
+        fv = max(abs(v0), abs(v1)) > S[_TV * NB + o]
+        fa = max(abs(A0), abs(A1)) > S[_TA * NB + o]
+        f = fd + 2 * fv + 4 * fa
+        flag[o] = f
+        nf += f
+        S[_QS * NB + o] = q0
+        S[_VS * NB + o] = v0
+        S[_Q * NB + o] = q1
+        S[_V * NB + o] = v1
+    return nf
+
+
+@njit(cache=True)
+def _screen_floor(C, S, flag, nb, a, a1):
+    """As :func:`_screen_ground` on a floor: the recurrence of :func:`_stage_floor` (coupled to
+    the building state through rows ``_CP0, _CP1``) and the same screen."""
+    nf = 0
+    for o in range(nb):
+        q0 = S[_Q * NB + o]
+        v0 = S[_V * NB + o]
+        w2 = C[W2 * NB + o]
+        c2 = C[C2 * NB + o]
+        q1 = (
+            C[P0 * NB + o] * q0
+            + C[P1 * NB + o] * v0
+            + C[P4 * NB + o] * a
+            + C[X0 * NB + o] * a1
+            + S[_CP0 * NB + o]
+        )
+        v1 = (
+            C[P2 * NB + o] * q0
+            + C[P3 * NB + o] * v0
+            + C[P5 * NB + o] * a
+            + C[X1 * NB + o] * a1
+            + S[_CP1 * NB + o]
+        )
+        A0 = w2 * q0 + c2 * v0
+        A1 = w2 * q1 + c2 * v1
+        fd = max(abs(q0), abs(q1)) > S[_TD * NB + o]
+        fv = max(abs(v0), abs(v1)) > S[_TV * NB + o]
+        fa = max(abs(A0), abs(A1)) > S[_TA * NB + o]
+        f = fd + 2 * fv + 4 * fa
+        flag[o] = f
+        nf += f
+        S[_QS * NB + o] = q0
+        S[_VS * NB + o] = v0
+        S[_Q * NB + o] = q1
+        S[_V * NB + o] = v1
+    return nf
+
+
+@njit(cache=True)
+def _ground_test(C, S, o, a, a1, dt):
+    """The flags of :func:`_stage_ground` for oscillator ``o`` of a block already advanced
+    through the step (its start and end states in rows ``_QS, _VS`` and ``_Q, _V``): the same
+    tests in the same arithmetic, for one oscillator (the steps :func:`_screen_ground` passes)."""
+    amax = max(abs(a), abs(a1))
+    slope = (a1 - a) / dt
+    q0 = S[_QS * NB + o]
+    v0 = S[_VS * NB + o]
+    q1 = S[_Q * NB + o]
+    v1 = S[_V * NB + o]
+    w2 = C[W2 * NB + o]
+    c2 = C[C2 * NB + o]
+    A0 = w2 * q0 + c2 * v0
+    A1 = w2 * q1 + c2 * v1
+    d0 = -(a + A0)
+    d1 = -(a1 + A1)
+    pd = max(S[_PD * NB + o], abs(q1))
+    pv = max(S[_PV * NB + o], abs(v1))
+    pa = max(S[_PA * NB + o], abs(A1))
+    iw2 = C[IW2 * NB + o]
+    bet = -slope * iw2
+    alp = slope * C[AS * NB + o] - a * iw2
+    e0 = q0 - alp
+    ci = (v0 - bet + C[XIW * NB + o] * e0) * C[IWD * NB + o]
+    cm2 = e0 * e0 + ci * ci
+    rd = pd - max(abs(alp), abs(alp + bet * dt))
+    rv = pv - abs(bet)
+    ra = pa - amax
+    bd = (rd < 0.0) | (cm2 > rd * rd)
+    bv = (rv < 0.0) | (w2 * cm2 > rv * rv)
+    ba = (ra < 0.0) | (C[SA2 * NB + o] * cm2 > ra * ra)
+    sd = pd - max(abs(q0), abs(q1))
+    sv = pv - max(abs(v0), abs(v1))
+    sa = pa - max(abs(A0), abs(A1))
+    ad0 = w2 * v0 + c2 * d0
+    ad1 = w2 * v1 + c2 * d1
+    kv = C[KV2 * NB + o] * cm2
+    ld = C[KD2 * NB + o] * cm2 > sd * sd
+    lv = kv > sv * sv
+    la = C[KA2 * NB + o] * cm2 > sa * sa
+    many = C[ONE * NB + o] == 0.0
+    kvm = kv * _MARGIN2
+    ka = C[KA2 * NB + o] * cm2 * w2 * _MARGIN2
+    near_d = (v0 * v0 <= kvm) | (v1 * v1 <= kvm)
+    near_a = (ad0 * ad0 <= ka) | (ad1 * ad1 <= ka)
+    fd = bd & ld & (many | (v0 * v1 <= 0.0) | ((d0 * d1 <= 0.0) & near_d))
+    fv = bv & lv & (many | (d0 * d1 <= 0.0))
+    fa = ba & la & (many | (ad0 * ad1 <= 0.0) | near_a)
+    return fd + 2 * fv + 4 * fa
+
+
+@njit(cache=True)
+def _floor_test(C, S, o, dt, f0, f1, fdev, abound, jbound):
+    """The flags of :func:`_stage_floor` for oscillator ``o`` of a block already advanced through
+    the step (as :func:`_ground_test`): the same tests in the same arithmetic."""
+    fslope = (f1 - f0) / dt
+    k8 = 0.125 * dt * dt
+    m2f = 8.0 * fdev / (dt * dt)
+    q0 = S[_QS * NB + o]
+    v0 = S[_VS * NB + o]
+    q1 = S[_Q * NB + o]
+    v1 = S[_V * NB + o]
+    w2 = C[W2 * NB + o]
+    c2 = C[C2 * NB + o]
+    A1 = w2 * q1 + c2 * v1
+    pd = max(S[_PD * NB + o], abs(q1))
+    pv = max(S[_PV * NB + o], abs(v1))
+    pa = max(S[_PA * NB + o], abs(A1))
+    iw2 = C[IW2 * NB + o]
+    bet = -fslope * iw2
+    alp = fslope * C[AS * NB + o] - f0 * iw2
+    e0 = q0 - alp
+    ci = (v0 - bet + C[XIW * NB + o] * e0) * C[IWD * NB + o]
+    cm = math.sqrt(e0 * e0 + ci * ci)
+    bd = max(abs(alp), abs(alp + bet * dt)) + cm + fdev * C[IH0 * NB + o]
+    bv = abs(bet) + C[W * NB + o] * cm + fdev * C[IH1 * NB + o]
+    ba = abound + C[SA * NB + o] * cm + fdev * C[IH2 * NB + o]
+    m2q = abound + c2 * bv + w2 * bd
+    m2v = jbound + c2 * m2q + w2 * bv
+    m2a = w2 * m2q + c2 * m2v
+    A0 = w2 * q0 + c2 * v0
+    m4q = m2f + c2 * m2v + w2 * m2q
+    m3a = w2 * m2v + c2 * m4q
+    d0 = -(f0 + A0)
+    d1 = -(f1 + A1)
+    ad0 = w2 * v0 + c2 * d0
+    ad1 = w2 * v1 + c2 * d1
+    zd = (v0 * v1 <= 0.0) | (abs(v0) <= k8 * m2v) | (abs(v1) <= k8 * m2v)
+    zv = (d0 * d1 <= 0.0) | (abs(d0) <= k8 * m4q) | (abs(d1) <= k8 * m4q)
+    za = (ad0 * ad1 <= 0.0) | (abs(ad0) <= k8 * m3a) | (abs(ad1) <= k8 * m3a)
+    ld = (abs(q0) + k8 * m2q > pd) | (abs(q1) + k8 * m2q > pd)
+    lv = (abs(v0) + k8 * m2v > pv) | (abs(v1) + k8 * m2v > pv)
+    la = (abs(A0) + k8 * m2a > pa) | (abs(A1) + k8 * m2a > pa)
+    fd = (bd > pd) & ld & zd
+    fv = (bv > pv) & lv & zv
+    fa = (ba > pa) & la & za
+    return fd + 2 * fv + 4 * fa
+
+
+@njit(cache=True)
+def _advance_ground(C, S, nb, a, a1):
+    """Advance the first ``nb`` oscillators of a block by one record step on the ground (the
+    recurrence of :func:`_stage_ground`, the same arithmetic) and raise their peaks at the
+    samples. Branch-free: the compiler vectorises it."""
+    for o in range(nb):
+        q0 = S[_Q * NB + o]
+        v0 = S[_V * NB + o]
+        q1 = C[P0 * NB + o] * q0 + C[P1 * NB + o] * v0 + C[P4 * NB + o] * a + C[X0 * NB + o] * a1
+        v1 = C[P2 * NB + o] * q0 + C[P3 * NB + o] * v0 + C[P5 * NB + o] * a + C[X1 * NB + o] * a1
+        A1 = C[W2 * NB + o] * q1 + C[C2 * NB + o] * v1
+        S[_PD * NB + o] = max(S[_PD * NB + o], abs(q1))
+        S[_PV * NB + o] = max(S[_PV * NB + o], abs(v1))
+        S[_PA * NB + o] = max(S[_PA * NB + o], abs(A1))
+        S[_Q * NB + o] = q1
+        S[_V * NB + o] = v1
+
+
+@njit(cache=True)
+def _advance_floor(C, S, nb, a, a1):
+    """As :func:`_advance_ground` on a floor (the recurrence of :func:`_stage_floor`)."""
+    for o in range(nb):
+        q0 = S[_Q * NB + o]
+        v0 = S[_V * NB + o]
+        q1 = (
+            C[P0 * NB + o] * q0
+            + C[P1 * NB + o] * v0
+            + C[P4 * NB + o] * a
+            + C[X0 * NB + o] * a1
+            + S[_CP0 * NB + o]
+        )
+        v1 = (
+            C[P2 * NB + o] * q0
+            + C[P3 * NB + o] * v0
+            + C[P5 * NB + o] * a
+            + C[X1 * NB + o] * a1
+            + S[_CP1 * NB + o]
+        )
+        A1 = C[W2 * NB + o] * q1 + C[C2 * NB + o] * v1
+        S[_PD * NB + o] = max(S[_PD * NB + o], abs(q1))
+        S[_PV * NB + o] = max(S[_PV * NB + o], abs(v1))
+        S[_PA * NB + o] = max(S[_PA * NB + o], abs(A1))
+        S[_Q * NB + o] = q1
+        S[_V * NB + o] = v1
+
+
+@njit(cache=True, inline="always")
+def _coupling(Sb, PXb, X, row, n):
+    """Rows ``_CP0, _CP1`` of a block: the building state's part of the oscillators' record-step
+    update, from the state ``X[row]`` at the step start."""
+    for o in range(NB):
+        Sb[_CP0 * NB + o] = 0.0
+        Sb[_CP1 * NB + o] = 0.0
+    for j in range(n):
+        xj = X[row, j]
+        for o in range(NB):
+            Sb[_CP0 * NB + o] += PXb[(2 * j) * NB + o] * xj
+            Sb[_CP1 * NB + o] += PXb[(2 * j + 1) * NB + o] * xj
+
+
+@njit(cache=True)
+def sample_peaks(setup, X, k0, acc, up, dt, S, FB):
+    """First pass of a spectrum, through one chunk of the floor motion (arguments as
+    :func:`spectrum_kernel`): every oscillator stepped at the record step by its exact
+    recurrence, its peaks at the samples raised in ``S``, and the record-wide bounds of the
+    motion raised in ``FB`` (``float[NFB]``, zeros before the first chunk: rows ``FB_*``; on a
+    floor the bounds of :func:`_floor_bounds` on every step). Then :func:`screen_thresholds`."""
+    C = setup.C
+    PX = setup.PX
+    b_R = setup.b_R
+    b_beta = setup.b_beta
+    n = X.shape[1]
+    nblk = C.shape[0]
+    nosc = setup.w.size
+    kf0 = k0 * up
+    kf1 = kf0 + X.shape[0] - 1
+    xn = np.empty(n)
+    xs = np.empty(n)
+    Kmax = max(setup.G_K.max(), setup.b_K)
+    c = np.zeros(Kmax + 2)
+    f0 = b_beta[0] * _sample(acc, kf0, up)
+    for j in range(n):
+        f0 += b_R[0, j] * X[0, j]
+    L = CHUNK
+    AK = np.zeros(L + 1)
+    FK = np.zeros((L, 6))
+    W = np.zeros((n + setup.b_K + 5, L + 1))
+    for c0 in range(kf0, kf1, L):
+        c1 = min(c0 + L, kf1)
+        for k in range(c0, c1 + 1):
+            AK[k - c0] = _sample(acc, k, up)
+        if n == 0:
+            for k in range(c0, c1):
+                a = AK[k - c0]
+                a1 = AK[k + 1 - c0]
+                FB[FB_F] = max(FB[FB_F], abs(a), abs(a1))
+                FB[FB_S] = max(FB[FB_S], abs((a1 - a) / dt))
+        else:
+            f0 = _floor_piece(setup, X, c0 - kf0, AK, c1 - c0, dt, f0, FK, W, c, xs, xn)
+            for k in range(c1 - c0):
+                FB[FB_F] = max(FB[FB_F], abs(FK[k, 0]), abs(FK[k, 1]))
+                FB[FB_S] = max(FB[FB_S], abs((FK[k, 1] - FK[k, 0]) / dt))
+                FB[FB_AB] = max(FB[FB_AB], FK[k, 2])
+                FB[FB_DEV] = max(FB[FB_DEV], FK[k, 3])
+                FB[FB_J] = max(FB[FB_J], FK[k, 4])
+        for blk in range(nblk):
+            Cb = C[blk]
+            Sb = S[blk]
+            PXb = PX[blk]
+            nb = min(NB, nosc - blk * NB)
+            for k in range(c0, c1):
+                if n > 0:
+                    _coupling(Sb, PXb, X, k - kf0, n)
+                    _advance_floor(Cb, Sb, nb, AK[k - c0], AK[k + 1 - c0])
+                else:
+                    _advance_ground(Cb, Sb, nb, AK[k - c0], AK[k + 1 - c0])
+
+
+_SCREEN_MARGIN = 1e-6
+"""Relative margin of the screen thresholds over the largest chord deviation (rounding)."""
+
+
+@njit(cache=True)
+def screen_thresholds(C, S, nosc, FB, dt, on_floor):
+    """After :func:`sample_peaks`: the screen thresholds of every oscillator (rows ``_TD, _TV,
+    _TA`` of ``S``), and the oscillators set back at rest for the second pass.
+
+    A threshold is the peak of the quantity's samples less a bound of the deviation from its
+    chord that the skip test of :func:`_stage_ground` or :func:`_stage_floor` allows it in any
+    step, from record-wide bounds: the steps' start states are samples, so ``|q0| ≤ max|q|`` and
+    ``|q'0| ≤ max|q'|`` of the samples; with ``FB`` (the largest ``|f|``, chord slope, and on a
+    floor ``max|a_f|``, deviation and ``max|a_f'|`` of any step) the particular solution and the
+    free vibration's amplitude ``|C|`` of every step are bounded, and with them the tests'
+    curvatures (the ground: ``ω²·dt²/8·|C|`` for ``|q|``, ``ω``, ``ω²(1 + 2ξ)`` times that for
+    ``|q'|`` and ``|ω²q + 2ξωq'|``; a floor: ``dt²/8`` times ``m2q, m2v, m2a`` of
+    :func:`_stage_floor`). A step whose end values are at most the thresholds passes none of
+    those tests, so the screen skips only steps the tests skip."""
+    fmax = FB[FB_F]
+    smax = FB[FB_S]
+    k8 = 0.125 * dt * dt
+    margin = 1.0 + _SCREEN_MARGIN
+    for og in range(nosc):
+        blk = og // NB
+        o = og - blk * NB
+        Cb = C[blk]
+        Sb = S[blk]
+        w = Cb[W * NB + o]
+        w2 = Cb[W2 * NB + o]
+        c2 = Cb[C2 * NB + o]
+        pd = Sb[_PD * NB + o]
+        pv = Sb[_PV * NB + o]
+        pa = Sb[_PA * NB + o]
+        iw2 = Cb[IW2 * NB + o]
+        bet = smax * iw2
+        alp = smax * Cb[AS * NB + o] + fmax * iw2
+        e0 = pd + alp
+        ci = (pv + bet + Cb[XIW * NB + o] * e0) * Cb[IWD * NB + o]
+        cm = math.sqrt(e0 * e0 + ci * ci)
+        if on_floor:
+            fdev = FB[FB_DEV]
+            bd = alp + bet * dt + cm + fdev * Cb[IH0 * NB + o]
+            bv = bet + w * cm + fdev * Cb[IH1 * NB + o]
+            m2q = FB[FB_AB] + c2 * bv + w2 * bd
+            m2v = FB[FB_J] + c2 * m2q + w2 * bv
+            m2a = w2 * m2q + c2 * m2v
+        else:
+            m2q = w2 * cm
+            m2v = w2 * w * cm
+            m2a = w2 * Cb[SA * NB + o] * cm
+        Sb[_TD * NB + o] = pd - k8 * m2q * margin
+        Sb[_TV * NB + o] = pv - k8 * m2v * margin
+        Sb[_TA * NB + o] = pa - k8 * m2a * margin
+        Sb[_Q * NB + o] = 0.0
+        Sb[_V * NB + o] = 0.0
+
+
 def spectrum_state(nblk: int, f0: float) -> np.ndarray:
     """The initial state of :func:`spectrum_kernel`'s oscillators (at rest, ``q'' = −f0`` with
     ``f0`` the floor acceleration at ``t = 0``), ``(nblk, NSTATE·NB)``."""
     S = np.zeros((nblk, NSTATE * NB))
     S[:, _D * NB : (_D + 1) * NB] = -f0
+    # no screen until screen_thresholds sets one: every step goes to the full tests
+    S[:, _TD * NB : (_TA + 1) * NB] = -np.inf
     return S
 
 
@@ -763,13 +1248,9 @@ def spectrum_kernel(setup, X, k0, acc, up, dt, search_all, S, out, counts):
     PX = setup.PX
     w = setup.w
     xi = setup.xi
-    b_phi = setup.b_phi
-    b_p = setup.b_p
-    b_q = setup.b_q
     b_R = setup.b_R
     b_beta = setup.b_beta
     b_K = setup.b_K
-    b_m = setup.b_m
     grp = setup.grp
     G_m = setup.G_m
     G_K = setup.G_K
@@ -794,9 +1275,6 @@ def spectrum_kernel(setup, X, k0, acc, up, dt, search_all, S, out, counts):
     f0 = b_beta[0] * _sample(acc, kf0, up)  # the floor acceleration at the chunk start
     for j in range(n):
         f0 += b_R[0, j] * X[0, j]
-    f1 = f0
-    abound = 0.0
-    fdev = 0.0
     Kmax = max(G_K.max(), b_K)
     c = np.zeros(Kmax + 2)
     Q = np.zeros(Kmax + 2)
@@ -814,83 +1292,83 @@ def spectrum_kernel(setup, X, k0, acc, up, dt, search_all, S, out, counts):
     L = CHUNK
     # floor: f0, f1, max|a_f|, deviation from the line, max|a_f'|, max|a_f'''|
     FK = np.zeros((L, 6))
+    W = np.zeros((n + b_K + 5, L + 1))
     AK = np.zeros(L + 1)  # the record on the kernel's grid through the piece
     for c0 in range(kf0, kf1, L):
         c1 = min(c0 + L, kf1)
         for k in range(c0, c1 + 1):
             AK[k - c0] = _sample(acc, k, up)
         # the floor through this piece, once for every block
-        for k in range(c0, c1):
-            if n == 0:
-                break
-            a = AK[k - c0]
-            a1 = AK[k + 1 - c0]
-            x = X[k - kf0]
-            xe = X[k + 1 - kf0]  # building state at the step end
-            f1 = b_beta[0] * a1  # floor acceleration at the step end
-            for j in range(n):
-                f1 += b_R[0, j] * xe[j]
-            abound, fdev, jbound, m3f = _floor_bounds(
-                b_phi,
-                b_p,
-                b_q,
-                b_R,
-                b_beta,
-                b_K,
-                x,
-                a,
-                a1,
-                b_m,
-                dt / b_m,
-                c,
-                xs,
-                xn,
-                f0,
-                f1,
-            )
-            FK[k - c0, 0] = f0
-            FK[k - c0, 1] = f1
-            FK[k - c0, 2] = abound
-            FK[k - c0, 3] = fdev
-            FK[k - c0, 4] = jbound
-            FK[k - c0, 5] = m3f
-            f0 = f1
+        if n > 0:
+            f0 = _floor_piece(setup, X, c0 - kf0, AK, c1 - c0, dt, f0, FK, W, c, xs, xn)
         # each block of oscillators through the chunk, its data staying in the L1 cache
         for blk in range(nblk):
             Cb = C[blk]
             Sb = S[blk]
             PXb = PX[blk]
             nb = min(NB, nosc - blk * NB)
+            # the screen, or where it lets many steps through (short periods) the full tests
+            # vectorised: decided per block and piece by the screen's first SCREEN_TRIAL steps
+            full = search_all
+            passed = 0
             for k in range(c0, c1):
                 a = AK[k - c0]
                 a1 = AK[k + 1 - c0]
+                if (
+                    not full
+                    and k - c0 == SCREEN_TRIAL
+                    and passed * SCREEN_RATIO > SCREEN_TRIAL * nb
+                ):
+                    full = True
                 if n > 0:
-                    for o in range(NB):
-                        Sb[_CP0 * NB + o] = 0.0
-                        Sb[_CP1 * NB + o] = 0.0
-                    for j in range(n):
-                        xj = X[k - kf0, j]
-                        for o in range(NB):
-                            Sb[_CP0 * NB + o] += PXb[(2 * j) * NB + o] * xj
-                            Sb[_CP1 * NB + o] += PXb[(2 * j + 1) * NB + o] * xj
-                    nf = _stage_floor(
-                        Cb,
-                        Sb,
-                        flag,
-                        nb,
-                        a,
-                        a1,
-                        dt,
-                        FK[k - c0, 0],
-                        FK[k - c0, 1],
-                        FK[k - c0, 3],
-                        FK[k - c0, 2],
-                        FK[k - c0, 4],
-                    )
+                    _coupling(Sb, PXb, X, k - kf0, n)
+                    if full:
+                        nf = _stage_floor(
+                            Cb,
+                            Sb,
+                            flag,
+                            nb,
+                            a,
+                            a1,
+                            dt,
+                            FK[k - c0, 0],
+                            FK[k - c0, 1],
+                            FK[k - c0, 3],
+                            FK[k - c0, 2],
+                            FK[k - c0, 4],
+                        )
+                    else:
+                        nf = _screen_floor(Cb, Sb, flag, nb, a, a1)
+                        if nf > 0:
+                            nf = 0
+                            for o in range(nb):
+                                if flag[o] != 0:
+                                    passed += 1
+                                    flag[o] = _floor_test(
+                                        Cb,
+                                        Sb,
+                                        o,
+                                        dt,
+                                        FK[k - c0, 0],
+                                        FK[k - c0, 1],
+                                        FK[k - c0, 3],
+                                        FK[k - c0, 2],
+                                        FK[k - c0, 4],
+                                    )
+                                    nf += flag[o]
                     for g in range(ngroups):
                         ready[g] = False
-                else:
+                elif full:
                     nf = _stage_ground(Cb, Sb, flag, nb, a, a1, dt)
+                else:
+                    nf = _screen_ground(Cb, Sb, flag, nb, a, a1)
+                    if nf > 0:
+                        nf = 0
+                        for o in range(nb):
+                            if flag[o] != 0:
+                                passed += 1
+                                flag[o] = _ground_test(Cb, Sb, o, a, a1, dt)
+                                nf += flag[o]
                 if nf == 0 and not search_all:
                     continue
                 for o in range(nb):

@@ -5,6 +5,9 @@ motion, by its exact linear update on a whole sub-step without isolator events (
 filter that leaves few sub-steps to search, :func:`_riders_fast`) and by the Taylor series of its
 exact response to the floor's in-step polynomial through a segment between events
 (:func:`_oscillators`). The building is integrated once, without them; they read its segments.
+The oscillators go through the segments twice: first for their peaks at the ends
+(:func:`peaks_at_ends`), then with the filters and searches against those peaks (see the notes
+before :func:`_rider_screen`).
 """
 
 from __future__ import annotations
@@ -45,7 +48,7 @@ def _rider_series(cs, K, D, z2w, w2, q, v, d, dv):
 
 @njit(cache=True)
 def _oscillators(OR, OB, x, a_s, slope, L, K, osc_out, osc_w, osc_xi, osc_rho, S, P, D, c,
-                 CS, d, dv, da, work):  # fmt: skip
+                 CS, d, dv, da, work, EV, e, use_ev):  # fmt: skip
     """Advance linear oscillators through a segment ``[0, L]`` on the floors of output rows
     ``osc_out``: ``q'' + 2ξω q' + ω² q = −a_f(τ)`` with ``a_f`` the floor's Taylor polynomial
     (degree ``K``). Oscillator ``i`` goes through the segment in equal parts no longer than
@@ -59,10 +62,18 @@ def _oscillators(OR, OB, x, a_s, slope, L, K, osc_out, osc_w, osc_xi, osc_rho, S
 
     This is the series path: segments of a sub-step with an event of the building, and every
     sub-step when :func:`nonlinear_run` is told so (``osc_fast`` false); full sub-steps
-    otherwise take :func:`_riders_fast`."""
+    otherwise take :func:`_riders_fast`.
+
+    With `use_ev`, ``EV[e]`` holds what the first pass found on this segment
+    (:func:`peaks_at_ends`): an oscillator whose bounds there are all within its peaks takes
+    the end state found then (the series would search none of its parts and end there)."""
     last = -1
     last_parts = -1
     for i in range(osc_w.size):
+        if use_ev and EV[e, 2, i] <= P[0, i] and EV[e, 3, i] <= P[1, i] and EV[e, 4, i] <= P[2, i]:
+            S[0, i] = EV[e, 0, i]
+            S[1, i] = EV[e, 1, i]
+            continue
         o = osc_out[i]
         if o != last:
             taylor_coefficients(OR[o], OB[o], x, a_s, slope, c)
@@ -228,44 +239,80 @@ def _rider_flags(i0, i1, S, P, PH, U, RC, S0, FL, f0, f1, fdev, h):
     margin :data:`MARGIN`. Three loops (update, peaks at the ends, filter) so that each
     writes few arrays and the compiler vectorises the filter. Compiled without reference
     counting."""
-    k8 = 0.125 * h * h * MARGIN
-    fsl = (f1 - f0) / h
-    amax = max(abs(f0), abs(f1))
-    mf = 8.0 * fdev / (h * h)  # the bound of |a_f''|
-    Sq, Sv, S0q, S0v = S[0], S[1], S0[0], S0[1]
-    Pd, Pv, Pa = P[0], P[1], P[2]
-    for i in range(i0, i1):
+    _rider_update(i0, i1, S, P, PH, U, RC, S0)
+    return _rider_tests(i0, i1, S, P, RC, S0, FL, f0, f1, fdev, h)
+
+
+@njit(cache=True, _nrt=False)
+def _rider_update(i0, i1, S, P, PH, U, RC, S0):
+    """The update of :func:`_rider_flags`: ``S[:, i] ← Φ_i S[:, i] + U[:, i]`` (start state
+    kept in ``S0``) and the peaks raised to the end values. (On views of the riders' range,
+    indexed from 0: a loop from a variable start is not vectorised.)"""
+    Sq, Sv, S0q, S0v = S[0, i0:i1], S[1, i0:i1], S0[0, i0:i1], S0[1, i0:i1]
+    Pd, Pv, Pa = P[0, i0:i1], P[1, i0:i1], P[2, i0:i1]
+    ph0, ph1, ph2, ph3 = PH[0, i0:i1], PH[1, i0:i1], PH[2, i0:i1], PH[3, i0:i1]
+    u0, u1 = U[0, i0:i1], U[1, i0:i1]
+    rw2, rc2 = RC[R_W2, i0:i1], RC[R_C2, i0:i1]
+    for i in range(i1 - i0):
         q0 = Sq[i]
         v0 = Sv[i]
         S0q[i] = q0
         S0v[i] = v0
-        Sq[i] = PH[0, i] * q0 + PH[1, i] * v0 + U[0, i]
-        Sv[i] = PH[2, i] * q0 + PH[3, i] * v0 + U[1, i]
-    for i in range(i0, i1):
+        Sq[i] = ph0[i] * q0 + ph1[i] * v0 + u0[i]
+        Sv[i] = ph2[i] * q0 + ph3[i] * v0 + u1[i]
+    for i in range(i1 - i0):
         Pd[i] = max(Pd[i], abs(Sq[i]))
         Pv[i] = max(Pv[i], abs(Sv[i]))
-        Pa[i] = max(Pa[i], abs(RC[R_W2, i] * Sq[i] + RC[R_C2, i] * Sv[i]))
+        Pa[i] = max(Pa[i], abs(rw2[i] * Sq[i] + rc2[i] * Sv[i]))
+
+
+@njit(cache=True, _nrt=False)
+def _rider_inputs(OWm, Z, U, i0, i1):
+    """``U[:, i] = W_m·Z`` for the riders ``i0 … i1 − 1`` (the sum over ``Z``'s entries in
+    order; on views indexed from 0, as :func:`_rider_update`)."""
+    for r in range(2):
+        Ur = U[r, i0:i1]
+        for i in range(i1 - i0):
+            Ur[i] = 0.0
+        for j in range(Z.size):
+            zj = Z[j]
+            OWj = OWm[r, j, i0:i1]
+            for i in range(i1 - i0):
+                Ur[i] += OWj[i] * zj
+
+
+@njit(cache=True, _nrt=False)
+def _rider_tests(i0, i1, S, P, RC, S0, FL, f0, f1, fdev, h):
+    """The filter of :func:`_rider_flags` for riders already updated (:func:`_rider_update`)."""
+    k8 = 0.125 * h * h * MARGIN
+    fsl = (f1 - f0) / h
+    amax = max(abs(f0), abs(f1))
+    mf = 8.0 * fdev / (h * h)  # the bound of |a_f''|
+    Sq, Sv, S0q, S0v = S[0, i0:i1], S[1, i0:i1], S0[0, i0:i1], S0[1, i0:i1]
+    Pd, Pv, Pa = P[0, i0:i1], P[1, i0:i1], P[2, i0:i1]
+    RCb = RC[:, i0:i1]
+    fl = FL[i0:i1]
     nf = 0
-    for i in range(i0, i1):
+    for i in range(i1 - i0):
         q0 = S0q[i]
         v0 = S0v[i]
         q1 = Sq[i]
         v1 = Sv[i]
-        w = RC[R_W, i]
-        w2 = RC[R_W2, i]
-        c2 = RC[R_C2, i]
+        w = RCb[R_W, i]
+        w2 = RCb[R_W2, i]
+        c2 = RCb[R_C2, i]
         A0 = w2 * q0 + c2 * v0
         A1 = w2 * q1 + c2 * v1
-        iw2 = RC[R_IW2, i]
+        iw2 = RCb[R_IW2, i]
         bet = -fsl * iw2
-        alp = fsl * RC[R_AS, i] - f0 * iw2
+        alp = fsl * RCb[R_AS, i] - f0 * iw2
         e0 = q0 - alp
-        ci = (v0 - bet + RC[R_XIW, i] * e0) * RC[R_IWD, i]
+        ci = (v0 - bet + RCb[R_XIW, i] * e0) * RCb[R_IWD, i]
         cm = np.sqrt(e0 * e0 + ci * ci) * MARGIN
         # the response to the deviation and its derivatives
-        dq = fdev * RC[R_IH0, i]
-        dv = fdev * RC[R_IH1, i]
-        da = fdev * RC[R_IH2, i]
+        dq = fdev * RCb[R_IH0, i]
+        dv = fdev * RCb[R_IH1, i]
+        da = fdev * RCb[R_IH2, i]
         d2 = fdev + da
         d3 = h * mf + w2 * dv + c2 * d2
         d4 = mf + w2 * d2 + c2 * d3
@@ -292,12 +339,12 @@ def _rider_flags(i0, i1, S, P, PH, U, RC, S0, FL, f0, f1, fdev, h):
         ld = max(abs(q0), abs(q1)) + k8 * m2 > pd
         lv = max(abs(v0), abs(v1)) + k8 * m3 > pv
         la = max(abs(A0), abs(A1)) + k8 * m2a > pa
-        no = RC[R_OK, i] == 0.0
+        no = RCb[R_OK, i] == 0.0
         fd = ((bd > pd) & ld & zd) | no
         fv = ((bv > pv) & lv & zv) | no
         fa = ((ba > pa) & la & za) | no
         f = fd + 2 * fv + 4 * fa
-        FL[i] = f
+        fl[i] = f
         nf += f
     return nf
 
@@ -305,7 +352,7 @@ def _rider_flags(i0, i1, S, P, PH, U, RC, S0, FL, f0, f1, fdev, h):
 @njit(cache=True, _nrt=False)
 def _riders_fast(m, GT, OR, OB, OW, x, ax, aa, slope, h, K, z0, z1, osc_out, osc_w, osc_xi,
                  osc_rho, S, P, D, PH, RC, Z, U, S0, FL, c, CS, d, dv, da, work,
-                 stats):  # fmt: skip
+                 stats, TH, SPLIT, screen):  # fmt: skip
     """Advance the riders through a full sub-step without events (the common case) by their
     exact linear update, and search inside it only the quantities whose peak a rigorous
     filter cannot rule out (:func:`_rider_flags`), floor by floor.
@@ -335,15 +382,25 @@ def _riders_fast(m, GT, OR, OB, OW, x, ax, aa, slope, h, K, z0, z1, osc_out, osc
         i1 = i0
         while i1 < nosc and osc_out[i1] == o:
             i1 += 1
-        for r in range(2):
-            for i in range(i0, i1):
-                U[r, i] = 0.0
-            for j in range(N + 2):
-                zj = Z[j]
-                for i in range(i0, i1):
-                    U[r, i] += OWm[r, j, i] * zj
+        _rider_inputs(OWm, Z, U, i0, i1)
         fdev = _tight_deviation(GTm, o + 1, x, ax, aa, slope, h)
-        nf = _rider_flags(i0, i1, S, P, PH, U, RC, S0, FL, z0[o + 1], z1[o + 1], fdev, h)
+        if screen:
+            # the second pass: the filter only where the screen lets a sub-step through
+            # (riders from `split` on have screens that let most sub-steps through: the
+            # filter, vectorised, on all of them)
+            _rider_update(i0, i1, S, P, PH, U, RC, S0)
+            split = SPLIT[i0]
+            nf = 0
+            if split < i1:
+                nf = _rider_tests(split, i1, S, P, RC, S0, FL, z0[o + 1], z1[o + 1], fdev, h)
+            if split > i0 and _rider_screen(i0, split, S, RC, S0, FL, TH) > 0:
+                for i in range(i0, split):
+                    if FL[i] != 0:
+                        nf += _rider_tests(
+                            i, i + 1, S, P, RC, S0, FL, z0[o + 1], z1[o + 1], fdev, h
+                        )
+        else:
+            nf = _rider_flags(i0, i1, S, P, PH, U, RC, S0, FL, z0[o + 1], z1[o + 1], fdev, h)
         if nf > 0:
             taylor_coefficients(ORm[o], OBm[o], x, aa, slope, c)
             last_parts = -1
@@ -391,7 +448,8 @@ def _riders_fast(m, GT, OR, OB, OW, x, ax, aa, slope, h, K, z0, z1, osc_out, osc
 
 @njit(cache=True)
 def oscillators_on_segments(SI, SF, SX, SY, nseg, G, GT, OR, OB, K, h, osc_out, osc_w, osc_xi,
-                            osc_rho, S, P, D, fast, PH, OW, RC, stats):  # fmt: skip
+                            osc_rho, S, P, D, fast, PH, OW, RC, stats, TH, SPLIT, screen,
+                            EV):  # fmt: skip
     """Advance linear oscillators through the segments ``0 … nseg − 1`` of a building's motion
     (the arrays of :class:`~floorslide.building.nonlinear_motion.NonlinearMotion`: ``SI[s] =
     (row, branch matrices, whole sub-step, ends its sub-step)``, ``SF[s] = (a_s, a_end, slope,
@@ -419,6 +477,8 @@ def oscillators_on_segments(SI, SF, SX, SY, nseg, G, GT, OR, OB, K, h, osc_out, 
     oax = np.zeros(N)
     z0 = np.zeros(nf)
     z1 = np.zeros(nf)
+    use_ev = fast and EV.shape[0] > 0
+    e = 0
     for s in range(nseg):
         m = SI[s, 1]
         x = SX[s]
@@ -437,7 +497,223 @@ def oscillators_on_segments(SI, SF, SX, SY, nseg, G, GT, OR, OB, K, h, osc_out, 
                     last = o
             _riders_fast(m, GT, OR, OB, OW, x, oax, a_s, slope, L, K, z0, z1, osc_out, osc_w,
                          osc_xi, osc_rho, S, P, D, PH, RC, oZ, oU, oS0, oFL, co, CS, d, dv, da,
-                         ow, stats)  # fmt: skip
+                         ow, stats, TH, SPLIT, screen)  # fmt: skip
         else:
             _oscillators(OR[m], OB[m], x, a_s, slope, L, K, osc_out, osc_w, osc_xi, osc_rho, S,
-                         P, D, co, CS, d, dv, da, ow)  # fmt: skip
+                         P, D, co, CS, d, dv, da, ow, EV, e, use_ev)  # fmt: skip
+            e += 1
+
+
+# The two passes on segments (as the linear kernel's, :mod:`floorslide.spectra._kernels`): a
+# first pass (peaks_at_ends) takes every oscillator through the segments without a search and
+# keeps its peaks at the sub-steps' and parts' ends, lower bounds of the true peaks; the second
+# (oscillators_on_segments with `screen`) filters the whole sub-steps against those peaks, first
+# by a screen (rider_thresholds: the end values against the peak less a record-wide bound of the
+# chord deviation the filter of _rider_tests allows), then by that filter where the screen lets
+# a sub-step through. Against the whole record's peaks the filters flag few sub-steps.
+# record-wide bounds per floor row, over the whole sub-steps: max|a_f| at their ends, the
+# chords' slope, the chord deviation, 8·deviation/h (h·max|a_f''|), and the sub-step
+FBR_F, FBR_S, FBR_DEV, FBR_HMF, FBR_H = range(5)
+NFBR = 5
+
+
+@njit(cache=True, _nrt=False)
+def _rider_screen(i0, i1, S, RC, S0, FL, TH):
+    """Flags of the riders ``i0 … i1 − 1`` already updated (:func:`_rider_update`) whose end
+    values of a quantity exceed its screen threshold ``TH`` (:func:`rider_thresholds`); a
+    sub-step not flagged passes none of the tests of :func:`_rider_tests`. Returns the number of
+    flags set. Branch-free: the compiler vectorises it."""
+    Sq, Sv, S0q, S0v = S[0, i0:i1], S[1, i0:i1], S0[0, i0:i1], S0[1, i0:i1]
+    rw2, rc2 = RC[R_W2, i0:i1], RC[R_C2, i0:i1]
+    td, tv, ta = TH[0, i0:i1], TH[1, i0:i1], TH[2, i0:i1]
+    fl = FL[i0:i1]
+    nf = 0
+    for i in range(i1 - i0):
+        q0 = S0q[i]
+        v0 = S0v[i]
+        q1 = Sq[i]
+        v1 = Sv[i]
+        w2 = rw2[i]
+        c2 = rc2[i]
+        A0 = w2 * q0 + c2 * v0
+        A1 = w2 * q1 + c2 * v1
+        fd = max(abs(q0), abs(q1)) > td[i]
+        fv = max(abs(v0), abs(v1)) > tv[i]
+        fa = max(abs(A0), abs(A1)) > ta[i]
+        f = fd + 2 * fv + 4 * fa
+        fl[i] = f
+        nf += f
+    return nf
+
+
+SCREEN_MARGIN = 1.0 + 1e-6
+"""Relative margin of the screen's deviation bounds (rounding of the record-wide bounds)."""
+
+
+WEAK = 0.75
+"""A rider's screen is weak when a threshold is below this fraction of its peak (it would let
+many sub-steps through): such riders take the filter on every sub-step."""
+
+
+@njit(cache=True)
+def rider_thresholds(P, RC, osc_out, FB, TH, SPLIT):
+    """The screen thresholds ``TH[:, i]`` of :func:`_rider_screen` after the first pass: each
+    quantity's peak at the ends ``P`` less the largest chord deviation the tests of
+    :func:`_rider_tests` allow it in any whole sub-step (``h²/8`` times ``m2, m3, m2a`` there),
+    bounded from ``FB`` (:func:`peaks_at_ends`, rows ``FBR_*`` per floor row): a sub-step's
+    start state is an end state, so ``|q0| ≤ P[0]``, ``|q'0| ≤ P[1]``; with the largest
+    ``|a_f|``, chord slope and deviation the particular solution, ``|C|`` and the deviation's
+    response are bounded. Riders the filter does not apply to (``R_OK`` 0) get ``−∞``.
+
+    ``SPLIT[i0]``, for the riders ``i0 … i1 − 1`` of one floor (sorted by their rate), is the
+    first of the last run of riders whose screen is weak (:data:`WEAK`)."""
+    for i in range(P.shape[1]):
+        if RC[R_OK, i] == 0.0:
+            TH[0, i] = -np.inf
+            TH[1, i] = -np.inf
+            TH[2, i] = -np.inf
+            continue
+        fb = osc_out[i] + 1
+        w = RC[R_W, i]
+        w2 = RC[R_W2, i]
+        c2 = RC[R_C2, i]
+        iw2 = RC[R_IW2, i]
+        bet = FB[fb, FBR_S] * iw2
+        alp = FB[fb, FBR_S] * RC[R_AS, i] + FB[fb, FBR_F] * iw2
+        e0 = P[0, i] + alp
+        ci = (P[1, i] + bet + RC[R_XIW, i] * e0) * RC[R_IWD, i]
+        cm = np.sqrt(e0 * e0 + ci * ci) * MARGIN
+        fdev = FB[fb, FBR_DEV]
+        dv = fdev * RC[R_IH1, i]
+        d2 = fdev + fdev * RC[R_IH2, i]
+        d3 = FB[fb, FBR_HMF] + w2 * dv + c2 * d2
+        m2 = w2 * cm + d2
+        m3 = w2 * w * cm + d3
+        m2a = w2 * w2 * cm + w2 * d2 + c2 * d3
+        k8 = 0.125 * FB[fb, FBR_H] * FB[fb, FBR_H] * MARGIN * SCREEN_MARGIN
+        TH[0, i] = P[0, i] - k8 * m2
+        TH[1, i] = P[1, i] - k8 * m3
+        TH[2, i] = P[2, i] - k8 * m2a
+    nosc = P.shape[1]
+    i0 = 0
+    while i0 < nosc:
+        i1 = i0
+        while i1 < nosc and osc_out[i1] == osc_out[i0]:
+            i1 += 1
+        split = i1
+        while split > i0 and (
+            TH[0, split - 1] < WEAK * P[0, split - 1]
+            or TH[1, split - 1] < WEAK * P[1, split - 1]
+            or TH[2, split - 1] < WEAK * P[2, split - 1]
+        ):
+            split -= 1
+        SPLIT[i0] = split
+        i0 = i1
+
+
+@njit(cache=True)
+def peaks_at_ends(SI, SF, SX, SY, nseg, G, GT, OR, OB, K, h, osc_out, osc_w, osc_xi, osc_rho, S,
+                  P, D, PH, OW, RC, FB, EV):  # fmt: skip
+    """The first pass through the segments ``0 … nseg − 1`` (arguments as
+    :func:`oscillators_on_segments`, the fast path): every oscillator advanced as there — the
+    same updates and series, the same states — with no filter and no search; ``P`` raised to
+    the values at the ends of the whole sub-steps and of the series' parts, and the bounds
+    ``FB`` of the whole sub-steps raised (rows ``FBR_*`` per floor row) for
+    :func:`rider_thresholds`. When ``EV`` has a row per segment between events, ``EV[e]``
+    receives, for the ``e``-th such segment, each oscillator's end state and the largest
+    bounds ``Σ|d_j| h^j`` of its three quantities over the series' parts (those
+    :func:`_oscillators` compares with the peaks), so that the second pass need not repeat
+    the series where they are within the peaks."""
+    N = SX.shape[1]
+    keep = EV.shape[0] > 0
+    e = 0
+    nosc = osc_w.size
+    most_parts = 1
+    for i in range(nosc):
+        most_parts = max(most_parts, int(np.ceil(h * osc_rho[i] / 0.5 - 1e-12)))
+    CS = np.zeros((most_parts, K + 1))
+    c = np.empty(max(K, D) + 2)
+    d = np.empty(D + 2)
+    dv = np.empty(D + 2)
+    da = np.empty(D + 2)
+    Z = np.zeros(N + 2)
+    U = np.zeros((2, nosc))
+    S0 = np.zeros((2, nosc))
+    ax = np.zeros(N)
+    for s in range(nseg):
+        m = SI[s, 1]
+        x = SX[s]
+        a_s = SF[s, 0]
+        slope = SF[s, 2]
+        L = SF[s, 3]
+        if SI[s, 2] == 1:
+            y = SY[s]
+            a_e = SF[s, 1]
+            for j in range(N):
+                Z[j] = x[j]
+                ax[j] = abs(x[j])
+            Z[N] = a_s
+            Z[N + 1] = slope
+            OWm = OW[m]
+            i0 = 0
+            while i0 < nosc:
+                o = osc_out[i0]
+                i1 = i0
+                while i1 < nosc and osc_out[i1] == o:
+                    i1 += 1
+                f0 = _value(G[m, o + 1], x, a_s)
+                f1 = _value(G[m, o + 1], y, a_e)
+                fdev = _tight_deviation(GT[m], o + 1, x, ax, a_s, slope, L)
+                fb = o + 1
+                FB[fb, FBR_F] = max(FB[fb, FBR_F], abs(f0), abs(f1))
+                FB[fb, FBR_S] = max(FB[fb, FBR_S], abs((f1 - f0) / L))
+                FB[fb, FBR_DEV] = max(FB[fb, FBR_DEV], fdev)
+                FB[fb, FBR_HMF] = max(FB[fb, FBR_HMF], L * (8.0 * fdev / (L * L)))
+                FB[fb, FBR_H] = max(FB[fb, FBR_H], L)
+                _rider_inputs(OWm, Z, U, i0, i1)
+                _rider_update(i0, i1, S, P, PH, U, RC, S0)
+                i0 = i1
+            continue
+        # a segment between events: the series of _oscillators, peaks at the parts' ends
+        last = -1
+        last_parts = -1
+        for i in range(nosc):
+            o = osc_out[i]
+            if o != last:
+                taylor_coefficients(OR[m, o], OB[m, o], x, a_s, slope, c)
+                last = o
+                last_parts = -1
+            parts = max(1, int(np.ceil(L * osc_rho[i] / 0.5 - 1e-12)))
+            hp = L / parts
+            if parts != last_parts:
+                for sp in range(parts):
+                    _shift(c, K, sp * hp, CS[sp])
+                last_parts = parts
+            w = osc_w[i]
+            z2w = 2.0 * osc_xi[i] * w
+            w2 = w * w
+            b0 = 0.0
+            b1 = 0.0
+            b2 = 0.0
+            for sp in range(parts):
+                _rider_series(CS[sp], K, D, z2w, w2, S[0, i], S[1, i], d, dv)
+                if keep:
+                    for j in range(D + 1):
+                        da[j] = -(w2 * d[j] + z2w * dv[j])
+                    b0 = max(b0, _bound_on(d, D, hp))
+                    b1 = max(b1, _bound_on(dv, D - 1, hp))
+                    b2 = max(b2, _bound_on(da, D, hp))
+                q = poly_val(d, D, hp)
+                v = poly_val(dv, D - 1, hp)
+                S[0, i] = q
+                S[1, i] = v
+                P[0, i] = max(P[0, i], abs(q))
+                P[1, i] = max(P[1, i], abs(v))
+                P[2, i] = max(P[2, i], abs(w2 * q + z2w * v))
+            if keep:
+                EV[e, 0, i] = S[0, i]
+                EV[e, 1, i] = S[1, i]
+                EV[e, 2, i] = b0
+                EV[e, 3, i] = b1
+                EV[e, 4, i] = b2
+        e += 1

@@ -45,7 +45,10 @@ from floorslide.spectra._closed_forms import coupled_recurrence, impulse_integra
 from floorslide.spectra._kernels import (
     NB,
     NCOEF,
+    NFB,
     SpectrumSetup,
+    sample_peaks,
+    screen_thresholds,
     spectrum_kernel,
     spectrum_state,
 )
@@ -465,6 +468,12 @@ def _exact(fm, T, Z, search_all=False, counts=None):
             period_major=True,
         )
         S = spectrum_state(setup.C.shape[0], fm.beta[0] * a[0])
+        # two passes (see _kernels): the peaks at the samples, then the search inside the
+        # steps where a larger peak is not excluded
+        FB = np.zeros(NFB)
+        for k0, X in fm.chunks():
+            sample_peaks(setup, X, k0, a, up, h, S, FB)
+        screen_thresholds(setup.C, S, setup.w.size, FB, h, on_floor)
         for k0, X in fm.chunks():
             spectrum_kernel(setup, X, k0, a, up, h, search_all, S, out, counts)
     sd = np.zeros((Z.size, T.size))
