@@ -8,12 +8,16 @@ time spent compiling it *exclusive* of the floorslide kernels it called that com
 CPU time in all (imports and the short calls included).
 
 ``--demo`` runs the demo's families one after the other in one shared empty cache (what the
-demo's first run compiles; a kernel two families share compiles once).
+demo's first run compiles; a kernel two families share compiles once); ``--scene`` plans a
+scene and runs every task in one process instead (what its tasks need, compiled as they go);
+``--command`` runs a floorslide command in one process. Run it from a source tree of an older
+commit (``PYTHONPATH=...``) for the table before a change.
 
 Usage::
 
-    python scripts/compile_table.py [--families floors,nonlinear] [--demo] [--top 25]
-                                    [--out FILE.md] [--json FILE.json]
+    python scripts/compile_table.py [--families study,ground [--together]] [--demo]
+                                    [--scene SCENE.toml] [--command 'demo -o {tmp}/d']
+                                    [--top 25] [--out FILE.md] [--json FILE.json]
 """
 
 from __future__ import annotations
@@ -159,6 +163,9 @@ def main() -> None:
     ap.add_argument("--child", help=argparse.SUPPRESS)
     ap.add_argument("--families", help="comma-separated families (default: all, one by one)")
     ap.add_argument("--demo", action="store_true", help="the demo's families in one cache")
+    ap.add_argument(
+        "--together", action="store_true", help="the --families in one cache, one after another"
+    )
     ap.add_argument("--scene", help="a scene's planner and tasks run in one process")
     ap.add_argument(
         "--command",
@@ -182,7 +189,7 @@ def main() -> None:
         groups = [list(DEMO)]
     else:
         names = a.families.split(",") if a.families else list(FAMILIES)
-        groups = [[n] for n in names]
+        groups = [names] if a.together else [[n] for n in names]
     results, parts = [], []
     for g in groups:
         res = run(g)

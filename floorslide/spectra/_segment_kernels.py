@@ -376,7 +376,7 @@ def _riders_fast(m, GT, OR, OB, OW, x, ax, aa, slope, h, K, z0, z1, osc_out, osc
     Z[N + 1] = slope
     stats[0] += 1
     stats[1] += nosc
-    i0 = 0
+    i0 = np.int64(0)
     while i0 < nosc:
         o = osc_out[i0]
         i1 = i0
@@ -478,7 +478,7 @@ def oscillators_on_segments(SI, SF, SX, SY, nseg, G, GT, OR, OB, K, h, osc_out, 
     z0 = np.zeros(nf)
     z1 = np.zeros(nf)
     use_ev = fast and EV.shape[0] > 0
-    e = 0
+    e = np.int64(0)
     for s in range(nseg):
         m = SI[s, 1]
         x = SX[s]
@@ -595,7 +595,7 @@ def rider_thresholds(P, RC, osc_out, FB, TH, SPLIT):
         TH[1, i] = P[1, i] - k8 * m3
         TH[2, i] = P[2, i] - k8 * m2a
     nosc = P.shape[1]
-    i0 = 0
+    i0 = np.int64(0)
     while i0 < nosc:
         i1 = i0
         while i1 < nosc and osc_out[i1] == osc_out[i0]:
@@ -626,7 +626,7 @@ def peaks_at_ends(SI, SF, SX, SY, nseg, G, GT, OR, OB, K, h, osc_out, osc_w, osc
     the series where they are within the peaks."""
     N = SX.shape[1]
     keep = EV.shape[0] > 0
-    e = 0
+    e = np.int64(0)
     nosc = osc_w.size
     most_parts = 1
     for i in range(nosc):
@@ -655,7 +655,7 @@ def peaks_at_ends(SI, SF, SX, SY, nseg, G, GT, OR, OB, K, h, osc_out, osc_w, osc
             Z[N] = a_s
             Z[N + 1] = slope
             OWm = OW[m]
-            i0 = 0
+            i0 = np.int64(0)
             while i0 < nosc:
                 o = osc_out[i0]
                 i1 = i0
