@@ -120,7 +120,10 @@ class _Chunks:
         yield from self.chunks
 
 
-def test_chunks_must_cover_the_record_in_order():
+def test_chunks_must_cover_the_record_in_order(monkeypatch):
+    import floorslide.building.poly_segments as ps
+
+    monkeypatch.setattr(ps, "CHUNK_STEPS", 256)  # chunks of 256 steps: three on 600 samples
     rng = np.random.default_rng(1)
     h1, h2, dt = rng.normal(size=600), rng.normal(size=600), 0.01
     chunks = list(GroundPolyMotion(h1, h2, dt).poly_chunks())
