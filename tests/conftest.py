@@ -7,6 +7,8 @@ random examples each run (how the fuzzers find new bugs).
 
 from __future__ import annotations
 
+import contextlib
+import hashlib
 import os
 from pathlib import Path
 
@@ -44,3 +46,98 @@ def elcentro():
 def coarse_record():
     """Cape Mendocino 1992 Petrolia (PET-090), a pulse-like record at dt = 0.02 s, m/s²."""
     return load_slammer("CapeMendocino_1992_PET-090.txt")
+
+
+# --- the suite in parallel, its kernels compiled once ----------------------------------------
+
+PRECOMPILE_FROM = 100
+"""A selection of at least this many tests has the kernel families compiled ahead (below it,
+the few kernels it calls compile when called)."""
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_cmdline_main(config):
+    """``python -m pytest`` runs the tests in parallel, one process per core (``-n auto``),
+    tests that share an expensive fixture on one process (``--dist loadgroup``, the
+    ``xdist_group`` marks): set here rather than in ``addopts`` so that ``-p no:xdist`` still
+    works. ``-n 0`` (or ``-n N``, ``--dist ...``, ``--pdb``) as given wins."""
+    option = config.option
+    if not config.pluginmanager.hasplugin("xdist") or hasattr(config, "workerinput"):
+        return
+    if option.numprocesses is None and not option.usepdb:
+        option.numprocesses = "auto"
+    if option.numprocesses and option.dist == "no":
+        option.dist = "loadgroup"
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_collection_modifyitems(items):
+    """The tests of a module with a module-scoped fixture (a study run once, a quick bench) run
+    in one process: spread over several, each would set the fixture up again. The other tests
+    are handed out one by one."""
+    for item in items:
+        info = getattr(item, "_fixtureinfo", None)
+        if info is None or item.get_closest_marker("xdist_group"):
+            continue
+        if any(defs[-1].scope == "module" for defs in info.name2fixturedefs.values() if defs):
+            item.add_marker(pytest.mark.xdist_group(item.module.__name__))
+
+
+def _tree_marker(name: str) -> Path:
+    """A marker of the family `name` compiled for *this* source tree: floorslide's own marker
+    (:func:`floorslide.firstrun.missing`) is keyed by the kernel sources' contents, not by
+    their folder, while the kernel cache is per folder — a ``pip install .`` beside this tree
+    (CI's quick start) marks families that this tree's cache does not hold."""
+    from floorslide import _jit, firstrun
+
+    tree = hashlib.sha256(str(_jit.PACKAGE_DIR).encode()).hexdigest()[:12]
+    marker = firstrun._marker(name)
+    return marker.with_name(f"{marker.name}-tree-{tree}")
+
+
+def _precompile(config, count: int) -> None:
+    """Compile, in the controller and before any test runs, the kernel families not compiled
+    yet for this source tree, as many at once as there are cores (``floorslide warmup``'s
+    side processes): test processes then load every kernel instead of each compiling the same
+    ones. A warm cache costs a few ``stat`` calls."""
+    if count < PRECOMPILE_FROM:
+        return
+    from unittest import mock
+
+    from floorslide import firstrun
+
+    todo = [n for n in firstrun.FAMILIES if not _tree_marker(n).exists()]
+    if not todo:
+        return
+    reporter = config.pluginmanager.get_plugin("terminalreporter")
+
+    def say(line: str) -> None:
+        if reporter is not None:
+            reporter.write_line(f"floorslide: {line}")
+
+    path = os.pathsep.join(filter(None, (str(ROOT), os.environ.get("PYTHONPATH"))))
+    with (
+        mock.patch.object(firstrun, "missing", lambda names: [n for n in names if n in todo]),
+        mock.patch.dict(os.environ, PYTHONPATH=path),  # this tree's floorslide, not another
+    ):
+        done = firstrun.compile_families(todo, say=say)
+    for name in done:
+        with contextlib.suppress(OSError):
+            _tree_marker(name).touch()
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_xdist_node_collection_finished(node, ids):
+    """In the controller of a parallel run, once the first test process has collected (tests
+    are handed out only when every process has)."""
+    config = node.config
+    if not getattr(config, "_floorslide_precompiled", False):
+        config._floorslide_precompiled = True
+        _precompile(config, len(ids))
+
+
+def pytest_collection_finish(session):
+    """A serial run (``-n 0``, ``-p no:xdist``): before the first test."""
+    config = session.config
+    if not hasattr(config, "workerinput") and not config.option.collectonly:
+        _precompile(config, len(session.items))
