@@ -57,30 +57,19 @@ the few kernels it calls compile when called)."""
 
 @pytest.hookimpl(tryfirst=True)
 def pytest_cmdline_main(config):
-    """``python -m pytest`` runs the tests in parallel, one process per core (``-n auto``),
-    tests that share an expensive fixture on one process (``--dist loadgroup``, the
-    ``xdist_group`` marks): set here rather than in ``addopts`` so that ``-p no:xdist`` still
-    works. ``-n 0`` (or ``-n N``, ``--dist ...``, ``--pdb``) as given wins."""
+    """``python -m pytest`` runs the tests in parallel, one process per core (``-n auto``), the
+    tests of one module in one process (``--dist loadscope``: a module-scoped fixture — a study
+    run once, the quick bench — is set up once, not once per process); set here rather than in
+    ``addopts`` so that ``-p no:xdist`` still works. ``-n 0`` (or ``-n N``, ``--dist ...``,
+    ``--pdb``) as given wins. (Not ``--dist loadgroup``: with pytest 9 and pytest-xdist 3.8 its
+    ``xdist_group`` marks are ignored, the groups' tests handed out one by one.)"""
     option = config.option
     if not config.pluginmanager.hasplugin("xdist") or hasattr(config, "workerinput"):
         return
     if option.numprocesses is None and not option.usepdb:
         option.numprocesses = "auto"
     if option.numprocesses and option.dist == "no":
-        option.dist = "loadgroup"
-
-
-@pytest.hookimpl(tryfirst=True)
-def pytest_collection_modifyitems(items):
-    """The tests of a module with a module-scoped fixture (a study run once, a quick bench) run
-    in one process: spread over several, each would set the fixture up again. The other tests
-    are handed out one by one."""
-    for item in items:
-        info = getattr(item, "_fixtureinfo", None)
-        if info is None or item.get_closest_marker("xdist_group"):
-            continue
-        if any(defs[-1].scope == "module" for defs in info.name2fixturedefs.values() if defs):
-            item.add_marker(pytest.mark.xdist_group(item.module.__name__))
+        option.dist = "loadscope"
 
 
 def _tree_marker(name: str) -> Path:
