@@ -345,8 +345,9 @@ def _cache_folder() -> Path:
 
 
 def _key() -> str:
-    """What a compiled kernel depends on: floorslide's kernel sources, numba, NumPy, Python
-    and the processor (numba compiles for the host CPU)."""
+    """What a compiled kernel depends on: floorslide's kernel sources and their folder (an
+    installed copy and a source tree beside it have caches of their own), numba, NumPy,
+    Python and the processor (numba compiles for the host CPU)."""
     import numba
     from llvmlite import binding
 
@@ -354,6 +355,7 @@ def _key() -> str:
 
     parts = (
         _jit.kernel_sources_stamp(),
+        str(_jit.PACKAGE_DIR),  # the kernel cache is per source folder (floorslide._jit)
         numba.__version__,
         np.__version__,
         sys.version,

@@ -44,3 +44,69 @@ def elcentro():
 def coarse_record():
     """Cape Mendocino 1992 Petrolia (PET-090), a pulse-like record at dt = 0.02 s, m/s²."""
     return load_slammer("CapeMendocino_1992_PET-090.txt")
+
+
+# --- the suite in parallel, its kernels compiled once ----------------------------------------
+
+PRECOMPILE_FROM = 100
+"""A selection of at least this many tests has the kernel families compiled ahead (below it,
+the few kernels it calls compile when called)."""
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_cmdline_main(config):
+    """``python -m pytest`` runs the tests in parallel, one process per core (``-n auto``), the
+    tests of one module in one process (``--dist loadscope``: a module-scoped fixture — a study
+    run once, the quick bench — is set up once, not once per process); set here rather than in
+    ``addopts`` so that ``-p no:xdist`` still works. ``-n 0`` (or ``-n N``, ``--dist ...``,
+    ``--pdb``) as given wins. (Not ``--dist loadgroup``: with pytest 9 and pytest-xdist 3.8 its
+    ``xdist_group`` marks are ignored, the groups' tests handed out one by one.)"""
+    option = config.option
+    if not config.pluginmanager.hasplugin("xdist") or hasattr(config, "workerinput"):
+        return
+    if option.numprocesses is None and not option.usepdb:
+        option.numprocesses = "auto"
+    if option.numprocesses and option.dist == "no":
+        option.dist = "loadscope"
+
+
+def _precompile(config, count: int) -> None:
+    """Compile, in the controller and before any test runs, the kernel families not compiled
+    yet for this source tree, as many at once as there are cores (``floorslide warmup``'s
+    side processes): test processes then load every kernel instead of each compiling the same
+    ones. A warm cache costs a few ``stat`` calls."""
+    if count < PRECOMPILE_FROM:
+        return
+    from unittest import mock
+
+    from floorslide import firstrun
+
+    todo = firstrun.missing(firstrun.FAMILIES)  # (markers per source folder and sources)
+    if not todo:
+        return
+    reporter = config.pluginmanager.get_plugin("terminalreporter")
+
+    def say(line: str) -> None:
+        if reporter is not None:
+            reporter.write_line(f"floorslide: {line}")
+
+    path = os.pathsep.join(filter(None, (str(ROOT), os.environ.get("PYTHONPATH"))))
+    with mock.patch.dict(os.environ, PYTHONPATH=path):  # this tree's floorslide, not another
+        firstrun.compile_families(todo, say=say)
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_xdist_node_collection_finished(node, ids):
+    """In the controller of a parallel run, once the first test process has collected (tests
+    are handed out only when every process has)."""
+    config = node.config
+    if not getattr(config, "_floorslide_precompiled", False):
+        config._floorslide_precompiled = True
+        _precompile(config, len(ids))
+
+
+def pytest_collection_finish(session):
+    """A serial run (``-n 0``, ``-p no:xdist``): before the first test."""
+    config = session.config
+    if not hasattr(config, "workerinput") and not config.option.collectonly:
+        _precompile(config, len(session.items))

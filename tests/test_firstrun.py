@@ -31,6 +31,7 @@ def cli(*args: str, cache) -> subprocess.CompletedProcess:
     )
 
 
+@pytest.mark.slow
 def test_first_run_announces_compiling_then_is_silent(tmp_path):
     """One small family (rigid blocks on the ground) on an empty cache: the notice with its
     estimate and progress on stderr, the JSON on stdout untouched; then nothing to say."""

@@ -78,6 +78,7 @@ def expected_methods(only=None):
     }
 
 
+@pytest.mark.slow
 def test_every_solver_and_method_is_in_the_table(quick):
     got = {(r.solver, r.method, r.setting) for r in quick.rows}
     assert got == expected_methods()
@@ -109,6 +110,7 @@ def test_every_solver_and_method_is_in_the_table(quick):
         assert quick.inputs[s.key] == (("RSN511",) if s.pair else ("PET-090",))
 
 
+@pytest.mark.slow
 def test_numbers_are_finite(quick):
     for r in quick.rows:
         what = f"{r.solver} {r.method} {r.setting}"
@@ -132,6 +134,7 @@ def families(result):
     return {k: v for k, v in out.items() if len(v) > 1}
 
 
+@pytest.mark.slow
 def test_errors_shrink_as_steps_and_tolerances_shrink(quick):
     """Coarsest against finest setting of each family (in between, a switch or a peak moving
     across a step boundary makes the error non-monotone). Step families refined 16× or more
@@ -157,6 +160,7 @@ def test_errors_shrink_as_steps_and_tolerances_shrink(quick):
         )
 
 
+@pytest.mark.slow
 def test_coarse_approximations_are_visibly_wrong(quick):
     """The study shows a trade: at the record's own step the approximate methods miss by
     percents (docs/design.md §2: a re-interpolated stiff floor loses ~12 % of the FRS peak at
@@ -177,6 +181,7 @@ def test_coarse_approximations_are_visibly_wrong(quick):
     assert by[("oscillator-plane-ground", "smoothed", "eps 0.01 m/s")] > 0.1
 
 
+@pytest.mark.slow
 def test_outputs_are_written(quick, tmp_path):
     paths = write_outputs(quick, tmp_path)
     names = {p.name for p in paths}
@@ -192,6 +197,7 @@ def test_outputs_are_written(quick, tmp_path):
         assert f"(`{key}`)" in md
 
 
+@pytest.mark.slow
 def test_cli_json(quick_cli):
     data, out = quick_cli
     assert data["quick"] is True and data["compile"] is None
@@ -220,6 +226,7 @@ def test_unknown_solver_is_a_model_error():
     assert proc.returncode == 2 and "--only" in proc.stderr and "slide-moon" in proc.stderr
 
 
+@pytest.mark.slow
 def test_json_round_trip_and_summary(quick):
     from floorslide.bench import BenchResult, to_json, to_markdown
     from floorslide.bench.output import summary_markdown

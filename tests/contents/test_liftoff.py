@@ -31,6 +31,7 @@ def test_peak_slide_inside_a_flight():
     assert res.residual_slide[0] == pytest.approx(resid, rel=1e-8, abs=1e-12)
 
 
+@pytest.mark.slow
 def test_vertical_shaking_on_a_real_record(elcentro):
     acc, dt = elcentro
     acc = np.ascontiguousarray(acc[:800])

@@ -30,6 +30,7 @@ def test_overdamped_slip_phase(xi, r, elc_segment):
     assert res.peak_deformation[0] == pytest.approx(pz, rel=1e-6)
 
 
+@pytest.mark.slow
 @settings(max_examples=12, deadline=None)
 @given(st.floats(0.0, 0.95), st.sampled_from([0.001, 0.01, 0.1, 1.0, 10.0]))
 def test_over_a_range_of_damping_and_mass_ratio(xi, r):

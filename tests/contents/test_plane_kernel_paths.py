@@ -91,6 +91,7 @@ def test_against_the_independent_reference_on_the_ground(mu_k, mu_s):
     assert r.stops[0] == ref["stops"] and r.slip_phases[0] == ref["slips"]
 
 
+@pytest.mark.slow
 def test_against_the_independent_reference_on_a_floor():
     """The same pair under a 3-storey shear building (T = 0.4 s), on its roof: the reference
     integrates the building with the block (DOP853); to 1e-8 of the peak (measured 5e-13)."""

@@ -59,6 +59,7 @@ def _compare(got, i, ref, tol=1e-8):
     assert abs(d) <= 1e-6
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("rsn", RSN)
 @pytest.mark.parametrize(("mu_k", "mu_s"), [(0.12, 0.12), (0.1, 0.15)])
 def test_ground_against_reference(rsn, mu_k, mu_s):
@@ -68,6 +69,7 @@ def test_ground_against_reference(rsn, mu_k, mu_s):
     _compare(got, 0, ref)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("rsn", RSN)
 def test_roof_per_direction_against_reference(rsn):
     h1, h2, dt = _pair(rsn)

@@ -224,6 +224,7 @@ def test_stick_slip_many_stops():
     assert 0.0 < fine["slide_time"] < (fine["u"].shape[0] - 1) * 0.01
 
 
+@pytest.mark.slow
 def test_floor_systems_tolerance_independent():
     """Two single-storey floors (T = 0.5 s and 0.3 s, 5 %) driven by the two components,
     integrated with the block: rtol 1e-12 vs 1e-10 agree to 1e-7 (measured 3e-13 on the peak,
@@ -241,6 +242,7 @@ def test_floor_systems_tolerance_independent():
     assert np.abs(bal).max() <= 1e-9 * fine["work_friction"][-1]
 
 
+@pytest.mark.slow
 def test_floor_system_one_axis_equals_1d_reference():
     """A building under x only (the y ground at rest): the 1-D DOP853 building + block reference
     of tests/reference.py, to 1e-8 on peak and residual (measured 1e-14)."""
@@ -269,6 +271,7 @@ def test_isotropy():
     assert np.abs(rot["u"] - u_rot).max() <= 1e-9 * base["peak"]
 
 
+@pytest.mark.slow
 def test_independent_of_numerical_parameters(monkeypatch):
     """The stiff integrator of the slide starts (Radau vs BDF), the length of the analytic first
     step (1e-7 vs 1e-8 s) and the switch speed to DOP853 (×10) change nothing beyond 1e-9 of the

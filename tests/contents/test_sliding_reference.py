@@ -49,12 +49,14 @@ def compare(acc, dt, mu_k, mu_s=None, **kw):
     return exact
 
 
+@pytest.mark.slow
 def test_ground_real_record(elcentro):
     acc, dt = elcentro
     res = compare(acc[:1800], dt, [0.05, 0.15], [0.05, 0.2])
     independent(acc[:1800], dt, res)
 
 
+@pytest.mark.slow
 def test_stiff_building_floor_real_record(elcentro):
     acc, dt = elcentro
     fb = ShearBuilding.from_period(1, 0.1, 0.05)
@@ -62,6 +64,7 @@ def test_stiff_building_floor_real_record(elcentro):
     independent(acc[:600], dt, slide(acc[:600], dt, [0.1, 0.2], building=fb, floor=1), fb, 1)
 
 
+@pytest.mark.slow
 def test_isolated_roof_real_record(coarse_record):
     acc, dt = coarse_record
     iso = IsolatedBuilding(ShearBuilding.from_period(2, 0.3, 0.02), 1.0, 2.0, 0.1)
@@ -69,6 +72,7 @@ def test_isolated_roof_real_record(coarse_record):
     independent(acc[:700], dt, res, iso, 2)
 
 
+@pytest.mark.slow
 def test_vertical_shaking_real_record(elcentro):
     acc, dt = elcentro
     vert = 0.6 * acc[::-1].copy()  # a second real component as vertical motion (|a_v| < g)
@@ -78,6 +82,7 @@ def test_vertical_shaking_real_record(elcentro):
     assert not np.allclose(res.peak_slide, plain.peak_slide, rtol=1e-3)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("direction", ["positive", "negative"])
 def test_one_way_sliding_real_record(direction, elcentro):
     acc, dt = elcentro

@@ -193,6 +193,7 @@ def test_no_traceback_from_the_console_script(tmp_path):
     assert out.stderr.strip() == f"floorslide: error: {tmp_path / 'nope.h5'}: no such result file"
 
 
+@pytest.mark.slow
 def test_figures_are_reproducible_bit_for_bit(study, tmp_path):
     from floorslide.report import plot_figures
 

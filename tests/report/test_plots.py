@@ -81,6 +81,7 @@ def test_frs_figure_shows_both_spectra(rich):
     assert styles == {"-", "--"}
 
 
+@pytest.mark.slow
 def test_plot_figures_writes_the_oscillator_figure(rich_study, tmp_path):
     names = [p.name for p in plot_figures(rich_study.path, tmp_path)]
     assert "oscillators_broad-band.png" in names and "oscillators_pulse-like.png" in names

@@ -310,6 +310,7 @@ def test_fragility_curves_and_notes(read):
 # a single design: every figure, and one friction value or isolation period that reads
 
 
+@pytest.mark.slow
 def test_single_design_figures(single, read, tmp_path, monkeypatch):
     study, tables = read
     with_rows = _with_fragility(tables, _fragility_rows(study.buildings))

@@ -284,6 +284,7 @@ def test_the_demo_summary_says_how_many_overturn(rocking):
     assert lines[crate + 1].startswith("(caution")
 
 
+@pytest.mark.slow
 def test_the_rocking_figures_are_drawn_from_the_run(rocking, tmp_path):
     from floorslide.report.plots import figure_overturning, figure_rocking, plot_figures
     from floorslide.report.study import load_study

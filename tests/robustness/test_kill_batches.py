@@ -11,6 +11,8 @@ import subprocess
 import sys
 import time
 
+import pytest
+
 from floorslide.run.execute import execute, write_batch
 from floorslide.run.store import ResultFile, journal_entries
 from floorslide.scene.planner import plan
@@ -20,6 +22,7 @@ from tests.robustness.test_kill_resume import tables
 from tests.run.test_runs import SCENE
 
 
+@pytest.mark.slow
 def test_a_kill_between_batches_loses_no_finished_task(tmp_path):
     scene = tmp_path / "s.toml"
     big = SCENE.replace("period = [2.0, 3.0]", "period = [1.5, 2.0, 2.5, 3.0, 3.5, 4.0, 4.5, 5.0]")

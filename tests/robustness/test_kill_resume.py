@@ -11,6 +11,7 @@ import sys
 import time
 
 import psutil
+import pytest
 
 from floorslide.report import design_tables, write_csv
 from floorslide.run.execute import execute
@@ -26,6 +27,7 @@ def tables(path, folder):
     return {p.name: p.read_bytes() for p in paths}
 
 
+@pytest.mark.slow
 def test_repeated_kills_then_resume_give_identical_tables(tmp_path):
     scene = tmp_path / "s.toml"
     big = SCENE.replace("period = [2.0, 3.0]", "period = [1.5, 2.0, 2.5, 3.0, 3.5, 4.0, 4.5, 5.0]")

@@ -152,6 +152,7 @@ def test_table_and_report_replace_their_own_output_but_not_a_users_file(study, t
     assert html.read_text() == "<html>someone's page</html>"
 
 
+@pytest.mark.slow
 def test_plot_replaces_its_own_figures_but_not_other_pngs(study, tmp_path):
     folder = tmp_path / "figs"
     first = cli("plot", str(study), "-o", str(folder), "--workers", "1")

@@ -56,6 +56,7 @@ def _check_interrupted(proc, err: str, sig: int, out) -> int:
     return kept
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     ("sig", "target", "group"),
     [(signal.SIGINT, 5, True), (signal.SIGTERM, 60, False), (signal.SIGHUP, 150, False)],

@@ -8,6 +8,7 @@ import subprocess
 import sys
 
 import h5py
+import pytest
 
 from floorslide.run.store import ResultFile
 from tests.conftest import ROOT
@@ -25,6 +26,7 @@ def demo(out, *args: str) -> subprocess.CompletedProcess:
     )
 
 
+@pytest.mark.slow
 def test_demo(tmp_path):
     out = demo(tmp_path / "d", "--workers", "2")
     assert out.returncode == 0, out.stderr

@@ -209,6 +209,7 @@ def test_histories_keep_the_path_in_the_plane(run):
     np.testing.assert_allclose(u, ref.u, rtol=0, atol=1e-12)
 
 
+@pytest.mark.slow
 def test_plane_table_and_figures(run):
     _, rf, tmp = run
     tables = fs.design_tables(rf.path)

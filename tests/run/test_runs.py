@@ -139,6 +139,7 @@ def test_parallel_equals_serial(scene_file, tmp_path):
     assert_same(results(tmp_path / "s.h5"), results(tmp_path / "p.h5"))
 
 
+@pytest.mark.slow
 def test_dask_local_cluster_equals_serial(scene_file, tmp_path):
     from dask.distributed import LocalCluster
 
@@ -151,6 +152,7 @@ def test_dask_local_cluster_equals_serial(scene_file, tmp_path):
     assert_same(results(tmp_path / "s.h5"), results(tmp_path / "d.h5"))
 
 
+@pytest.mark.slow
 def test_killed_run_resumes_to_identical_results(scene_file, tmp_path):
     out = tmp_path / "k.h5"
     env = dict(os.environ, PYTHONPATH=str(ROOT))
