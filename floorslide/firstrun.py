@@ -273,8 +273,8 @@ class Family:
 FAMILIES: dict[str, Family] = {
     f.name: f
     for f in (
-        Family("study", "a study's tasks on linear buildings", 50.0, _study_linear),
-        Family("nonlinear-core", "buildings on nonlinear isolation", 25.0, _nonlinear_core),
+        Family("study", "a study's tasks on linear buildings", 53.0, _study_linear),
+        Family("nonlinear-core", "buildings on nonlinear isolation", 33.0, _nonlinear_core),
         Family("study-nonlinear", "a study's tasks on nonlinear isolation", 5.0,
                _study_nonlinear, after=("study", "nonlinear-core")),
         Family("ground", "rigid blocks on the ground", 15.0, _ground),
