@@ -427,6 +427,29 @@ def _say(line: str) -> None:
     print(f"floorslide: {line}", file=sys.stderr, flush=True)
 
 
+SIDE_PYTHON = (sys.executable, "-P")
+"""How a side process starts Python: ``-P`` keeps the working folder off its ``sys.path`` — run
+from a source checkout beside an installed copy (CI, a developer), ``python -m`` would import
+the checkout's floorslide instead of the one this process runs (and find no ``floorslide.data``
+there: the bundled data install under that name from the top-level ``data/``)."""
+
+
+def _side_env() -> dict[str, str]:
+    """The side processes' environment: this process's, and the folder of the floorslide it
+    imported on ``PYTHONPATH`` when that folder is not a site-packages folder (a source tree
+    imported from the working folder or by ``PYTHONPATH``), so that they import the same one."""
+    import site
+
+    import floorslide
+
+    env = dict(os.environ, PYTHONWARNINGS="ignore")
+    root = Path(floorslide.__file__).resolve().parents[1]
+    sites = {Path(p).resolve() for p in [*site.getsitepackages(), site.getusersitepackages()]}
+    if root not in sites:
+        env["PYTHONPATH"] = os.pathsep.join(filter(None, (str(root), env.get("PYTHONPATH"))))
+    return env
+
+
 def _next(queue: list[str], running: Iterable[str]) -> str | None:
     """The first family of `queue` (longest first) whose ``after`` families are neither queued
     nor running (done, or not asked for), or None while each waits for one."""
@@ -464,7 +487,7 @@ def compile_families(
     finished = 0
     start = beat = time.monotonic()
     clock = sys.stderr.isatty()
-    env = dict(os.environ, PYTHONWARNINGS="ignore")
+    env = _side_env()
     while queue or running:
         while len(running) < workers:
             name = _next(queue, running)
@@ -473,7 +496,7 @@ def compile_families(
             queue.remove(name)
             err = tempfile.TemporaryFile()  # a file, not a pipe: a chatty child never blocks
             proc = subprocess.Popen(
-                [sys.executable, "-m", "floorslide.firstrun", name],
+                [*SIDE_PYTHON, "-m", "floorslide.firstrun", name],
                 stdin=subprocess.DEVNULL,
                 stdout=subprocess.DEVNULL,
                 stderr=err,

@@ -8,6 +8,7 @@ import json
 import os
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 
@@ -121,3 +122,31 @@ def test_families_wait_for_those_they_build_on():
         assert firstrun.estimate(demo, 2) == pytest.approx(two)
     for name, family in f.items():  # every `after` names a family, never itself
         assert set(family.after) <= set(f) - {name}
+
+
+def test_side_processes_import_the_floorslide_this_process_runs(tmp_path):
+    """Run from a folder holding another floorslide (a source checkout beside an installed
+    copy: CI's quick start), a side process still imports this process's floorslide — with
+    ``python -m`` the working folder's would come first, and its missing ``floorslide.data``
+    failed every family."""
+    import floorslide
+
+    shadow = tmp_path / "floorslide"
+    shadow.mkdir()
+    (shadow / "__init__.py").write_text("raise ImportError('the working folder shadows')\n")
+    out = subprocess.run(
+        [*firstrun.SIDE_PYTHON, "-c", "import floorslide; print(floorslide.__file__)"],
+        cwd=tmp_path,
+        env=firstrun._side_env(),
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert out.returncode == 0, out.stderr
+    assert Path(out.stdout.strip()).resolve() == Path(floorslide.__file__).resolve()
+    # and without -P it would not: the reason for it
+    bad = subprocess.run(
+        [sys.executable, "-c", "import floorslide"], cwd=tmp_path, capture_output=True,
+        text=True, check=False, env=firstrun._side_env(),
+    )  # fmt: skip
+    assert "shadows" in bad.stderr
