@@ -56,7 +56,12 @@ set = "s"
 catalog = "{catalog}"
 where = {{ {where} }}
 
-{fixed}{buildings}
+[[buildings]]
+id = "fixed"
+kind = "fixed"
+stories = 2
+period = 0.3
+{buildings}
 
 {contents}
 [spectra]
@@ -71,9 +76,6 @@ history_record = "{history}"
 _CONTENTS = '[[contents]]\nid = "c"\nfloors = "roof"\nmu = [0.05, 0.3, 1.0]\n{content}\n'
 """The study's contents (left out when only the building and its spectra are compiled)."""
 
-_FIXED = '[[buildings]]\nid = "fixed"\nkind = "fixed"\nstories = 2\nperiod = 0.3\n'
-"""The study's fixed-base building (the superstructure of its isolated buildings)."""
-
 _ISOLATORS = ('{ model = "friction_pendulum", mu = 0.06 }',
               '{ model = "bilinear", q_ratio = 0.06, yield_disp = 0.02 }')  # fmt: skip
 """Both kinds of nonlinear isolation, as a scene spells them."""
@@ -87,7 +89,9 @@ def _study(
 ) -> None:
     """Plan a one-record study (the dry run's evaluation included) and run its tasks here,
     as ``floorslide run`` does: the kernels get the argument types of a real study (records
-    read from files are read-only arrays, for one)."""
+    read from files are read-only arrays, for one). The study always has a fixed-base building
+    (the superstructure its isolated buildings name); `nonlinear_only` runs only the tasks on
+    nonlinear isolation, without the evaluation (what the linear study compiles)."""
     import importlib.resources
     import tempfile as tf
 
@@ -109,13 +113,9 @@ def _study(
             history = "CapeMendocino_1992_PET-090"
         contents = _CONTENTS.format(content=content) if content is not None else ""
         text = _STUDY.format(catalog=catalog.as_posix(), where=where, buildings=buildings,
-                             contents=contents, history=history,
-                             fixed=_FIXED)  # fmt: skip
+                             contents=contents, history=history)  # fmt: skip
         path = Path(tmp) / "study.toml"
         path.write_text(text, encoding="utf-8")
-        # (a study of nonlinear isolation alone runs only the tasks on it, not the fixed-base
-        # building its superstructure names, nor the planner's evaluation: what the linear
-        # study compiles)
         for task in plan(load_scene(path), evaluate=not nonlinear_only).tasks:
             if not nonlinear_only or family(task) == "nonlinear":
                 run_task(task)
@@ -187,11 +187,8 @@ def _nonlinear() -> None:
     import floorslide as fs
     from floorslide.run import warmup
 
-    warmup._nonlinear_tasks()
-    sup = fs.ShearBuilding.from_period(stories=1, period=0.3, damping=0.03)
-    b = fs.NonlinearIsolatedBuilding(sup, 1.0, fs.FrictionPendulum(mu=0.05, period=3.0))
-    fm = b.motion(_record(), 0.01).floor(1)
-    fs.rock(fm, width=0.01, height=1.0)
+    fm = warmup._nonlinear_tasks()
+    fs.rock(fm, width=0.01, height=1.0)  # rocking without friction: the commands', no task's
 
 
 def _iso_studies() -> str:

@@ -15,8 +15,12 @@ from __future__ import annotations
 
 import multiprocessing
 import sys
+from typing import TYPE_CHECKING
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from floorslide.building.nonlinear_motion import NonlinearFloorMotion
 
 
 def _linear_tasks() -> None:
@@ -42,10 +46,11 @@ def _linear_tasks() -> None:
         response_spectrum(fm, None, np.array([0.5]), [0.05])
 
 
-def _nonlinear_tasks() -> None:
+def _nonlinear_tasks() -> NonlinearFloorMotion:
     """One short call of each kernel a task on nonlinear isolation runs: the building's motion
     (its segments), rigid blocks with and without histories, slide–rock blocks (a study's
-    rockers), 2-DOF oscillators and floor spectra reading them."""
+    rockers), 2-DOF oscillators and floor spectra reading them. Returns the roof's motion (for
+    :mod:`floorslide.firstrun`, which adds the one-record commands' calls on it)."""
     import floorslide as fs
 
     sup = fs.ShearBuilding.from_period(stories=1, period=0.3, damping=0.03)
@@ -57,6 +62,7 @@ def _nonlinear_tasks() -> None:
     fs.slide_rock(fm, None, [0.3], [1.0], [0.4], mu_s=[0.5])
     fs.slide_oscillator(fm, mu=[0.1], frequency=5.0)
     fs.response_spectrum(fm, periods=[0.5])
+    return fm
 
 
 def family(task) -> str:
