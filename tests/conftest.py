@@ -77,8 +77,6 @@ def _precompile(config, count: int) -> None:
     ones. A warm cache costs a few ``stat`` calls."""
     if count < PRECOMPILE_FROM:
         return
-    from unittest import mock
-
     from floorslide import firstrun
 
     todo = firstrun.missing(firstrun.FAMILIES)  # (markers per source folder and sources)
@@ -90,9 +88,8 @@ def _precompile(config, count: int) -> None:
         if reporter is not None:
             reporter.write_line(f"floorslide: {line}")
 
-    path = os.pathsep.join(filter(None, (str(ROOT), os.environ.get("PYTHONPATH"))))
-    with mock.patch.dict(os.environ, PYTHONPATH=path):  # this tree's floorslide, not another
-        firstrun.compile_families(todo, say=say)
+    # (the side processes import the floorslide imported here: this tree's, firstrun._side_env)
+    firstrun.compile_families(todo, say=say)
 
 
 @pytest.hookimpl(optionalhook=True)
