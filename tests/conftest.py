@@ -34,6 +34,57 @@ def load_slammer(name: str) -> tuple[np.ndarray, float]:
     return np.loadtxt(SLAMMER / name) * G, float(row["dt"])
 
 
+def floorslide_cli(*args: str, cwd: str | os.PathLike | None = None):
+    """``floorslide ARGS`` as a console-script call, run in this process: the entry point
+    (:func:`floorslide.cli.main`: its one-line warnings, error lines and exit codes) with
+    ``sys.argv``, the standard streams, the warning filters of a fresh interpreter, the signal
+    handlers and the working folder (`cwd`) as a new process would have them, restored after.
+    Returns what :func:`subprocess.run` with ``capture_output=True, text=True`` returns.
+
+    For the single-record commands and the set-up commands: a new process per call costs a
+    second of imports and kernel loading, ~60 times over in the command-line tests. Runs,
+    signals and kills stay in real processes (their tests start them)."""
+    import signal
+    import subprocess
+    import sys
+    import warnings
+
+    from click.testing import CliRunner
+
+    from floorslide.cli import main
+
+    handlers = {s: signal.getsignal(s) for s in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)}
+    argv, here = sys.argv, os.getcwd()
+    code: int | str | None = 0
+    with CliRunner().isolation() as (out, err, _), warnings.catch_warnings():
+        warnings.resetwarnings()  # a fresh interpreter's filters (pytest's are stricter)
+        for category in (DeprecationWarning, PendingDeprecationWarning, ImportWarning,
+                         ResourceWarning):  # fmt: skip
+            warnings.simplefilter("ignore", category)
+        sys.argv = ["floorslide", *map(str, args)]
+        try:
+            if cwd is not None:
+                os.chdir(cwd)
+            main()
+        except SystemExit as exc:
+            code = exc.code
+        finally:
+            sys.argv = argv
+            os.chdir(here)
+            for sig, handler in handlers.items():
+                signal.signal(sig, handler)
+            sys.stdout.flush()
+            sys.stderr.flush()
+        if code is None:
+            code = 0
+        elif not isinstance(code, int):  # sys.exit("message"): printed, exit code 1
+            print(code, file=sys.stderr)
+            sys.stderr.flush()
+            code = 1
+        stdout, stderr = out.getvalue().decode(), err.getvalue().decode()
+    return subprocess.CompletedProcess(["floorslide", *map(str, args)], code, stdout, stderr)
+
+
 @pytest.fixture(scope="session")
 def elcentro():
     """El Centro 1940 NS (ELC-180), dt = 0.01 s, m/s²."""

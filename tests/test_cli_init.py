@@ -3,18 +3,15 @@ written through floorslide.outputs, never over a file it did not write (docs/des
 
 from __future__ import annotations
 
-import subprocess
-import sys
-
 from floorslide.scene.planner import plan
 from floorslide.scene.schema import load_scene
 from floorslide.scene.template import MARKER
+from tests.conftest import floorslide_cli
 
 
 def run(*args, cwd=None):
-    return subprocess.run(
-        [sys.executable, "-m", "floorslide.cli", *args], capture_output=True, text=True, cwd=cwd
-    )
+    """``floorslide ARGS`` (the entry point, in this process: :func:`floorslide_cli`)."""
+    return floorslide_cli(*args, cwd=cwd)
 
 
 def test_init_writes_a_template_that_plans_on_the_bundled_records(tmp_path):

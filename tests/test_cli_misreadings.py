@@ -4,23 +4,20 @@ floor 0 named for what it is, implausible friction coefficients warned about."""
 from __future__ import annotations
 
 import json
-import subprocess
-import sys
 
 import numpy as np
 import pytest
 
 from floorslide.constants import G
-from tests.conftest import SLAMMER
+from tests.conftest import SLAMMER, floorslide_cli
 
 RECORD = str(SLAMMER / "ImperialValley_1940_ELC-180.txt")
 ISOLATED = "isolated:period=2.5,damping=0.1,super_period=0.4,stories=3"
 
 
 def run(*args):
-    return subprocess.run(
-        [sys.executable, "-m", "floorslide.cli", *args], capture_output=True, text=True
-    )
+    """``floorslide ARGS`` (the entry point, in this process: :func:`floorslide_cli`)."""
+    return floorslide_cli(*args)
 
 
 def test_spectrum_json_states_its_units_and_matches_the_text_in_g():

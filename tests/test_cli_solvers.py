@@ -4,8 +4,6 @@
 from __future__ import annotations
 
 import json
-import subprocess
-import sys
 
 import numpy as np
 import pytest
@@ -22,15 +20,14 @@ from floorslide.building import (
 from floorslide.cli import cli
 from floorslide.contents.sliding import slide
 from floorslide.spectra import response_spectrum
-from tests.conftest import SLAMMER, load_slammer
+from tests.conftest import SLAMMER, floorslide_cli, load_slammer
 
 RECORD = str(SLAMMER / "ImperialValley_1940_ELC-180.txt")
 
 
 def run(*args):
-    return subprocess.run(
-        [sys.executable, "-m", "floorslide.cli", *args], capture_output=True, text=True
-    )
+    """``floorslide ARGS`` (the entry point, in this process: :func:`floorslide_cli`)."""
+    return floorslide_cli(*args)
 
 
 def test_slide_json_matches_the_api():

@@ -63,8 +63,9 @@ def quick_cli(tmp_path_factory):
     return json.loads(proc.stdout), out
 
 
-CLI_SOLVERS = ("slide-ground", "slide-rock-ground")
-"""The solvers the command-line test runs (``--only``): the API's test runs them all."""
+CLI_SOLVERS = ("spectra-ground", "slide-rock-ground")
+"""The solvers the command-line test runs (``--only``; two of the quickest: the API's test
+runs them all, this one the command's path)."""
 
 
 def expected_methods(only=None):
@@ -211,7 +212,7 @@ def test_cli_json(quick_cli):
         for metric in METRICS:
             value = r[f"err_{metric}"]
             assert (value is not None) == (metric in data["metrics"][r["solver"]])
-    assert (out / "bench.csv").is_file() and (out / "slide-ground.png").is_file()
+    assert (out / "bench.csv").is_file() and (out / "spectra-ground.png").is_file()
 
 
 def test_unknown_solver_is_a_model_error():
