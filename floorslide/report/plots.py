@@ -352,11 +352,12 @@ def _all_axes(fig: Figure) -> list:
 def _axis_state(axis) -> tuple:
     """What an axis' ticks and their labels' extents depend on while a figure is laid out and
     drawn: its Axes' place (pixels), its view and data limits, its locators and formatters
-    (and the place and limits of the axis they belong to, if another: shared axes)."""
+    (and the place and limits of the axis they belong to, if another: shared axes); limits and
+    places as bytes (cheap; exact)."""
     state: list = [
-        axis.axes.bbox.bounds,
-        tuple(axis.get_view_interval()),
-        tuple(axis.get_data_interval()),
+        axis.axes.bbox.get_points().tobytes(),
+        np.asarray(axis.get_view_interval()).tobytes(),
+        np.asarray(axis.get_data_interval()).tobytes(),
         axis.get_minpos(),
     ]
     for ticker in (axis.major, axis.minor):
@@ -364,7 +365,11 @@ def _axis_state(axis) -> tuple:
             state.append(id(part))
             owner = getattr(part, "axis", None)
             if owner is not None and owner is not axis:
-                state += [id(owner), owner.axes.bbox.bounds, tuple(owner.get_view_interval())]
+                state += [
+                    id(owner),
+                    owner.axes.bbox.get_points().tobytes(),
+                    np.asarray(owner.get_view_interval()).tobytes(),
+                ]
     return tuple(state)
 
 
