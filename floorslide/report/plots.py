@@ -296,9 +296,10 @@ class _TextCache:
         through the shared cache."""
         import matplotlib as mpl
 
+        rc = mpl.rcParams  # by key: reading them all would resolve the backend (pyplot)
         settings = (
             type(renderer),
-            *((k, repr(v)) for k, v in mpl.rcParams.items() if k.startswith(_TEXT_SETTINGS)),
+            *((k, repr(rc[k])) for k in rc if k.startswith(_TEXT_SETTINGS)),
         )
         if settings != self.settings or len(self.metrics) > self.LIMIT:
             self.settings, self.metrics, self.mathtext = settings, {}, None

@@ -6,6 +6,10 @@ from __future__ import annotations
 
 import functools
 import io
+import os
+import subprocess
+import sys
+from pathlib import Path
 from types import SimpleNamespace
 
 import matplotlib as mpl
@@ -152,3 +156,28 @@ def test_work_precision_figure_is_the_bytes_of_savefig(monkeypatch):
     fast = figures.work_precision_figure(result, "s")
     monkeypatch.setattr(plots, "png_bytes", lambda fig, dpi, meta: _savefig(fig, dpi))
     assert fast == figures.work_precision_figure(result, "s")
+
+
+def test_png_bytes_does_not_resolve_the_backend():
+    """Reading every rcParam would resolve matplotlib's backend, importing pyplot (and its
+    time) into a process that draws without it."""
+    code = (
+        "import sys\n"
+        "from matplotlib.figure import Figure\n"
+        "from floorslide.report.plots import png_bytes\n"
+        "fig = Figure(layout='constrained')\n"
+        "fig.subplots().plot([1, 2])\n"
+        "png_bytes(fig, 50)\n"
+        "assert 'matplotlib.pyplot' not in sys.modules\n"
+    )
+    subprocess.run([sys.executable, "-c", code], check=True, env=_child_env())
+
+
+def _child_env() -> dict[str, str]:
+    """This process' environment, its floorslide first on the path, without a backend set."""
+    import floorslide
+
+    env = {k: v for k, v in os.environ.items() if k != "MPLBACKEND"}
+    root = str(Path(floorslide.__file__).resolve().parents[1])
+    env["PYTHONPATH"] = os.pathsep.join(filter(None, [root, env.get("PYTHONPATH")]))
+    return env
