@@ -203,7 +203,7 @@ def _png(fig: Figure | None) -> bytes | None:
 
 def png_bytes(fig: Figure, dpi: float, metadata: dict[str, str] | None = None) -> bytes:
     """The figure as PNG bytes: the bytes of ``fig.savefig(buf, format="png", dpi=dpi,
-    metadata=metadata)`` (Agg), for about 40 % less CPU on the report's figures.
+    metadata=metadata)`` (Agg), for about a third less CPU on the report's figures.
 
     ``savefig`` on a figure with a layout engine draws it twice: once with the drawing turned
     off (the engine runs inside it: constrained layout measures every Axes twice, tick labels
@@ -473,8 +473,9 @@ def _draw(i: int) -> bytes | None:
 def _render(jobs: list[Callable[[], Figure | None]], workers: int) -> list[bytes | None]:
     """Draw every job's figure as PNG bytes, in order; in `workers` forked processes when more
     than one is asked for and the platform forks (the figures are independent; matplotlib's
-    layout and text rendering, ~0.5 s a figure, is where a report's time goes); never more
-    processes than figures nor than :func:`floorslide.parallel.worker_count` allows."""
+    layout and text rendering, ~0.3 s a figure with :func:`png_bytes`, is where a report's time
+    goes); never more processes than figures nor than :func:`floorslide.parallel.worker_count`
+    allows."""
     import multiprocessing
 
     from floorslide.parallel import worker_count
