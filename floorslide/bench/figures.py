@@ -4,7 +4,6 @@ the "work-precision diagram")."""
 
 from __future__ import annotations
 
-import io
 import math
 
 from floorslide.bench.cases import METRICS
@@ -34,6 +33,8 @@ def work_precision_figure(result: BenchResult, solver: str) -> bytes:
     """
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
+
+    from floorslide.report.plots import png_bytes
 
     rows = [r for r in result.rows if r.solver == solver]
     exact = next(r for r in rows if r.method == "exact")
@@ -94,6 +95,5 @@ def work_precision_figure(result: BenchResult, solver: str) -> bytes:
     ax.set_title(f"{result.solvers[solver]}\nrecords: {ids}", fontsize=10)
     ax.grid(True, which="major", lw=0.4, alpha=0.6)
     ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2, frameon=False)
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", metadata={"Software": PNG_SOFTWARE})
-    return buf.getvalue()
+    # savefig's bytes (dpi: the figure's), for less CPU: laid out once
+    return png_bytes(fig, fig.dpi, {"Software": PNG_SOFTWARE})
