@@ -1890,7 +1890,9 @@ def demo(out_dir, workers):
     tables = design_tables(study)
     csvs = write_csv(tables, out / "tables", inputs=[h5])
     md = write_text(out / "tables" / "tables.md", format_markdown(tables), inputs=[h5])
-    figures = plot_figures(study, out / "figures", workers=workers or os.cpu_count() or 1)
+    figures = plot_figures(
+        study, out / "figures", workers=workers or os.cpu_count() or 1, tables=tables
+    )
     html = write_report(study, out / "report.html", tables=tables, figures=figures)
     click.echo("")
     click.echo(demo_summary(tables))

@@ -447,7 +447,7 @@ def report_html(
             for p in (
                 figures
                 if figures is not None
-                else plot_figures(study, tmp, allow_incomplete=True, workers=workers)
+                else plot_figures(study, tmp, allow_incomplete=True, workers=workers, tables=tables)
             )
         ]
         by_kind: dict[str, list[Path]] = {}

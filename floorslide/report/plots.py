@@ -73,6 +73,7 @@ import contextlib
 import functools
 import io
 import math
+import os
 import re
 import threading
 from collections import defaultdict
@@ -211,10 +212,10 @@ def png_bytes(fig: Figure, dpi: float, metadata: dict[str, str] | None = None) -
     drawn with, and the figure is saved with the engine off (no draw for nothing). While it is
     laid out and drawn, each axis reuses its ticks and their labels' extents as long as its
     place, limits, locator and formatter are the same (an Axes is measured several times a
-    pass: title, axis labels, spines), each text its layout as long as its string and font
-    are, and the string metrics and mathtext parses are shared by the figures a process draws
-    (:class:`_TextCache`). Nothing drawn changes: the same calls give the same numbers, and
-    ``tests/report/test_figure_speed.py`` checks the bytes against ``savefig``.
+    pass: title, axis labels, spines), and the string metrics and mathtext parses are shared
+    by the figures a process draws (:class:`_TextCache`). Nothing drawn changes: the same
+    calls give the same numbers, and ``tests/report/test_figure_speed.py`` checks the bytes
+    against ``savefig``.
 
     Parameters
     ----------
@@ -241,7 +242,7 @@ def png_bytes(fig: Figure, dpi: float, metadata: dict[str, str] | None = None) -
         try:
             fig.dpi = dpi
             _TEXT.bind(canvas.get_renderer())
-            with _reused_ticks(fig), _reused_text_layout():
+            with _reused_ticks(fig):
                 if (
                     engine is not None
                     and fig.axes
@@ -262,8 +263,8 @@ def png_bytes(fig: Figure, dpi: float, metadata: dict[str, str] | None = None) -
 
 
 _SAVE_LOCK = threading.RLock()
-"""One :func:`png_bytes` at a time in a process (it replaces a method of
-:class:`matplotlib.text.Text` while it draws)."""
+"""One :func:`png_bytes` at a time in a process (the shared :class:`_TextCache` settings are
+checked and bound to one renderer at a time)."""
 
 
 def _set_layout_engine(fig: Figure, engine) -> None:
@@ -323,19 +324,17 @@ class _TextCache:
 
         renderer.get_text_width_height_descent = cached
 
-    def warm(self) -> None:
-        """Build matplotlib's mathtext parser and load the default font (before forking the
-        figure workers, which would each do it again)."""
-        from matplotlib.font_manager import FontProperties, findfont, get_font
-        from matplotlib.mathtext import MathTextParser
-
-        prop = FontProperties()
-        get_font(findfont(prop))
-        MathTextParser("path").parse(r"$\mathdefault{10^{-1}}$", DPI, prop)
+    def forget_parser(self) -> None:
+        """Drop the shared mathtext parser (in a forked process: its parses hold the parent's
+        FreeType faces, which read the font file through a descriptor the processes share —
+        two processes drawing glyphs through it at once read each other's bytes)."""
+        self.mathtext = None
 
 
 _TEXT_SETTINGS = ("text.", "font.", "mathtext.")
 _TEXT = _TextCache()
+if hasattr(os, "register_at_fork"):
+    os.register_at_fork(after_in_child=_TEXT.forget_parser)
 
 
 def _all_axes(fig: Figure) -> list:
@@ -419,49 +418,6 @@ def _reused_ticks(fig: Figure):
                     axis.__dict__.pop(name, None)
 
 
-@contextlib.contextmanager
-def _reused_text_layout():
-    """While in it, a text lays itself out (lines, extents; :meth:`Text._get_layout`) once
-    per string, font, rotation, alignment, line spacing and resolution: a tick label or a
-    legend entry is otherwise laid out at each measure and again to be drawn. Wrapped and TeX
-    texts are laid out each time."""
-    from matplotlib.text import Text
-
-    plain = Text.__dict__.get("_get_layout")
-    if plain is None:
-        yield
-        return
-    token = object()  # this call's: a layout kept from another is not reused
-
-    def reused(self, renderer, *args, **kwargs):
-        if args or kwargs or self.get_wrap() or self.get_usetex():
-            return plain(self, renderer, *args, **kwargs)
-        key = (
-            token,
-            id(renderer),
-            self.figure.dpi,
-            self.get_text(),
-            self.get_fontproperties().copy(),
-            self.get_rotation(),
-            self.get_horizontalalignment(),
-            self.get_verticalalignment(),
-            self.get_rotation_mode(),
-            getattr(self, "_linespacing", None),
-            getattr(self, "_multialignment", None),
-            self.get_parse_math(),
-        )
-        hit = self.__dict__.get("_floorslide_layout")
-        if hit is None or hit[0] != key:
-            hit = self._floorslide_layout = (key, plain(self, renderer, *args, **kwargs))
-        return hit[1]
-
-    Text._get_layout = reused
-    try:
-        yield
-    finally:
-        Text._get_layout = plain
-
-
 _JOBS: list[Callable[[], Figure | None]] = []
 """The figure jobs of the :func:`_render` in progress, inherited by its forked workers."""
 
@@ -484,7 +440,6 @@ def _render(jobs: list[Callable[[], Figure | None]], workers: int) -> list[bytes
     if workers <= 1 or "fork" not in multiprocessing.get_all_start_methods():
         return [_png(job()) for job in jobs]
     _JOBS[:] = jobs
-    _TEXT.warm()  # once here rather than once in each worker
     try:
         with multiprocessing.get_context("fork").Pool(workers, initializer=_worker_signals) as pool:
             out = pool.map(_draw, range(len(jobs)), chunksize=1)
@@ -2315,6 +2270,7 @@ def plot_figures(
     allow_incomplete: bool = False,
     workers: int = 1,
     ecdf_mu: float | None = None,
+    tables: DesignTables | None = None,
 ) -> list[Path]:
     """Write the figures of a result file as PNG files into `directory` (created).
 
@@ -2339,6 +2295,9 @@ def plot_figures(
     ecdf_mu
         The friction value of the peak-slide ECDF figure (the stored mu_k nearest to it; by
         default the median of each content's values at which it slides rather than rocks).
+    tables
+        The study's design tables when made already, with the same `compare` and `damping`
+        (the demo and the HTML report make them for themselves): not made a second time.
 
     Returns
     -------
@@ -2370,7 +2329,8 @@ def plot_figures(
     """
     study = load_study(result)
     study.require_complete(allow_incomplete)
-    tables = design_tables(study, compare=compare, damping=damping, allow_incomplete=True)
+    if tables is None:
+        tables = design_tables(study, compare=compare, damping=damping, allow_incomplete=True)
     if compare is not None:
         drawn = {r["comparison"] for r in tables["slide_ratios"]}
         for comp in tables.comparisons:

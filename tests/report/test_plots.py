@@ -85,3 +85,14 @@ def test_frs_figure_shows_both_spectra(rich):
 def test_plot_figures_writes_the_oscillator_figure(rich_study, tmp_path):
     names = [p.name for p in plot_figures(rich_study.path, tmp_path)]
     assert "oscillators_broad-band.png" in names and "oscillators_pulse-like.png" in names
+
+
+def test_tables_made_already_give_the_same_figures(study, tmp_path):
+    """The demo and the HTML report hand their design tables to plot_figures: the same
+    files, byte for byte, as when it makes them."""
+    s = load_study(study.path)
+    own = plot_figures(s, tmp_path / "own")
+    given = plot_figures(s, tmp_path / "given", tables=design_tables(s))
+    assert [p.name for p in given] == [p.name for p in own] and own
+    for a, b in zip(own, given, strict=True):
+        assert a.read_bytes() == b.read_bytes(), a.name
