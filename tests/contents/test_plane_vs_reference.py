@@ -18,7 +18,8 @@ from tests.reference_sliding2d import slide2d_reference
 
 PAIRS = ROOT / "data" / "records" / "pairs" / "index.csv"
 RSN = ("1084", "879", "181")  # Sylmar, Lucerne, El Centro #6
-NPTS = 2500  # around the strongest shaking: the reference restarts at every sample
+NPTS = 1500  # 800 samples before the strongest shaking, 700 after (the reference restarts at
+# every sample)
 
 
 @functools.cache
