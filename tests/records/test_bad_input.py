@@ -376,13 +376,13 @@ def test_inspect_missing_argument_path(tmp_path, good_catalog):
 
 
 def test_console_script_exit_code_and_no_traceback(tmp_path, good_catalog):
-    """The installed entry point (floorslide.cli:main), in a subprocess."""
+    """The installed entry point (floorslide.cli:entry, which runs main), in a subprocess."""
     (tmp_path / "empty.AT2").write_text("")
     proc = subprocess.run(
         [
             sys.executable,
             "-c",
-            "from floorslide.cli import main; main()",
+            "from floorslide.cli import entry; entry()",
             "inspect",
             "--json",
             str(tmp_path / "empty.AT2"),
