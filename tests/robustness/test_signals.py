@@ -59,14 +59,14 @@ def _check_interrupted(proc, err: str, sig: int, out) -> int:
 @pytest.mark.slow
 @pytest.mark.parametrize(
     ("sig", "target", "group"),
-    [(signal.SIGINT, 5, True), (signal.SIGTERM, 40, False), (signal.SIGHUP, 100, False)],
+    [(signal.SIGINT, 5, True), (signal.SIGTERM, 60, False), (signal.SIGHUP, 150, False)],
     ids=["ctrl-c-early", "sigterm-mid", "sighup-late"],
 )
 def test_a_signal_while_tasks_run_keeps_what_finished(tmp_path, sig, target, group):
     scene = tmp_path / "s.toml"
-    big = SCENE.replace("period = [2.0, 3.0]", "period = [1.5, 2.0, 2.5, 3.0, 3.5]")
+    big = SCENE.replace("period = [2.0, 3.0]", "period = [1.5, 2.0, 2.5, 3.0, 3.5, 4.0, 4.5, 5.0]")
     big = big.replace('station_id = ["ELC-180", "RIO-360", "PET-090"]', 'set = "pulse-like"')
-    scene.write_text(big)  # 18 records × 6 buildings = 108 tasks
+    scene.write_text(big)  # 18 records × 9 buildings = 162 tasks
     out = tmp_path / "k.h5"
     proc = subprocess.Popen(_cmd(scene, out), env=ENV, stdout=subprocess.DEVNULL,
                             stderr=subprocess.PIPE, text=True, start_new_session=True)  # fmt: skip
@@ -80,11 +80,11 @@ def test_a_signal_while_tasks_run_keeps_what_finished(tmp_path, sig, target, gro
         proc.send_signal(sig)
     _, err = proc.communicate(timeout=120)
     kept = _check_interrupted(proc, err, sig, out)
-    assert target <= kept < 108
+    assert target <= kept < 162
     done = subprocess.run(_cmd(scene, out, "--resume"), env=ENV, capture_output=True, text=True)
     assert done.returncode == 0, done.stderr
-    assert f"{108 - kept} tasks run, {kept} already done, 108 in all" in done.stdout
-    assert len(ResultFile(out).done_tasks()) == 108
+    assert f"{162 - kept} tasks run, {kept} already done, 162 in all" in done.stdout
+    assert len(ResultFile(out).done_tasks()) == 162
 
 
 # where the signal is sent from inside the run (deterministic), and how
