@@ -280,7 +280,9 @@ class LinearBuilding:
         elif normalize == "first":
             phi = phi / phi[0]
         elif normalize == "mass":
-            phi = phi * np.sign(phi[-1])  # sign convention: positive roof component
+            # sign convention: positive roof component (+ where it is 0: a high mode of a
+            # tall building can leave the roof still, and sign 0 would erase the shape)
+            phi = phi * np.where(phi[-1] < 0, -1.0, 1.0)
         else:
             raise ModelError(f"normalize must be mass, roof or first, got {normalize!r}")
         iota = np.ones(self.n_dof)

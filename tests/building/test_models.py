@@ -63,6 +63,20 @@ def test_effective_masses_sum_to_total_mass():
             )
 
 
+def test_a_mode_that_leaves_the_roof_still_keeps_its_shape():
+    """50 storeys, the shear profile: a high mode's roof component is exactly 0 (others
+    ~1e-21); the default normalisation (positive roof) kept it as sign 0, erasing the shape
+    (participation NaN, a RuntimeWarning). Every mode is finite, mass-normalised, and the
+    effective masses sum to the total mass."""
+    b = ShearBuilding.from_period(50, 5.0, 0.05, profile="shear")
+    with np.errstate(all="raise"):
+        mp = b.modal_properties()
+    M = np.diag(b.mass)
+    np.testing.assert_allclose(mp.shapes.T @ M @ mp.shapes, np.eye(50), atol=1e-10)
+    assert np.all(np.isfinite(mp.participation)) and np.all(mp.shapes[-1] >= 0)
+    assert mp.effective_mass.sum() == pytest.approx(b.total_mass, rel=1e-10)
+
+
 @pytest.mark.parametrize("damping", [0.02, [0.02, 0.05, 0.1]])
 def test_classical_damping_gives_modal_poles(damping):
     """Classically damped: poles −ξω ± iω√(1−ξ²), the ω of the undamped problem."""
