@@ -37,6 +37,10 @@ PAIRS = ("511", "1084")
 and Northridge 1994, Sylmar Converter Station (near-fault, PGA 0.92 g, 8,773 samples).
 ``--quick`` runs the first."""
 
+TIMING = {"quick": (3, 1.0), "full": (7, 4.0)}
+"""Timing repeats per method and record, and the CPU budget (s) after which no further repeat
+starts (:func:`floorslide.bench.timing.measure`), of the quick and the default study."""
+
 PREFIX = 64
 """Samples of the record the warm-up call runs on."""
 
@@ -277,7 +281,7 @@ def run_bench(
     singles = load_records(tuple(ids)) if any(not s.pair for s in all_solvers) else ()
     rsns = pairs or (PAIRS[:1] if quick else PAIRS)
     doubles = load_pairs(tuple(rsns)) if any(s.pair for s in all_solvers) else ()
-    repeats, budget = (3, 1.0) if quick else (7, 4.0)
+    repeats, budget = TIMING["quick" if quick else "full"]
     rows: list[Row] = []
     with threadpool_limits(limits=1):
         for solver in all_solvers:
