@@ -158,3 +158,15 @@ def pytest_collection_finish(session):
     config = session.config
     if not hasattr(config, "workerinput") and not config.option.collectonly:
         _precompile(config, len(session.items))
+
+
+def pytest_collection_modifyitems(session, config, items):
+    """The modules with the most ``slow`` tests first, the order kept otherwise (a module's
+    tests stay together and in order): a parallel run hands out whole modules in this order
+    (``--dist loadscope``), so the long ones start first and the short ones fill in at the end
+    instead of one process finishing a long module while the other waits."""
+    slow: dict[str, int] = {}
+    for item in items:
+        if item.get_closest_marker("slow") is not None:
+            slow[item.nodeid.split("::")[0]] = slow.get(item.nodeid.split("::")[0], 0) + 1
+    items.sort(key=lambda item: -slow.get(item.nodeid.split("::")[0], 0))
