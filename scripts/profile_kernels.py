@@ -406,18 +406,13 @@ def _oscillator_run(fm, a, mk, ms, w, xi, r, counts, preset_peaks=False):
     """:func:`floorslide.contents.oscillator._exact_states` (batched, no histories), with the
     option of peaks preset beyond reach (``preset_peaks``: no part is then sent to the series
     for a new peak — an instrumented variant, its results not the real ones)."""
-    from floorslide.building.exact import spectral_radius, substeps_for, taylor_degree
     from floorslide.constants import G
     from floorslide.contents import _oscillator_batch as batch
     from floorslide.contents import _oscillator_kernel as cols
     from floorslide.contents.events import OSCILLATOR_MAX_EVENTS
-    from floorslide.contents.oscillator import _propagators, phase_radius
+    from floorslide.contents.oscillator import _propagators, oscillator_parts
 
-    rho_obj = phase_radius(w, xi, r)
-    rho_b = 0.0 if fm.ground else spectral_radius(fm.motion.stepper.A)
-    m_o = substeps_for(rho_obj, fm.h)
-    ho = fm.h / m_o
-    K = max(fm.order, taylor_degree(max(rho_b, rho_obj) * ho))
+    m_o, ho, K = oscillator_parts(fm, w, xi, r)
     states = np.zeros((mk.size, cols.O_NCOL))
     states[:, cols.O_LIMIT_AT] = -1.0
     if preset_peaks:

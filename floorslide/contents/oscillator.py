@@ -263,13 +263,7 @@ def _exact_states(fm, a, mk, ms, w, xi, r, histories, batched=True, counts=None)
     tests compare with). ``counts``: the batched kernel's part counters
     (:data:`~floorslide.contents._oscillator_batch.C_NCOL` integers), incremented.
     """
-    # the floor motion's own sub-steps, each split so that the oscillator's phases have
-    # ρ·h ≤ 0.5 (the floor polynomial is shifted to each part)
-    rho_obj = phase_radius(w, xi, r)
-    rho_b = 0.0 if fm.ground else spectral_radius(fm.motion.stepper.A)
-    m_o = substeps_for(rho_obj, fm.h)
-    ho = fm.h / m_o
-    K = max(fm.order, taylor_degree(max(rho_b, rho_obj) * ho))
+    m_o, ho, K = oscillator_parts(fm, w, xi, r)
     states = np.zeros((mk.size, cols.O_NCOL))
     states[:, cols.O_LIMIT_AT] = -1.0
     hist = np.zeros((mk.size, a.size, 4) if histories else (0, 0, 4))
@@ -292,6 +286,18 @@ def _exact_states(fm, a, mk, ms, w, xi, r, histories, batched=True, counts=None)
                 states, hist, histories, OSCILLATOR_MAX_EVENTS,
             )  # fmt: skip
     return states, hist
+
+
+def oscillator_parts(fm, w: float, xi: float, r: float) -> tuple[int, float, int]:
+    """How the 2-DOF oscillator steps through the floor motion `fm`: each of the motion's own
+    sub-steps split into ``m_o`` parts of length ``ho`` so that the oscillator's phases have
+    ρ·h ≤ 0.5 (the floor polynomial is shifted to each part), and the Taylor degree ``K`` of
+    a part for the faster of the oscillator and the building. Returns ``(m_o, ho, K)``."""
+    rho_obj = phase_radius(w, xi, r)
+    rho_b = 0.0 if fm.ground else spectral_radius(fm.motion.stepper.A)
+    m_o = substeps_for(rho_obj, fm.h)
+    ho = fm.h / m_o
+    return m_o, ho, max(fm.order, taylor_degree(max(rho_b, rho_obj) * ho))
 
 
 @functools.lru_cache(maxsize=32)
