@@ -2113,6 +2113,17 @@ def entry() -> None:
     leave(0)
 
 
+def exit_status(code: int | str | None) -> int:
+    """The exit status of ``sys.exit(code)``, as Python gives it: 0 for None, a message
+    printed on stderr and 1, else the integer."""
+    if code is None:
+        return 0
+    if not isinstance(code, int):
+        print(code, file=sys.stderr)
+        return 1
+    return code
+
+
 def leave(code: int | str | None) -> None:
     """End the process with `code` as ``sys.exit(code)`` would, without the interpreter's
     teardown when nothing needs it.
@@ -2129,11 +2140,7 @@ def leave(code: int | str | None) -> None:
     import atexit
     import threading
 
-    if code is None:
-        code = 0
-    elif not isinstance(code, int):  # sys.exit("message"): printed, exit code 1
-        print(code, file=sys.stderr)
-        code = 1
+    code = exit_status(code)
     h5py = sys.modules.get("h5py")
     busy = any(
         t.is_alive() and not t.daemon and t is not threading.main_thread()

@@ -51,11 +51,11 @@ def floorslide_cli(*args: str, cwd: str | os.PathLike | None = None):
 
     from click.testing import CliRunner
 
-    from floorslide.cli import main
+    from floorslide.cli import exit_status, main
 
     handlers = {s: signal.getsignal(s) for s in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)}
     argv, here = sys.argv, os.getcwd()
-    code: int | str | None = 0
+    code: int | str | None = None
     with CliRunner().isolation() as (out, err, _), warnings.catch_warnings():
         warnings.resetwarnings()  # a fresh interpreter's filters (pytest's are stricter)
         for category in (DeprecationWarning, PendingDeprecationWarning, ImportWarning,
@@ -75,12 +75,8 @@ def floorslide_cli(*args: str, cwd: str | os.PathLike | None = None):
                 signal.signal(sig, handler)
             sys.stdout.flush()
             sys.stderr.flush()
-        if code is None:
-            code = 0
-        elif not isinstance(code, int):  # sys.exit("message"): printed, exit code 1
-            print(code, file=sys.stderr)
-            sys.stderr.flush()
-            code = 1
+        code = exit_status(code)
+        sys.stderr.flush()
         stdout, stderr = out.getvalue().decode(), err.getvalue().decode()
     return subprocess.CompletedProcess(["floorslide", *map(str, args)], code, stdout, stderr)
 
@@ -165,8 +161,7 @@ def pytest_collection_modifyitems(session, config, items):
     tests stay together and in order): a parallel run hands out whole modules in this order
     (``--dist loadscope``), so the long ones start first and the short ones fill in at the end
     instead of one process finishing a long module while the other waits."""
-    slow: dict[str, int] = {}
-    for item in items:
-        if item.get_closest_marker("slow") is not None:
-            slow[item.nodeid.split("::")[0]] = slow.get(item.nodeid.split("::")[0], 0) + 1
-    items.sort(key=lambda item: -slow.get(item.nodeid.split("::")[0], 0))
+    from collections import Counter
+
+    slow = Counter(item.path for item in items if item.get_closest_marker("slow") is not None)
+    items.sort(key=lambda item: -slow[item.path])
