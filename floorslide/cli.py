@@ -1826,6 +1826,14 @@ def report(result, out, allow_incomplete, workers):
     click.echo(str(written))
 
 
+def _import_report() -> None:
+    """Import what the tables, figures and report need (run while a study's workers compute)."""
+    import floorslide.report.html
+    import floorslide.report.plots
+    import floorslide.report.study
+    import floorslide.report.tables  # noqa: F401
+
+
 @cli.command()
 @click.option(
     "-o",
@@ -1857,10 +1865,6 @@ def demo(out_dir, workers):
     import importlib.resources
     from pathlib import Path
 
-    from floorslide.report import design_tables, format_markdown, plot_figures, write_csv
-    from floorslide.report.formats import write_text
-    from floorslide.report.html import write_report
-    from floorslide.report.study import load_study
     from floorslide.run.execute import execute
     from floorslide.scene.planner import plan as make_plan
     from floorslide.scene.schema import load_scene
@@ -1878,7 +1882,8 @@ def demo(out_dir, workers):
         # integrated once per record, not a second time to count them beforehand)
         plan = make_plan(sc, evaluate=False)
     click.echo(plan.describe())
-    summary = execute(plan, str(h5), workers=workers, overwrite=replace)
+    # the report's modules (pandas, matplotlib): imported while the workers compute the tasks
+    summary = execute(plan, str(h5), workers=workers, overwrite=replace, meanwhile=_import_report)
     if summary.interrupted:
         click.echo(
             f"floorslide: interrupted ({signal.Signals(summary.signal).name}); "
@@ -1886,6 +1891,11 @@ def demo(out_dir, workers):
             err=True,
         )
         sys.exit(128 + summary.signal)
+    from floorslide.report import design_tables, format_markdown, plot_figures, write_csv
+    from floorslide.report.formats import write_text
+    from floorslide.report.html import write_report
+    from floorslide.report.study import load_study
+
     study = load_study(h5)  # the result file read once, for the tables and the figures
     tables = design_tables(study)
     csvs = write_csv(tables, out / "tables", inputs=[h5])

@@ -279,33 +279,48 @@ def _as_column(values: list, dtype: str, shape: tuple) -> np.ndarray:
     )
 
 
-def _append(g: h5py.Group, name: str, data: np.ndarray, start: int, expect: int, dtype: str):
-    """Write `data` at rows `start`… of the column `name` (created if need be)."""
-    if name not in g:
+def _append(
+    g: h5py.Group, name: str, data: np.ndarray, start: int, expect: int, dtype: str
+) -> h5py.Dataset | None:
+    """Write `data` at rows `start`… of the column `name`; returns the column if this call
+    created it (else None)."""
+    ds = g.get(name)
+    made = ds is None
+    if made:
         ds = _create(g, name, dtype, tuple(data.shape[1:]), start, expect, _fill(dtype))
-    else:
-        ds = g[name]
     end = start + len(data)
     if ds.shape[0] != end:
         ds.resize(end, axis=0)
     if len(data):
         ds[start:end] = data
+    return ds if made else None
 
 
 def append(
     f: h5py.File,
     tasks: Iterable[tuple[str, Node, str]],
     expect_tasks: int = 0,
+    known: dict[str, Table] | None = None,
 ) -> list[str]:
     """Append tasks (id, node, digest) to the tables of the open file `f`, their data flushed
     but not yet counted: :func:`commit` makes them part of the file.
+
+    `known`, when given, is the caller's record of the tables' columns: if it is filled, it is
+    taken for what `f` holds instead of reading every column's attributes again (a writer that
+    alone wrote the file since it last read it: the schema after its last committed batch);
+    it is then replaced by the columns after this batch, its rows counted as :func:`commit`
+    will count them. A caller whose append or commit failed empties it (the next append reads
+    the file again).
 
     Returns
     -------
     list
         The ids of the tasks stored whole under ``/raw`` (their nodes did not fit).
     """
-    schema = load_schema(f)
+    schema = dict(known) if known else load_schema(f)
+    listed = {t: set(schema[t].names) for t in TABLES}
+    if known is not None:
+        known.clear()  # filled again only once this batch is written whole
     pending: dict[str, list[Instance]] = {t: [] for t in TABLES}
     task_rows: list[dict] = []
     raw: list[str] = []
@@ -338,9 +353,15 @@ def append(
                 pending[t].append(inst)
     n_tasks = max(expect_tasks, schema["tasks"].rows + len(task_rows))
     scale = n_tasks / max(1, len(task_rows))
+    after = {}
     for t in TABLES:
-        _write_table(f, t, schema[t], pending[t], task_rows if t == "tasks" else None, scale)
+        rows = _write_table(
+            f, t, schema[t], pending[t], task_rows if t == "tasks" else None, scale, listed[t]
+        )
+        after[t] = Table(list(schema[t].names), dict(schema[t].columns), rows)
     f.flush()
+    if known is not None:
+        known.update(after)
     return raw
 
 
@@ -355,7 +376,11 @@ def _replace(f: h5py.File, group: str, tid: str, node: Node) -> None:
     write_node(parent, tid, node)
 
 
-def _write_table(f, name: str, table: Table, insts: list[Instance], task_rows, scale: float):
+def _write_table(
+    f, name: str, table: Table, insts: list[Instance], task_rows, scale: float, listed
+) -> int:
+    """Write the rows of `insts` (and `task_rows`) after the table's rows; `listed` are the
+    columns the file listed before this batch. Returns the table's rows with these."""
     g = f.require_group(name)
     start = table.rows
     n_rows = sum(i.rows for i in insts)
@@ -415,7 +440,7 @@ def _write_table(f, name: str, table: Table, insts: list[Instance], task_rows, s
         data = _as_column(values[cname], col.dtype, col.shape)
         if col.kind == "r":
             base = _ragged_rows(g, cname, start)
-            _append(g, cname, data, base, expect, col.dtype)
+            made = _append(g, cname, data, base, expect, col.dtype)
             _append(
                 g,
                 f"{cname}#n",
@@ -425,11 +450,12 @@ def _write_table(f, name: str, table: Table, insts: list[Instance], task_rows, s
                 "<i8",
             )
         else:
-            _append(g, cname, data, start, expect, col.dtype)
-        ds = g[cname]
-        for k, v in col.raw_attrs.items():
-            if k not in ds.attrs:
-                ds.attrs[k] = v
+            made = _append(g, cname, data, start, expect, col.dtype)
+        if made is not None or cname not in listed:  # a listed column has them (its key)
+            ds = g[cname] if made is None else made
+            for k, v in col.raw_attrs.items():
+                if k not in ds.attrs:
+                    ds.attrs[k] = v
     if "present" in g and g["present"].shape[1] < len(table.names):
         old = g["present"]
         keep = old[:start]
@@ -443,6 +469,7 @@ def _write_table(f, name: str, table: Table, insts: list[Instance], task_rows, s
     g.attrs["pending"] = start + n_rows
     if "rows" not in g.attrs:
         g.attrs["rows"] = start
+    return start + n_rows
 
 
 def _ragged_rows(g: h5py.Group, name: str, start: int) -> int:

@@ -17,7 +17,7 @@ import threading
 import time
 from collections.abc import Callable, Iterator
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
-from contextlib import contextmanager
+from contextlib import contextmanager, suppress
 from dataclasses import dataclass, field
 
 from tqdm import tqdm
@@ -112,14 +112,23 @@ def _worker_init() -> None:
 
 
 def _run_local(
-    todo, workers: int, force: bool, on_result: Callable, received: list[int] | None = None
+    todo,
+    workers: int,
+    force: bool,
+    on_result: Callable,
+    received: list[int] | None = None,
+    meanwhile: Callable[[], object] | None = None,
 ) -> None:
     """Run `todo` here (one worker) or in a pool of forked worker processes, calling
     `on_result` as each finishes. An interruption (`received`: the list of an enclosing
     :func:`interrupt_signals`) is taken while a task computes or the pool is waited on; the
     pool's own bookkeeping (starting a worker, handing out a task, shutting down) is finished
     first (:func:`_deferred`): interrupted half-way it left a dead pipe that Python's exit then
-    tripped over. On the way out, the tasks in flight finish (unwritten) and the pool stops."""
+    tripped over. On the way out, the tasks in flight finish (unwritten) and the pool stops.
+
+    `meanwhile`, with a pool, runs in a thread of this process once the workers are forked
+    (this process mostly waits on them), and has finished when the run returns; its errors are
+    ignored (it only prepares what the caller does next, which meets them itself)."""
     received = [] if received is None else received
     if workers <= 1:
         for task in todo:
@@ -153,6 +162,7 @@ def _run_local(
                 if task is None:
                     break
                 pending.add(pool.submit(attempt_task, task, force))
+        helper = _start_meanwhile(meanwhile)
         while pending:
             done, pending = wait(pending, return_when=FIRST_COMPLETED)
             for fut in done:
@@ -172,6 +182,22 @@ def _run_local(
         raise
     with _deferred(received):
         pool.shutdown(wait=True)
+    if helper is not None:
+        helper.join()
+
+
+def _start_meanwhile(meanwhile: Callable[[], object] | None) -> threading.Thread | None:
+    """`meanwhile` started in a daemon thread (None without it)."""
+    if meanwhile is None:
+        return None
+
+    def run() -> None:
+        with suppress(Exception):
+            meanwhile()
+
+    helper = threading.Thread(target=run, name="floorslide-meanwhile", daemon=True)
+    helper.start()
+    return helper
 
 
 @contextmanager
@@ -323,6 +349,7 @@ def execute(
     scheduler_timeout: float = SCHEDULER_TIMEOUT,
     warn: Callable[[str], None] = warn_stderr,
     signals: list[int] | None = None,
+    meanwhile: Callable[[], object] | None = None,
 ) -> RunSummary:
     """Run every task of `plan` not already done in `out` and write the results.
 
@@ -357,6 +384,10 @@ def execute(
         covers the summary after the run); without it the run sets up its own. SIGINT, SIGTERM
         and SIGHUP then interrupt the run alike: what finished is kept, the file is left for
         ``--resume`` and the summary says ``interrupted`` and which ``signal``.
+    meanwhile
+        Work of the caller's for after the run (importing the report's modules, say), done in
+        a thread of this process while local worker processes compute the tasks; not called
+        without them. Its errors are ignored: the caller meets them when it does that work.
 
     Raises
     ------
@@ -426,7 +457,7 @@ def execute(
                     if note:
                         warn(note)
                     with threadpool_limits(limits=1):
-                        _run_local(todo, n, force, on_result, received)
+                        _run_local(todo, n, force, on_result, received, meanwhile)
             except Exception:
                 writer.abandon()
                 raise

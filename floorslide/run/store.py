@@ -291,6 +291,10 @@ FINGERPRINT_ATTR = "fingerprint"
 BOOKKEEPING = frozenset({"done", DIGEST_ATTR})
 """Attributes of a task group that its digest leaves out (set after the group is written)."""
 ENTRY_SUFFIX = ".entry"
+WRITING = "writing.mark"
+"""In the journal folder while a batch is written into the result file: found by a resume, it
+says the last run stopped in the middle of a write (killed), which can leave HDF5's internal
+structures half-written even where the tasks read back; the file is then rebuilt."""
 """Suffix of a journal entry file (``<task>.entry``)."""
 HDF5_SIGNATURE = b"\x89HDF\r\n\x1a\n"
 LOCK_WAIT = 10.0
@@ -480,6 +484,15 @@ def _open_h5(path: Path, mode: str, wait: float | None = None) -> h5py.File:
         delay = min(2 * delay, 0.25)
 
 
+def _stamp(path: Path) -> tuple | None:
+    """The file's identity, size and modification time (None if it cannot be read)."""
+    try:
+        st = os.stat(path)
+    except OSError:
+        return None
+    return st.st_ino, st.st_size, st.st_mtime_ns
+
+
 def _is_hdf5(path: Path) -> bool:
     with open(path, "rb") as fh:
         return fh.read(len(HDF5_SIGNATURE)) == HDF5_SIGNATURE
@@ -648,6 +661,10 @@ class ResultWriter:
         self.batch = max(1, int(batch))
         self._pending: list[tuple[str, Node, str]] = []
         self._last_flush = time.monotonic()
+        self._columns: dict = {}
+        """The tables' columns after this writer's last batch (:func:`columns.append`'s
+        `known`), valid while the file is as that batch left it (:attr:`_columns_stamp`)."""
+        self._columns_stamp: tuple | None = None
         self._check_target(resume, overwrite)
         try:
             self.path.parent.mkdir(parents=True, exist_ok=True)
@@ -805,6 +822,8 @@ class ResultWriter:
                 "with --overwrite)",
                 str(self.path),
             )
+        mark = self.journal / WRITING
+        cut = mark.exists()
         try:
             reader = ResultFile(self.path, repair=True)
         except UnreadableResultError as exc:
@@ -813,6 +832,7 @@ class ResultWriter:
                 "missing from the journal run again"
             )
             self._create()
+            mark.unlink(missing_ok=True)
             return
         if reader.header_problem:
             self.warn(
@@ -837,10 +857,16 @@ class ResultWriter:
         drop = set(reader.damaged) | set(problems)
         moves = self._reconcile(reader, drop)
         self.kept = set(self.done)
-        if reader.format != FORMAT or drop or moves or reader.partial:
-            # a file of format 1 is converted; tasks dropped or renamed: the file is written
-            # again with the tasks kept (a few large writes)
+        if cut:
+            self.warn(
+                f"{self.path}: the last run stopped while writing it; it is written again with "
+                f"the {len(self.done)} finished tasks it holds"
+            )
+        if reader.format != FORMAT or drop or moves or reader.partial or cut:
+            # a file of format 1 is converted; tasks dropped or renamed, or a write cut short:
+            # the file is written again with the tasks kept (a few large writes)
             self._rebuild(reader, moves)
+            mark.unlink(missing_ok=True)
             return
         try:
             _reserve(self.path, RESERVE_MIN + len(json.dumps(self.plan)) * 2)
@@ -946,6 +972,8 @@ class ResultWriter:
         """Put the journal's valid entries the file lacks into it; refuse the others."""
         refused = 0
         for entry in sorted(self.journal.iterdir()):
+            if entry.name == WRITING:
+                continue
             if entry.name.endswith(".tmp"):  # cut short by a kill: that task runs again
                 with contextlib.suppress(OSError):
                     entry.unlink()
@@ -1050,15 +1078,28 @@ class ResultWriter:
         for _, node, _ in batch:
             b, o = _node_size(node)
             nbytes, objects = nbytes + b, objects + (o if "histories" in node.children else 0)
+        if self._columns_stamp is None or self._columns_stamp != _stamp(self.path):
+            self._columns.clear()  # changed since (or never written here): read it again
+        self._columns_stamp = None
+        mark = self.journal / WRITING
+        with contextlib.suppress(OSError):
+            mark.touch()
         try:
             _reserve(self.path, 2 * nbytes + RESERVE_PER_OBJECT * objects + RESERVE_MIN)
             with _open_h5(self.path, "a") as f:
-                append_tasks(f, batch, self._expect)
+                append_tasks(f, batch, self._expect, self._columns)
             _reserve(self.path, RESERVE_MIN)
             with _open_h5(self.path, "a") as f:
                 columns.commit(f)
         except (*H5_ERRORS, OSError) as exc:
+            self._columns.clear()
             raise self._failure(exc, self.path) from None
+        finally:
+            # HDF5 closed the file, even after an error it reported; only a killed process
+            # leaves the mark (then a resume rebuilds the file)
+            with contextlib.suppress(OSError):
+                mark.unlink()
+        self._columns_stamp = _stamp(self.path)
         self.done.update(tid for tid, _, _ in batch)
 
     def _flush_quietly(self) -> None:

@@ -191,3 +191,126 @@ def test_upgrade_and_rebuild_in_several_batches(tmp_path, two_studies, monkeypat
     summary = execute(p, str(path), workers=1, progress=False, resume=True)
     assert summary.ran == 1 and summary.resumed == 3
     assert len(ResultFile(path).done_tasks()) == 4 and not ResultFile(path).verify()
+
+
+def test_the_writer_reads_the_columns_once_and_keeps_them_right(two_studies, tmp_path, monkeypatch):
+    """After its first batch, the writer hands `columns.append` the columns it left in the file
+    instead of reading them again: at every later batch they equal what the file holds (names,
+    rows, kinds, types, shapes, attributes), and the file reads as one written without it."""
+    from floorslide.run import columns, store
+
+    real = store.append_tasks
+    seen = {"known": 0, "read": 0}
+
+    def checked(f, batch, expect, known=None):
+        if known:
+            seen["known"] += 1
+            held = columns.load_schema(f)
+            for t in columns.TABLES:
+                a, b = known[t], held[t]
+                assert (a.names, a.rows) == (b.names, b.rows), t
+                for name in a.names:
+                    x, y = a.columns[name], b.columns[name]
+                    assert (x.kind, x.dtype, x.shape, x.attrs) == (
+                        y.kind,
+                        y.dtype,
+                        y.shape,
+                        y.attrs,
+                    ), f"{t}/{name}"
+        else:
+            seen["read"] += 1
+        return real(f, batch, expect, known)
+
+    monkeypatch.setattr(store, "append_tasks", checked)
+    path = tmp_path / "large.toml"
+    path.write_text(scene(["PET-090", "RIO-360", "ELC-180", "TAF-021"]))
+    out = tmp_path / "large.h5"
+    execute(plan(parse_scene(path.read_text(), path)), str(out), workers=1, progress=False)
+    assert seen == {"known": 7, "read": 1}  # 8 tasks, one batch each (fewer than 32)
+    for a, b in zip(ResultFile(two_studies["large"]).tasks(), ResultFile(out).tasks(), strict=True):
+        for r in (a, b):  # the time each task took differs from run to run
+            r.seconds = 0.0
+            r.meta.pop("seconds", None)
+        assert_same_tasks(a, b)
+
+
+def test_a_failed_batch_makes_the_writer_read_the_columns_again(tmp_path, monkeypatch):
+    """A batch that failed may have left columns half-written: the next one reads the file."""
+    from floorslide.run import store
+
+    real = store.append_tasks
+    calls: list[bool] = []
+
+    def flaky(f, batch, expect, known=None):
+        calls.append(bool(known))
+        if len(calls) == 2:
+            real(f, batch, expect, known)
+            raise OSError(5, "Input/output error")
+        return real(f, batch, expect, known)
+
+    monkeypatch.setattr(store, "append_tasks", flaky)
+    path = tmp_path / "s.toml"
+    path.write_text(scene(["PET-090", "RIO-360"]))
+    p = plan(parse_scene(path.read_text(), path))
+    writer = store.ResultWriter(
+        tmp_path / "s.h5", p.scene.text, p.scene.path, p.scene.name, p.summary(), batch=1
+    )
+    from floorslide.run.task import run_task
+
+    results = [run_task(t) for t in p.tasks[:3]]
+    writer.write(results[0])
+    with pytest.raises(store.OutputError):
+        writer.write(results[1])
+    writer.write(results[2])
+    assert calls == [False, True, False]
+    writer.close()
+
+
+def test_a_run_killed_while_writing_is_rebuilt_on_resume(tmp_path):
+    """A process killed in the middle of a batch's write leaves the journal's mark; the resume
+    says so and writes the file again from the tasks it holds (HDF5's own structures can be
+    half-written even where the tasks read back: a later write then failed for ever)."""
+    import os
+
+    from floorslide.run import store
+    from floorslide.run.task import run_task
+
+    path = tmp_path / "s.toml"
+    path.write_text(scene(["PET-090", "RIO-360"]))
+    p = plan(parse_scene(path.read_text(), path))
+    results = [run_task(t) for t in p.tasks]
+    out = tmp_path / "s.h5"
+    args = (out, p.scene.text, p.scene.path, p.scene.name, p.summary())
+    pid = os.fork()
+    if pid == 0:  # the run that is killed: its second batch is written, never committed
+        try:
+            real = store.append_tasks
+
+            def killed(f, batch, expect, known=None):
+                real(f, batch, expect, known)
+                if batch[0][0] == results[1].task_id:
+                    f.flush()
+                    os._exit(9)
+
+            store.append_tasks = killed
+            w = store.ResultWriter(*args, batch=1)
+            for r in results:
+                w.write(r)
+        finally:
+            os._exit(1)
+    _, status = os.waitpid(pid, 0)
+    assert os.WEXITSTATUS(status) == 9
+    assert (store.journal_dir(out) / store.WRITING).exists()
+    warned: list[str] = []
+    w = store.ResultWriter(*args, resume=True, warn=warned.append, batch=1)
+    assert any("stopped while writing" in line for line in warned), warned
+    assert not (store.journal_dir(out) / store.WRITING).exists()
+    for r in results:
+        if r.task_id not in w.done:
+            w.write(r)
+    w.finish()
+    w.close()
+    rf = ResultFile(out)
+    assert rf.verified and sorted(rf.done_tasks()) == sorted(r.task_id for r in results)
+    # a run stopped by an error it caught (a full disk) leaves no mark: nothing to rebuild
+    assert not store.journal_dir(out).exists()
