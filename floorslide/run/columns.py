@@ -308,9 +308,9 @@ def append(
     `known`, when given, is the caller's record of the tables' columns: if it is filled, it is
     taken for what `f` holds instead of reading every column's attributes again (a writer that
     alone wrote the file since it last read it: the schema after its last committed batch);
-    it is then replaced by the columns after this batch, its rows counted as :func:`commit`
-    will count them. A caller whose append or commit failed empties it (the next append reads
-    the file again).
+    it is emptied at once and filled again with the columns after this batch, its rows counted
+    as :func:`commit` will count them, only once the batch is written whole (a caller whose
+    commit then fails empties it: the next append reads the file again).
 
     Returns
     -------
@@ -358,7 +358,8 @@ def append(
         rows = _write_table(
             f, t, schema[t], pending[t], task_rows if t == "tasks" else None, scale, listed[t]
         )
-        after[t] = Table(list(schema[t].names), dict(schema[t].columns), rows)
+        after[t] = _copy(schema[t])
+        after[t].rows = rows
     f.flush()
     if known is not None:
         known.update(after)
@@ -377,7 +378,7 @@ def _replace(f: h5py.File, group: str, tid: str, node: Node) -> None:
 
 
 def _write_table(
-    f, name: str, table: Table, insts: list[Instance], task_rows, scale: float, listed
+    f, name: str, table: Table, insts: list[Instance], task_rows, scale: float, listed: set[str]
 ) -> int:
     """Write the rows of `insts` (and `task_rows`) after the table's rows; `listed` are the
     columns the file listed before this batch. Returns the table's rows with these."""

@@ -485,12 +485,13 @@ def _open_h5(path: Path, mode: str, wait: float | None = None) -> h5py.File:
 
 
 def _stamp(path: Path) -> tuple | None:
-    """The file's identity, size and modification time (None if it cannot be read)."""
+    """The file's identity (device, inode), size and modification time (None if it cannot be
+    read)."""
     try:
         st = os.stat(path)
     except OSError:
         return None
-    return st.st_ino, st.st_size, st.st_mtime_ns
+    return st.st_dev, st.st_ino, st.st_size, st.st_mtime_ns
 
 
 def _is_hdf5(path: Path) -> bool:
